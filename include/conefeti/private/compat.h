@@ -6,12 +6,12 @@
 
 /* PetscErrorCode became an enum with PETSC_SUCCESS in 3.19; returning it keeps C++ happy on both. */
 #if PETSC_VERSION_LT(3, 19, 0) && !defined(PETSC_SUCCESS)
-  #define PETSC_SUCCESS 0
+#  define PETSC_SUCCESS 0
 #endif
 
 /* PetscOptionItems became a non-pointer typedef in 3.22. */
 #if PETSC_VERSION_LT(3, 22, 0)
-  #define CONEFETI_OPTIONS_ITEMS PetscOptionItems *
+#  define CONEFETI_OPTIONS_ITEMS PetscOptionItems *
 #else
-  #define CONEFETI_OPTIONS_ITEMS PetscOptionItems
+#  define CONEFETI_OPTIONS_ITEMS PetscOptionItems
 #endif

@@ -1,10 +1,30 @@
-/* QP layer package: registers the QP solver types, classes and log events. */
+/* QP layer package: registers the QP solver types, the SeparableSet class and log events. */
+#include <conefeti/qp.h>
 #include <conefeti/private/package.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/private/mpgpcore.h>
+
+PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao);
+PETSC_INTERN PetscErrorCode TaoCreate_MPGP(Tao);
+PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao);
+PETSC_INTERN PetscErrorCode KSPCreate_MPRGP(KSP);
+PETSC_INTERN PetscErrorCode KSPCreate_MPGP(KSP);
 
 PetscErrorCode ConeFETIQPInitializePackage(void)
 {
+  PetscClassId qp_classid;
+
   PetscFunctionBegin;
+  PetscCall(PetscClassIdRegister("SeparableSet", &SEPARABLESET_CLASSID));
+  PetscCall(PetscClassIdRegister("ConeFETI QP", &qp_classid));
+  PetscCall(PetscLogEventRegister("QPSolve", qp_classid, &QP_Solve));
+  PetscCall(PetscLogEventRegister("QPHessianMult", qp_classid, &QP_HessianMult));
+  PetscCall(PetscLogEventRegister("QPNormEstimate", qp_classid, &QP_NormEstimate));
+  PetscCall(PetscLogEventRegister("QPProject", SEPARABLESET_CLASSID, &QP_Project));
+  PetscCall(PetscLogEventRegister("QPSplitGradient", SEPARABLESET_CLASSID, &QP_Split));
+  PetscCall(TaoRegister(TAOMPRGP, TaoCreate_MPRGP));
+  PetscCall(TaoRegister(TAOMPGP, TaoCreate_MPGP));
+  PetscCall(KSPRegister(KSPMPRGP, KSPCreate_MPRGP));
+  PetscCall(KSPRegister(KSPMPGP, KSPCreate_MPGP));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,0 +1,51 @@
+/* The one implementation of MPRGP and MPGP, shared by the TAO and KSP types. */
+#pragma once
+
+#include <conefeti/private/separablesetimpl.h>
+
+enum class MPGPVariant {
+  MPRGP, /* bounds only; proportioning step along the chopped gradient with exact line search */
+  MPGP   /* any separable set; proportioning step is a projected gradient step of fixed length */
+};
+
+enum class MPGPStatus {
+  STOPPED,    /* the owner's report callback asked to stop (converged or out of iterations) */
+  INDEFINITE, /* p'Ap <= 0: the Hessian is not positive definite on the search space */
+  NOT_A_NUMBER
+};
+
+/* Called at iteration 0 and after every iteration; sets *stop to end the solve. */
+typedef PetscErrorCode (*MPGPReportFn)(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm, PetscReal step, PetscBool *stop);
+/* z = M^{-1} g; only used when the set is unconstrained (then the solver is PCG). */
+typedef PetscErrorCode (*MPGPPreconditionFn)(void *ctx, Vec g, Vec z);
+
+struct MPGPCore {
+  MPGPVariant variant     = MPGPVariant::MPGP;
+  PetscReal   gamma       = 1.0;  /* proportioning parameter Gamma */
+  PetscReal   alpha_scale = 1.95; /* fixed step alpha = alpha_scale / ||A||, in (0, 2] */
+  PetscReal   normA       = 0;    /* estimate of ||A||, provided by the owner before the solve */
+
+  Mat          A   = nullptr; /* not owned */
+  Vec          b   = nullptr; /* not owned */
+  SeparableSet set = nullptr; /* not owned */
+
+  MPGPReportFn       report           = nullptr;
+  void              *report_ctx       = nullptr;
+  MPGPPreconditionFn precondition     = nullptr;
+  void              *precondition_ctx = nullptr;
+  QPCounters        *counters         = nullptr; /* owner's counters, updated in place */
+
+  Vec g = nullptr, p = nullptr, Ap = nullptr, phi = nullptr, beta = nullptr, z = nullptr; /* work */
+
+  /* state after a solve: g = A x - b is valid for the returned x */
+  PetscInt   its    = 0;
+  PetscReal  f      = 0;
+  PetscReal  gpnorm = 0;
+  MPGPStatus status = MPGPStatus::STOPPED;
+};
+
+PETSC_INTERN PetscErrorCode MPGPCoreSetUp(MPGPCore *, Vec);
+PETSC_INTERN PetscErrorCode MPGPCoreSolve(MPGPCore *, Vec);
+PETSC_INTERN PetscErrorCode MPGPCoreReset(MPGPCore *);
+
+PETSC_INTERN PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate;

@@ -1,0 +1,363 @@
+/* KSP types mprgp and mpgp: KSPSolve(A x = b) minimizes 1/2 x'Ax - b'x over a SeparableSet,
+   by the shared MPGP core. Without constraints the iterates are those of CG (PCG with a PC). */
+#include <conefeti.h>
+#include <conefeti/private/mpgpcore.h>
+#include <petsc/private/kspimpl.h>
+
+namespace {
+
+struct KSPQP {
+  MPGPCore     core;
+  const char  *name     = nullptr;
+  SeparableSet user_set = nullptr;         /* from KSPQPSetConstraints() */
+  SeparableSet set      = nullptr;         /* in use for the current solve */
+  Vec          lb = nullptr, ub = nullptr; /* from KSPMPRGPSetBounds() */
+  Vec          dm_lb = nullptr, dm_ub = nullptr;
+  QPCounters   counters = {};
+
+  QPNormMethod norm_method   = QP_NORM_SLEPC;
+  PetscReal    norm_margin   = -1;
+  PetscReal    norm_user     = 0;
+  PetscReal    norm_used     = 0;
+  PetscBool    counters_view = PETSC_FALSE;
+  PetscBool    unconstrained = PETSC_TRUE;
+};
+
+KSPQP *GetQP(KSP ksp) { return static_cast<KSPQP *>(ksp->data); }
+
+PetscErrorCode KSPQPReport(void *ctx, PetscInt it, PetscReal, PetscReal gpnorm, PetscReal, PetscBool *stop)
+{
+  KSP ksp = static_cast<KSP>(ctx);
+
+  PetscFunctionBegin;
+  ksp->its   = it;
+  ksp->rnorm = gpnorm;
+  PetscCall(KSPLogResidualHistory(ksp, gpnorm));
+  PetscCall(KSPMonitor(ksp, it, gpnorm));
+  PetscCall((*ksp->converged)(ksp, it, gpnorm, &ksp->reason, ksp->cnvP));
+  if (!ksp->reason && it >= ksp->max_it) ksp->reason = KSP_DIVERGED_ITS;
+  *stop = ksp->reason ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPQPPrecondition(void *ctx, Vec g, Vec z)
+{
+  KSP ksp = static_cast<KSP>(ctx);
+
+  PetscFunctionBegin;
+  PetscCall(KSP_PCApply(ksp, g, z));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The set for this solve: the user's set, the bounds of KSPMPRGPSetBounds(), the DM's variable
+   bounds, or none. */
+PetscErrorCode KSPQPPrepareSet(KSP ksp, KSPQP *qp)
+{
+  PetscInt n, N;
+
+  PetscFunctionBegin;
+  if (qp->user_set) {
+    PetscCall(SeparableSetCheckCompatible_Private(qp->user_set, ksp->vec_sol));
+    if (qp->set != qp->user_set) {
+      PetscCall(PetscObjectReference((PetscObject)qp->user_set));
+      PetscCall(SeparableSetDestroy(&qp->set));
+      qp->set = qp->user_set;
+    }
+  } else {
+    if (!qp->set) {
+      PetscCall(VecGetLocalSize(ksp->vec_sol, &n));
+      PetscCall(VecGetSize(ksp->vec_sol, &N));
+      PetscCall(SeparableSetCreate(PetscObjectComm((PetscObject)ksp), n, N, &qp->set));
+    }
+    if (qp->lb || qp->ub) PetscCall(SeparableSetSetBounds(qp->set, qp->lb, qp->ub));
+    else {
+      PetscBool has = PETSC_FALSE;
+      if (ksp->dm) PetscCall(DMHasVariableBounds(ksp->dm, &has));
+      if (has) {
+        if (!qp->dm_lb) PetscCall(VecDuplicate(ksp->vec_sol, &qp->dm_lb));
+        if (!qp->dm_ub) PetscCall(VecDuplicate(ksp->vec_sol, &qp->dm_ub));
+        PetscCall(DMComputeVariableBounds(ksp->dm, qp->dm_lb, qp->dm_ub));
+        PetscCall(SeparableSetSetBounds(qp->set, qp->dm_lb, qp->dm_ub));
+      } else PetscCall(SeparableSetSetBounds(qp->set, NULL, NULL));
+    }
+  }
+  PetscCall(SeparableSetIsUnconstrained(qp->set, &qp->unconstrained));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPSetUp_QP(KSP ksp)
+{
+  PetscFunctionBegin;
+  if (ksp->vec_sol) PetscCall(MPGPCoreSetUp(&GetQP(ksp)->core, ksp->vec_sol));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPSolve_QP(KSP ksp)
+{
+  KSPQP    *qp = GetQP(ksp);
+  Mat       A;
+  PCType    pctype;
+  PetscBool pcnone, curved;
+
+  PetscFunctionBegin;
+  PetscCall(PCGetOperators(ksp->pc, &A, NULL));
+  PetscCall(KSPQPPrepareSet(ksp, qp));
+  if (qp->core.variant == MPGPVariant::MPRGP) {
+    PetscCall(SeparableSetHasCurvedBlocks(qp->set, &curved));
+    PetscCheck(!curved, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_WRONG, "KSP mprgp handles bounds only, but the set has disk or cone blocks; use -ksp_type mpgp");
+  }
+  PetscCall(PCGetType(ksp->pc, &pctype));
+  PetscCall(PetscStrcmp(pctype, PCNONE, &pcnone));
+  PetscCheck(pcnone || qp->unconstrained, PetscObjectComm((PetscObject)ksp), PETSC_ERR_SUP, "KSP %s with constraints does not support preconditioning (PC %s); use -pc_type none", qp->name, pctype);
+  if (ksp->guess_zero) PetscCall(VecSet(ksp->vec_sol, 0.0));
+
+  /* the fixed step length matters only when there are constraints: without them every step is CG */
+  if (qp->unconstrained) qp->norm_used = qp->norm_user > 0 ? qp->norm_user : 1.0;
+  else if (qp->norm_user > 0) qp->norm_used = qp->norm_user;
+  else {
+    PetscInt    products;
+    char        prefix[256];
+    const char *kprefix;
+    PetscCall(KSPGetOptionsPrefix(ksp, &kprefix));
+    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%sksp_%s_norm_", kprefix ? kprefix : "", qp->name));
+    PetscCall(MatQPEstimateNorm(A, qp->norm_method, qp->norm_margin >= 0 ? qp->norm_margin : (qp->norm_method == QP_NORM_SLEPC ? 0.01 : 0.05), prefix, &qp->norm_used, &products));
+    qp->counters.estimate_mults += products;
+  }
+
+  qp->core.A                = A;
+  qp->core.b                = ksp->vec_rhs;
+  qp->core.set              = qp->set;
+  qp->core.normA            = qp->norm_used;
+  qp->core.counters         = &qp->counters;
+  qp->core.report           = KSPQPReport;
+  qp->core.report_ctx       = ksp;
+  qp->core.precondition     = (qp->unconstrained && !pcnone) ? KSPQPPrecondition : nullptr;
+  qp->core.precondition_ctx = ksp;
+  ksp->reason               = KSP_CONVERGED_ITERATING;
+  PetscCall(MPGPCoreSolve(&qp->core, ksp->vec_sol));
+  if (qp->core.status == MPGPStatus::INDEFINITE) ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
+  else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) ksp->reason = KSP_DIVERGED_NANORINF;
+  if (qp->counters_view) {
+    PetscViewer viewer;
+    PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)ksp), &viewer));
+    PetscCall(QPCountersViewJSON(&qp->counters, qp->name, viewer));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPSetFromOptions_QP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
+{
+  KSPQP    *qp = GetQP(ksp);
+  char      opt[64], title[64];
+  PetscReal value;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(title, sizeof(title), "KSP %s: QP over a separable set (conefeti)", qp->name));
+  PetscOptionsHeadBegin(PetscOptionsObject, title);
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_gamma", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Proportioning parameter Gamma > 0", "KSPQP", qp->core.gamma, &qp->core.gamma, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_alpha", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "KSPQP", qp->core.alpha_scale, &qp->core.alpha_scale, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_norm", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "KSPQPSetNormEstimate", qp->norm_user, &value, &set));
+  if (set) PetscCall(KSPQPSetNormEstimate(ksp, value));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_norm_method", qp->name));
+  PetscCall(PetscOptionsEnum(opt, "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)qp->norm_method, (PetscEnum *)&qp->norm_method, NULL));
+  PetscCheck(qp->norm_method != QP_NORM_USER || qp->norm_user > 0, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_WRONG, "-ksp_%s_norm_method user needs -ksp_%s_norm <value>", qp->name, qp->name);
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_norm_margin", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Relative safety margin added to the norm estimate (default 0.01 for slepc, 0.05 for power)", "MatQPEstimateNorm", qp->norm_margin, &qp->norm_margin, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_counters_view", qp->name));
+  PetscCall(PetscOptionsBool(opt, "Print the counters as one JSON line after each solve", "QPCountersViewJSON", qp->counters_view, &qp->counters_view, NULL));
+  PetscOptionsHeadEnd();
+  PetscCheck(qp->core.gamma > 0, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-ksp_%s_gamma must be positive, got %g", qp->name, (double)qp->core.gamma);
+  PetscCheck(qp->core.alpha_scale > 0 && qp->core.alpha_scale <= 2, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-ksp_%s_alpha must be in (0, 2], got %g", qp->name,
+             (double)qp->core.alpha_scale);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPView_QP(KSP ksp, PetscViewer viewer)
+{
+  KSPQP    *qp = GetQP(ksp);
+  PetscBool iascii;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
+  if (!iascii) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  %s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
+                                   qp->norm_user > 0 ? "given" : "estimated", (double)qp->norm_used));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(QPCountersView(&qp->counters, NULL, viewer));
+  if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPReset_QP(KSP ksp)
+{
+  KSPQP *qp = GetQP(ksp);
+
+  PetscFunctionBegin;
+  PetscCall(MPGPCoreReset(&qp->core));
+  PetscCall(SeparableSetDestroy(&qp->set));
+  PetscCall(VecDestroy(&qp->dm_lb));
+  PetscCall(VecDestroy(&qp->dm_ub));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPDestroy_QP(KSP ksp)
+{
+  KSPQP *qp = GetQP(ksp);
+
+  PetscFunctionBegin;
+  PetscCall(KSPReset_QP(ksp));
+  PetscCall(SeparableSetDestroy(&qp->user_set));
+  PetscCall(VecDestroy(&qp->lb));
+  PetscCall(VecDestroy(&qp->ub));
+  for (const char *fn : {"KSPQPSetConstraints_C", "KSPQPGetConstraints_C", "KSPMPRGPSetBounds_C", "KSPQPSetNormEstimate_C", "KSPQPGetCounters_C", "KSPQPResetCounters_C"})
+    PetscCall(PetscObjectComposeFunction((PetscObject)ksp, fn, NULL));
+  delete qp;
+  ksp->data = NULL;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPQPSetConstraints_QP(KSP ksp, SeparableSet set)
+{
+  KSPQP *qp = GetQP(ksp);
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectReference((PetscObject)set));
+  PetscCall(SeparableSetDestroy(&qp->user_set));
+  qp->user_set = set;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPQPGetConstraints_QP(KSP ksp, SeparableSet *set)
+{
+  PetscFunctionBegin;
+  *set = GetQP(ksp)->set ? GetQP(ksp)->set : GetQP(ksp)->user_set;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPMPRGPSetBounds_QP(KSP ksp, Vec lb, Vec ub)
+{
+  KSPQP *qp = GetQP(ksp);
+
+  PetscFunctionBegin;
+  if (lb) PetscCall(PetscObjectReference((PetscObject)lb));
+  if (ub) PetscCall(PetscObjectReference((PetscObject)ub));
+  PetscCall(VecDestroy(&qp->lb));
+  PetscCall(VecDestroy(&qp->ub));
+  qp->lb = lb;
+  qp->ub = ub;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPQPSetNormEstimate_QP(KSP ksp, PetscReal norm)
+{
+  PetscFunctionBegin;
+  PetscCheck(norm >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "KSPQPSetNormEstimate: ||A|| must be finite and > 0 (0 to estimate), got %g",
+             (double)norm);
+  GetQP(ksp)->norm_user = norm;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPQPGetCounters_QP(KSP ksp, QPCounters *c)
+{
+  PetscFunctionBegin;
+  *c = GetQP(ksp)->counters;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPQPResetCounters_QP(KSP ksp)
+{
+  PetscFunctionBegin;
+  GetQP(ksp)->counters = QPCounters{};
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name)
+{
+  KSPQP *qp;
+  PC     pc;
+
+  PetscFunctionBegin;
+  PetscCallCXX(qp = new KSPQP);
+  qp->core.variant = variant;
+  qp->name         = name;
+  ksp->data        = qp;
+  PetscCall(KSPSetSupportedNorm(ksp, KSP_NORM_UNPRECONDITIONED, PC_LEFT, 3));
+  /* with constraints no preconditioner applies: default to none unless the user chose one */
+  PetscCall(KSPGetPC(ksp, &pc));
+  if (!((PetscObject)pc)->type_name) PetscCall(PCSetType(pc, PCNONE));
+
+  ksp->ops->setup          = KSPSetUp_QP;
+  ksp->ops->solve          = KSPSolve_QP;
+  ksp->ops->setfromoptions = KSPSetFromOptions_QP;
+  ksp->ops->view           = KSPView_QP;
+  ksp->ops->reset          = KSPReset_QP;
+  ksp->ops->destroy        = KSPDestroy_QP;
+  ksp->ops->buildsolution  = KSPBuildSolutionDefault;
+  ksp->ops->buildresidual  = KSPBuildResidualDefault;
+
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPSetConstraints_C", KSPQPSetConstraints_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPGetConstraints_C", KSPQPGetConstraints_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPMPRGPSetBounds_C", KSPMPRGPSetBounds_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPSetNormEstimate_C", KSPQPSetNormEstimate_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPGetCounters_C", KSPQPGetCounters_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPResetCounters_C", KSPQPResetCounters_QP));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+/*MC
+  KSPMPRGP - "mprgp": KSPSolve(A x = b) as min 1/2 x'Ax - b'x subject to l <= x <= u (Dostal-Schoberl
+  MPRGP); without bounds it is CG (PCG with a preconditioner), with the same iterates as `KSPCG`.
+
+  Options Database Keys:
++ -ksp_mprgp_gamma <1>           - proportioning parameter Gamma
+. -ksp_mprgp_alpha <1.95>        - fixed step length in units of 1/||A||, in (0, 2]
+. -ksp_mprgp_norm <value>        - ||A|| given, not estimated (only used with bounds)
+. -ksp_mprgp_norm_method <slepc> - slepc or power
+. -ksp_mprgp_norm_margin         - safety margin on the estimate
+- -ksp_mprgp_counters_view       - print the counters as one JSON line after each solve
+
+  Notes:
+  Bounds come from `KSPMPRGPSetBounds()`, `KSPQPSetConstraints()`, or the variable bounds of the KSP's DM
+  (`DMSetVariableBounds()`), so an unmodified program with a DM that has bounds can use it. The
+  initial guess is projected. The residual norm reported to monitors and to the convergence test is
+  the norm of the projected gradient (the KKT residual); `-ksp_rtol` is relative to |b|. With bounds
+  the PC must be none.
+
+  Level: beginner
+
+.seealso: `KSPMPGP`, `TAOMPRGP`, `KSPMPRGPSetBounds()`
+M*/
+PETSC_INTERN PetscErrorCode KSPCreate_MPRGP(KSP ksp)
+{
+  PetscFunctionBegin;
+  PetscCall(KSPCreate_QPCommon(ksp, MPGPVariant::MPRGP, KSPMPRGP));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*MC
+  KSPMPGP - "mpgp": KSPSolve(A x = b) as min 1/2 x'Ax - b'x over a `SeparableSet` (bounds, disks,
+  cones; Kucera's MPGP); without constraints it is CG.
+
+  Options Database Keys:
+  Those of `KSPMPRGP`, with the prefix -ksp_mpgp_.
+
+  Notes:
+  The set comes from `KSPQPSetConstraints()`; bounds as for `KSPMPRGP`.
+
+  Level: beginner
+
+.seealso: `KSPMPRGP`, `TAOMPGP`, `KSPQPSetConstraints()`
+M*/
+PETSC_INTERN PetscErrorCode KSPCreate_MPGP(KSP ksp)
+{
+  PetscFunctionBegin;
+  PetscCall(KSPCreate_QPCommon(ksp, MPGPVariant::MPGP, KSPMPGP));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

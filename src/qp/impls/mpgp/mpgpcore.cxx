@@ -1,0 +1,195 @@
+/* MPRGP (Dostal-Schoberl) and MPGP (Kucera): one implementation for both the TAO and KSP types.
+
+   Minimizes q(x) = 1/2 x'Ax - b'x over a separable set. Each iteration does exactly one kind of step:
+   - CG step on the free set when the iterate is proportional (|beta|^2 <= Gamma^2 phi~.phi) and the
+     CG step stays feasible;
+   - expansion step otherwise in the proportional case: to the boundary by the largest feasible step
+     along p, then a projected step of fixed length alpha along the free gradient, and CG restarts;
+   - proportioning step when not proportional: along the chopped gradient with exact line search
+     (MPRGP: it stays feasible for bounds), or a projected gradient step of fixed length (MPGP, which
+     is what curved boundaries need).
+   Math: ../shared/ALGORITHMS.md section 3. */
+#include <conefeti/private/mpgpcore.h>
+
+PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate;
+
+static PetscErrorCode MPGPCoreMult(MPGPCore *c, Vec x, Vec y)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(QP_HessianMult, c->A, x, y, 0));
+  PetscCall(MatMult(c->A, x, y));
+  PetscCall(PetscLogEventEnd(QP_HessianMult, c->A, x, y, 0));
+  c->counters->hessian_mults++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* g = A x - b */
+static PetscErrorCode MPGPCoreGradient(MPGPCore *c, Vec x)
+{
+  PetscFunctionBegin;
+  PetscCall(MPGPCoreMult(c, x, c->g));
+  PetscCall(VecAXPY(c->g, -1.0, c->b));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MPGPCoreSetUp(MPGPCore *c, Vec x)
+{
+  PetscFunctionBegin;
+  if (c->g) {
+    PetscInt n, N, n0, N0;
+    PetscCall(VecGetLocalSize(x, &n));
+    PetscCall(VecGetSize(x, &N));
+    PetscCall(VecGetLocalSize(c->g, &n0));
+    PetscCall(VecGetSize(c->g, &N0));
+    if (n == n0 && N == N0) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(MPGPCoreReset(c));
+  }
+  PetscCall(VecDuplicate(x, &c->g));
+  PetscCall(VecDuplicate(x, &c->p));
+  PetscCall(VecDuplicate(x, &c->Ap));
+  PetscCall(VecDuplicate(x, &c->phi));
+  PetscCall(VecDuplicate(x, &c->beta));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MPGPCoreReset(MPGPCore *c)
+{
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(&c->g));
+  PetscCall(VecDestroy(&c->p));
+  PetscCall(VecDestroy(&c->Ap));
+  PetscCall(VecDestroy(&c->phi));
+  PetscCall(VecDestroy(&c->beta));
+  PetscCall(VecDestroy(&c->z));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Computes phi, beta and the sums at (x, g); Ap may be NULL. */
+static PetscErrorCode MPGPCoreSplit(MPGPCore *c, Vec x, PetscReal alpha, Vec Ap, SeparableSplit *s)
+{
+  PetscFunctionBegin;
+  PetscCall(SeparableSetSplitGradient_Private(c->set, x, c->g, alpha, c->phi, c->beta, Ap, c->b, s));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Search direction after a restart: the free gradient, or its preconditioned version. */
+static PetscErrorCode MPGPCoreRestartDirection(MPGPCore *c)
+{
+  PetscFunctionBegin;
+  if (c->precondition) {
+    PetscCall(c->precondition(c->precondition_ctx, c->g, c->z));
+    PetscCall(VecCopy(c->z, c->p));
+  } else PetscCall(VecCopy(c->phi, c->p));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
+{
+  SeparableSplit s;
+  PetscReal      alpha;
+  PetscInt       it   = 0;
+  PetscBool      stop = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCheck(c->normA > 0 && !PetscIsInfOrNanReal(c->normA), PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: the norm estimate of A must be positive and finite, got %g",
+             (double)c->normA);
+  PetscCheck(c->alpha_scale > 0 && c->alpha_scale <= 2, PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: step length factor %g is outside (0, 2]", (double)c->alpha_scale);
+  PetscCheck(c->gamma > 0, PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: proportioning parameter Gamma = %g must be positive", (double)c->gamma);
+  PetscCall(MPGPCoreSetUp(c, x));
+  if (c->precondition && !c->z) PetscCall(VecDuplicate(x, &c->z));
+  PetscCall(PetscLogEventBegin(QP_Solve, 0, 0, 0, 0));
+  alpha = c->alpha_scale / c->normA;
+  c->counters->solves++;
+
+  /* the initial guess is projected */
+  PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
+  PetscCall(MPGPCoreGradient(c, x));
+  PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+  PetscCall(MPGPCoreRestartDirection(c));
+  c->status = MPGPStatus::STOPPED;
+  c->f      = 0.5 * (s.xg - s.xb);
+  c->gpnorm = PetscSqrtReal(s.gp2);
+  PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, 0.0, &stop));
+
+  while (!stop) {
+    PetscReal step;
+    if (PetscIsInfOrNanReal(c->gpnorm) || PetscIsInfOrNanReal(c->f)) {
+      c->status = MPGPStatus::NOT_A_NUMBER;
+      break;
+    }
+    if (s.beta2 <= c->gamma * c->gamma * s.phitphi) { /* proportional: CG or expansion */
+      PetscScalar pAp, gp;
+      PetscReal   acg, af;
+      PetscCall(MPGPCoreMult(c, c->p, c->Ap));
+      PetscCall(VecDotBegin(c->Ap, c->p, &pAp));
+      PetscCall(VecDotBegin(c->g, c->p, &gp));
+      PetscCall(VecDotEnd(c->Ap, c->p, &pAp));
+      PetscCall(VecDotEnd(c->g, c->p, &gp));
+      if (!(PetscRealPart(pAp) > 0)) {
+        c->status = PetscIsInfOrNanScalar(pAp) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
+        break;
+      }
+      acg = PetscRealPart(gp) / PetscRealPart(pAp);
+      PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->p, &af));
+      if (acg <= af) { /* conjugate gradient step */
+        PetscReal gamma_cg;
+        PetscCall(VecAXPY(x, -acg, c->p));
+        PetscCall(VecAXPY(c->g, -acg, c->Ap));
+        PetscCall(MPGPCoreSplit(c, x, alpha, c->Ap, &s));
+        if (c->precondition) {
+          PetscScalar zAp;
+          PetscCall(c->precondition(c->precondition_ctx, c->g, c->z));
+          PetscCall(VecDot(c->z, c->Ap, &zAp));
+          gamma_cg = PetscRealPart(zAp) / PetscRealPart(pAp);
+          PetscCall(VecAYPX(c->p, -gamma_cg, c->z));
+        } else {
+          gamma_cg = s.phiAp / PetscRealPart(pAp);
+          PetscCall(VecAYPX(c->p, -gamma_cg, c->phi));
+        }
+        step = acg;
+        c->counters->cg_steps++;
+      } else { /* expansion: feasible half step, then a projected step along the free gradient */
+        PetscCall(VecAXPY(x, -af, c->p));
+        PetscCall(VecAXPY(c->g, -af, c->Ap));
+        PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+        PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->phi, x));
+        PetscCall(MPGPCoreGradient(c, x));
+        PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+        PetscCall(MPGPCoreRestartDirection(c));
+        step = af;
+        c->counters->expansion_steps++;
+      }
+    } else { /* proportioning */
+      if (c->variant == MPGPVariant::MPRGP) {
+        PetscScalar bAb, gb;
+        PetscCall(MPGPCoreMult(c, c->beta, c->Ap));
+        PetscCall(VecDotBegin(c->Ap, c->beta, &bAb));
+        PetscCall(VecDotBegin(c->g, c->beta, &gb));
+        PetscCall(VecDotEnd(c->Ap, c->beta, &bAb));
+        PetscCall(VecDotEnd(c->g, c->beta, &gb));
+        if (!(PetscRealPart(bAb) > 0)) {
+          c->status = PetscIsInfOrNanScalar(bAb) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
+          break;
+        }
+        step = PetscRealPart(gb) / PetscRealPart(bAb);
+        PetscCall(VecAXPY(x, -step, c->beta));
+        PetscCall(VecAXPY(c->g, -step, c->Ap));
+      } else {
+        PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->g, x));
+        PetscCall(MPGPCoreGradient(c, x));
+        step = alpha;
+      }
+      PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+      PetscCall(MPGPCoreRestartDirection(c));
+      c->counters->proportioning_steps++;
+    }
+    it++;
+    c->counters->iterations++;
+    c->f      = 0.5 * (s.xg - s.xb);
+    c->gpnorm = PetscSqrtReal(s.gp2);
+    PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, step, &stop));
+  }
+  c->its = it;
+  PetscCall(PetscLogEventEnd(QP_Solve, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,442 @@
+/* TAO types mprgp and mpgp: min 1/2 x'Ax - b'x over a SeparableSet, by the shared MPGP core. */
+#include <conefeti.h>
+#include <conefeti/private/mpgpcore.h>
+#include <petsc/private/taoimpl.h>
+
+namespace {
+
+enum QPBlockType {
+  QP_BLOCK_SCALAR,
+  QP_BLOCK_DISK,
+  QP_BLOCK_CONE
+};
+const char *const QPBlockTypes[] = {"scalar", "disk", "cone", "QPBlockType", "QP_BLOCK_", NULL};
+
+struct TaoQP {
+  MPGPCore     core;
+  const char  *name     = nullptr; /* "mprgp" or "mpgp", also the option infix */
+  SeparableSet user_set = nullptr; /* from TaoQPSetConstraints() */
+  SeparableSet set      = nullptr; /* the set in use: user_set, or built from the variable bounds */
+  Vec          b        = nullptr; /* linear term */
+  PetscBool    b_user   = PETSC_FALSE;
+  PetscReal    bnorm    = 0;
+  QPCounters   counters = {};
+
+  QPNormMethod norm_method = QP_NORM_SLEPC;
+  PetscReal    norm_margin = -1; /* < 0: the method's default */
+  PetscReal    norm_user   = 0;  /* > 0: given by the user */
+  PetscReal    norm_used   = 0;
+
+  QPBlockType block_type    = QP_BLOCK_SCALAR; /* how the variable bounds describe blocks (unmodified programs) */
+  PetscReal   cone_mu       = 1.0;
+  PetscBool   counters_view = PETSC_FALSE;
+  Tao         tao           = nullptr;
+};
+
+TaoQP *GetQP(Tao tao) { return static_cast<TaoQP *>(tao->data); }
+
+PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm, PetscReal step, PetscBool *stop)
+{
+  Tao tao = static_cast<Tao>(ctx);
+
+  PetscFunctionBegin;
+  tao->niter = it;
+  PetscCall(TaoLogConvergenceHistory(tao, f, gpnorm, 0.0, tao->ksp_its));
+  PetscCall(TaoMonitor(tao, it, f, gpnorm, 0.0, step));
+  PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
+  *stop = tao->reason != TAO_CONTINUE_ITERATING ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Default test of the QP types: |gP| <= max(gatol, gttol |b|). Relative to |b| rather than to the
+   initial gradient, so that the result does not depend on the initial guess and is invariant under
+   scaling of A and b. */
+PetscErrorCode TaoQPConvergenceTest(Tao tao, void *)
+{
+  TaoQP    *qp = GetQP(tao);
+  PetscReal g  = tao->residual;
+
+  PetscFunctionBegin;
+  if (tao->reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(PETSC_SUCCESS);
+  if (PetscIsInfOrNanReal(g) || PetscIsInfOrNanReal(tao->fc)) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
+  else if (g <= tao->gatol) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_GATOL));
+  else if (g <= tao->gttol * qp->bnorm) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_GTTOL));
+  else if (tao->niter >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* For programs that only know TaoSetVariableBounds(): consecutive pairs become disks inscribed in
+   their box, consecutive triples become cones with a common coefficient. */
+PetscErrorCode BuildBlocksFromBounds(Tao tao, TaoQP *qp)
+{
+  PetscInt               n, rstart, bs = qp->block_type == QP_BLOCK_DISK ? 2 : 3;
+  const PetscScalar     *l = NULL, *u = NULL;
+  std::vector<PetscInt>  idx;
+  std::vector<PetscReal> center, radius, mu;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetLocalSize(tao->solution, &n));
+  PetscCall(VecGetOwnershipRange(tao->solution, &rstart, NULL));
+  PetscCheck(n % bs == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+             "-tao_%s_block_type %s: the local length %" PetscInt_FMT " is not a multiple of the block length %" PetscInt_FMT " (a block never straddles MPI ranks)", qp->name,
+             QPBlockTypes[qp->block_type], n, bs);
+  if (qp->block_type == QP_BLOCK_DISK) {
+    PetscCheck(tao->XL && tao->XU, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "-tao_%s_block_type disk needs variable bounds: each pair's box [l,u]^2 gives the inscribed disk",
+               qp->name);
+    PetscCall(VecGetArrayRead(tao->XL, &l));
+    PetscCall(VecGetArrayRead(tao->XU, &u));
+    for (PetscInt k = 0; k < n; k += 2) {
+      const PetscReal w0 = PetscRealPart(u[k] - l[k]), w1 = PetscRealPart(u[k + 1] - l[k + 1]);
+      PetscCheck(PetscIsNormalReal(w0) || w0 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_block_type disk: entry %" PetscInt_FMT " needs finite bounds l <= u", qp->name, rstart + k);
+      PetscCheck(w0 >= 0 && PetscAbsReal(w0 - w1) <= 1e-12 * PetscMax(PetscAbsReal(w0), PetscAbsReal(w1)), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                 "-tao_%s_block_type disk: the box of entries %" PetscInt_FMT ",%" PetscInt_FMT " is not a square with l <= u (widths %g, %g)", qp->name, rstart + k, rstart + k + 1, (double)w0,
+                 (double)w1);
+      PetscCallCXX(idx.insert(idx.end(), {rstart + k, rstart + k + 1}));
+      PetscCallCXX(center.insert(center.end(), {PetscRealPart(l[k] + u[k]) / 2, PetscRealPart(l[k + 1] + u[k + 1]) / 2}));
+      PetscCallCXX(radius.push_back(w0 / 2));
+    }
+    PetscCall(VecRestoreArrayRead(tao->XL, &l));
+    PetscCall(VecRestoreArrayRead(tao->XU, &u));
+    PetscCall(SeparableSetAddDisks(qp->set, (PetscInt)radius.size(), idx.data(), center.data(), radius.data()));
+  } else {
+    for (PetscInt k = 0; k < n; k += 3) {
+      PetscCallCXX(idx.insert(idx.end(), {rstart + k, rstart + k + 1, rstart + k + 2}));
+      PetscCallCXX(mu.push_back(qp->cone_mu));
+    }
+    PetscCall(SeparableSetAddCones(qp->set, (PetscInt)mu.size(), idx.data(), mu.data()));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoSetUp_QP(Tao tao)
+{
+  PetscFunctionBegin;
+  if (!tao->gradient) PetscCall(VecDuplicate(tao->solution, &tao->gradient));
+  if (!tao->stepdirection) PetscCall(VecDuplicate(tao->solution, &tao->stepdirection));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The set in use for this solve: the user's, or one built from the current variable bounds. */
+PetscErrorCode TaoQPPrepareSet(Tao tao, TaoQP *qp)
+{
+  PetscInt n, N;
+
+  PetscFunctionBegin;
+  PetscCall(TaoComputeVariableBounds(tao));
+  if (qp->user_set) {
+    PetscCall(SeparableSetCheckCompatible_Private(qp->user_set, tao->solution));
+    if (qp->set != qp->user_set) {
+      PetscCall(SeparableSetDestroy(&qp->set));
+      PetscCall(PetscObjectReference((PetscObject)qp->user_set));
+      qp->set = qp->user_set;
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (!qp->set) {
+    PetscCall(VecGetLocalSize(tao->solution, &n));
+    PetscCall(VecGetSize(tao->solution, &N));
+    PetscCall(SeparableSetCreate(PetscObjectComm((PetscObject)tao), n, N, &qp->set));
+    if (qp->block_type != QP_BLOCK_SCALAR) PetscCall(BuildBlocksFromBounds(tao, qp));
+  }
+  if (qp->block_type == QP_BLOCK_SCALAR) PetscCall(SeparableSetSetBounds(qp->set, tao->XL, tao->XU));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoSolve_QP(Tao tao)
+{
+  TaoQP    *qp = GetQP(tao);
+  Mat       A;
+  PetscInt  m, n, N;
+  PetscBool curved;
+
+  PetscFunctionBegin;
+  PetscCall(TaoQPPrepareSet(tao, qp));
+  if (qp->core.variant == MPGPVariant::MPRGP) {
+    PetscCall(SeparableSetHasCurvedBlocks(qp->set, &curved));
+    PetscCheck(!curved, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "TAO mprgp handles bounds only, but the set has disk or cone blocks; use -tao_type mpgp");
+  }
+
+  /* the Hessian: from the user's routine if there is one, else the Mat given to TaoSetHessian() */
+  if (tao->ops->computehessian) PetscCall(TaoComputeHessian(tao, tao->solution, tao->hessian, tao->hessian_pre));
+  A = tao->hessian;
+  PetscCheck(A, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO %s: no Hessian; call TaoSetHessian()", qp->name);
+  PetscCall(MatGetSize(A, &m, &n));
+  PetscCall(VecGetSize(tao->solution, &N));
+  PetscCheck(m == n && n == N, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_SIZ,
+             "TAO %s: the Hessian must be square with the solution's size %" PetscInt_FMT ", it is %" PetscInt_FMT " x %" PetscInt_FMT, qp->name, N, m, n);
+
+  /* the linear term: given, or minus the gradient at 0 (one call) */
+  if (!qp->b_user) {
+    if (!qp->b) PetscCall(VecDuplicate(tao->solution, &qp->b));
+    PetscCall(VecSet(tao->stepdirection, 0.0));
+    PetscCheck(tao->ops->computegradient || tao->ops->computeobjectiveandgradient, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE,
+               "TAO %s: no linear term; call TaoQPSetLinearTerm() or set a gradient routine (b = -gradient at 0)", qp->name);
+    PetscCall(TaoComputeGradient(tao, tao->stepdirection, qp->b));
+    PetscCall(VecScale(qp->b, -1.0));
+  }
+  PetscCall(VecNorm(qp->b, NORM_2, &qp->bnorm));
+
+  /* the norm estimate for the fixed step length */
+  if (qp->norm_user > 0) qp->norm_used = qp->norm_user;
+  else {
+    PetscInt    products;
+    char        prefix[256];
+    const char *tprefix;
+    PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
+    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%stao_%s_norm_", tprefix ? tprefix : "", qp->name));
+    PetscCall(MatQPEstimateNorm(A, qp->norm_method, qp->norm_margin >= 0 ? qp->norm_margin : (qp->norm_method == QP_NORM_SLEPC ? 0.01 : 0.05), prefix, &qp->norm_used, &products));
+    qp->counters.estimate_mults += products;
+  }
+
+  qp->core.A          = A;
+  qp->core.b          = qp->b;
+  qp->core.set        = qp->set;
+  qp->core.normA      = qp->norm_used;
+  qp->core.counters   = &qp->counters;
+  qp->core.report     = TaoQPReport;
+  qp->core.report_ctx = tao;
+  tao->reason         = TAO_CONTINUE_ITERATING;
+  PetscCall(MPGPCoreSolve(&qp->core, tao->solution));
+  PetscCall(VecCopy(qp->core.g, tao->gradient));
+  if (qp->core.status == MPGPStatus::INDEFINITE) {
+    PetscCall(PetscInfo(tao, "TAO %s: p'Ap <= 0, the Hessian is not positive definite\n", qp->name));
+    PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+  } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
+  if (qp->counters_view) {
+    PetscViewer viewer;
+    PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)tao), &viewer));
+    PetscCall(QPCountersViewJSON(&qp->counters, qp->name, viewer));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
+{
+  TaoQP    *qp = GetQP(tao);
+  char      opt[64], title[64];
+  PetscReal value;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(title, sizeof(title), "%s: QP over a separable set (conefeti)", qp->name));
+  PetscOptionsHeadBegin(PetscOptionsObject, title);
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_gamma", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Proportioning parameter Gamma > 0 (|beta|^2 <= Gamma^2 phi~.phi means proportional)", "TaoQP", qp->core.gamma, &qp->core.gamma, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_alpha", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "TaoQP", qp->core.alpha_scale, &qp->core.alpha_scale, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_norm", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "TaoQPSetNormEstimate", qp->norm_user, &value, &set));
+  if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_norm_method", qp->name));
+  PetscCall(PetscOptionsEnum(opt, "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)qp->norm_method, (PetscEnum *)&qp->norm_method, NULL));
+  PetscCheck(qp->norm_method != QP_NORM_USER || qp->norm_user > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_%s_norm_method user needs -tao_%s_norm <value>", qp->name, qp->name);
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_norm_margin", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Relative safety margin added to the norm estimate (default 0.01 for slepc, 0.05 for power)", "MatQPEstimateNorm", qp->norm_margin, &qp->norm_margin, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_block_type", qp->name));
+  PetscCall(PetscOptionsEnum(opt, "Without TaoQPSetConstraints(): scalar (bounds), disk (pairs in their bound boxes) or cone (triples)", "TaoQPSetConstraints", QPBlockTypes, (PetscEnum)qp->block_type,
+                             (PetscEnum *)&qp->block_type, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_cone_mu", qp->name));
+  PetscCall(PetscOptionsReal(opt, "Cone coefficient for -tao_mpgp_block_type cone", "TaoQPSetConstraints", qp->cone_mu, &qp->cone_mu, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_counters_view", qp->name));
+  PetscCall(PetscOptionsBool(opt, "Print the counters as one JSON line after each solve", "QPCountersViewJSON", qp->counters_view, &qp->counters_view, NULL));
+  PetscOptionsHeadEnd();
+  PetscCheck(qp->core.gamma > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_gamma must be positive, got %g", qp->name, (double)qp->core.gamma);
+  PetscCheck(qp->core.alpha_scale > 0 && qp->core.alpha_scale <= 2, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_alpha must be in (0, 2], got %g", qp->name,
+             (double)qp->core.alpha_scale);
+  PetscCheck(qp->block_type != QP_BLOCK_CONE || qp->cone_mu >= 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_cone_mu must be >= 0, got %g", qp->name, (double)qp->cone_mu);
+  if (qp->block_type != QP_BLOCK_SCALAR && qp->core.variant == MPGPVariant::MPRGP)
+    SETERRQ(PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_mprgp_block_type %s: mprgp handles bounds only; use -tao_type mpgp", QPBlockTypes[qp->block_type]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoView_QP(Tao tao, PetscViewer viewer)
+{
+  TaoQP    *qp = GetQP(tao);
+  PetscBool iascii;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
+  if (!iascii) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
+                                   qp->norm_user > 0 ? "given" : "estimated", (double)qp->norm_used));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "stopping: |projected gradient| <= max(gatol %g, gttol %g * |b| = %g)\n", (double)tao->gatol, (double)tao->gttol, (double)(tao->gttol * qp->bnorm)));
+  PetscCall(QPCountersView(&qp->counters, NULL, viewer));
+  if (qp->core.status == MPGPStatus::INDEFINITE) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the Hessian is not positive definite (p'Ap <= 0)\n"));
+  if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoDestroy_QP(Tao tao)
+{
+  TaoQP *qp = GetQP(tao);
+
+  PetscFunctionBegin;
+  PetscCall(MPGPCoreReset(&qp->core));
+  PetscCall(SeparableSetDestroy(&qp->user_set));
+  PetscCall(SeparableSetDestroy(&qp->set));
+  PetscCall(VecDestroy(&qp->b));
+  for (const char *fn : {"TaoQPSetConstraints_C", "TaoQPGetConstraints_C", "TaoQPSetLinearTerm_C", "TaoQPSetNormEstimate_C", "TaoQPGetNormEstimate_C", "TaoQPGetCounters_C", "TaoQPResetCounters_C"})
+    PetscCall(PetscObjectComposeFunction((PetscObject)tao, fn, NULL));
+  delete qp;
+  tao->data = NULL;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoQPSetConstraints_QP(Tao tao, SeparableSet set)
+{
+  TaoQP *qp = GetQP(tao);
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectReference((PetscObject)set));
+  PetscCall(SeparableSetDestroy(&qp->user_set));
+  qp->user_set = set;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoQPGetConstraints_QP(Tao tao, SeparableSet *set)
+{
+  PetscFunctionBegin;
+  *set = GetQP(tao)->set ? GetQP(tao)->set : GetQP(tao)->user_set;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoQPSetLinearTerm_QP(Tao tao, Vec b)
+{
+  TaoQP *qp = GetQP(tao);
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectReference((PetscObject)b));
+  PetscCall(VecDestroy(&qp->b));
+  qp->b      = b;
+  qp->b_user = b ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoQPSetNormEstimate_QP(Tao tao, PetscReal norm)
+{
+  PetscFunctionBegin;
+  PetscCheck(norm >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TaoQPSetNormEstimate: ||A|| must be finite and > 0 (0 to estimate), got %g",
+             (double)norm);
+  GetQP(tao)->norm_user = norm;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoQPGetNormEstimate_QP(Tao tao, PetscReal *norm)
+{
+  PetscFunctionBegin;
+  *norm = GetQP(tao)->norm_used;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoQPGetCounters_QP(Tao tao, QPCounters *c)
+{
+  PetscFunctionBegin;
+  *c = GetQP(tao)->counters;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoQPResetCounters_QP(Tao tao)
+{
+  PetscFunctionBegin;
+  GetQP(tao)->counters = QPCounters{};
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name)
+{
+  TaoQP *qp;
+
+  PetscFunctionBegin;
+  PetscCallCXX(qp = new TaoQP);
+  qp->core.variant = variant;
+  qp->name         = name;
+  qp->tao          = tao;
+  tao->data        = qp;
+
+  tao->ops->setup          = TaoSetUp_QP;
+  tao->ops->solve          = TaoSolve_QP;
+  tao->ops->setfromoptions = TaoSetFromOptions_QP;
+  tao->ops->view           = TaoView_QP;
+  tao->ops->destroy        = TaoDestroy_QP;
+  if (tao->ops->convergencetest == TaoDefaultConvergenceTest) tao->ops->convergencetest = TaoQPConvergenceTest;
+
+  /* tolerances relative to |b| (see TaoQPConvergenceTest); no absolute floor by default, so that
+     problems scaled by 1e-12 or 1e+12 behave alike */
+  if (!tao->gatol_changed) tao->gatol = 0.0;
+  if (!tao->grtol_changed) tao->grtol = 0.0;
+  if (!tao->gttol_changed) tao->gttol = 1e-8;
+  if (!tao->max_it_changed) tao->max_it = 10000;
+
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetConstraints_C", TaoQPSetConstraints_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetConstraints_C", TaoQPGetConstraints_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetLinearTerm_C", TaoQPSetLinearTerm_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetNormEstimate_C", TaoQPSetNormEstimate_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetNormEstimate_C", TaoQPGetNormEstimate_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetCounters_C", TaoQPGetCounters_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPResetCounters_C", TaoQPResetCounters_QP));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+/*MC
+  TAOMPRGP - "mprgp": Modified Proportioning with Reduced Gradient Projections (Dostal and Schoberl)
+  for min 1/2 x'Ax - b'x subject to l <= x <= u.
+
+  Options Database Keys:
++ -tao_mprgp_gamma <1>           - proportioning parameter Gamma
+. -tao_mprgp_alpha <1.95>        - fixed step length (expansion steps) in units of 1/||A||, in (0, 2]
+. -tao_mprgp_norm <value>        - ||A|| given, not estimated
+. -tao_mprgp_norm_method <slepc> - slepc or power
+. -tao_mprgp_norm_margin         - safety margin on the estimate
+- -tao_mprgp_counters_view       - print the counters as one JSON line after each solve
+
+  Notes:
+  A is the Hessian (`TaoSetHessian()`, a MATSHELL works; without a Hessian routine the given Mat is
+  used as is), b is minus the gradient at 0 (one gradient call) or set by `TaoQPSetLinearTerm()`.
+  Bounds come from `TaoSetVariableBounds()` (infinite or absent entries allowed) or from
+  `TaoQPSetConstraints()`. The initial guess is projected. The solver stops when the projected
+  gradient satisfies |gP| <= max(gatol, gttol |b|) (`-tao_gatol`, `-tao_gttol`, defaults 0 and 1e-8),
+  or after `-tao_max_it` iterations. Each iteration costs one Hessian product (expansion steps two).
+
+  Level: beginner
+
+.seealso: `TAOMPGP`, `TAOSMALXE`, `KSPMPRGP`, `TaoQPGetCounters()`
+M*/
+PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
+{
+  PetscFunctionBegin;
+  PetscCall(TaoCreate_QPCommon(tao, MPGPVariant::MPRGP, TAOMPRGP));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*MC
+  TAOMPGP - "mpgp": Modified Proportioning with Gradient Projections (Kucera) for min 1/2 x'Ax - b'x
+  over a separable convex set: bounds, 2D disks, 3D second-order cones, free entries.
+
+  Options Database Keys:
++ -tao_mpgp_gamma <1>           - proportioning parameter Gamma
+. -tao_mpgp_alpha <1.95>        - fixed step length in units of 1/||A||, in (0, 2]
+. -tao_mpgp_norm <value>        - ||A|| given, not estimated
+. -tao_mpgp_norm_method <slepc> - slepc or power
+. -tao_mpgp_norm_margin         - safety margin on the estimate
+. -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
+. -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
+- -tao_mpgp_counters_view       - print the counters as one JSON line after each solve
+
+  Notes:
+  The set is given by `TaoQPSetConstraints()` (a `SeparableSet`); otherwise by the variable bounds
+  as described by -tao_mpgp_block_type. Otherwise as `TAOMPRGP`.
+
+  Level: beginner
+
+.seealso: `TAOMPRGP`, `TAOSMALXE`, `KSPMPGP`, `SeparableSet`
+M*/
+PETSC_INTERN PetscErrorCode TaoCreate_MPGP(Tao tao)
+{
+  PetscFunctionBegin;
+  PetscCall(TaoCreate_QPCommon(tao, MPGPVariant::MPGP, TAOMPGP));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

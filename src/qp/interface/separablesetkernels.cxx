@@ -1,0 +1,387 @@
+/* SeparableSet kernels: projection, free/chopped/projected gradients, feasible step length.
+   Math: ../shared/ALGORITHMS.md section 3. Every kernel is one pass over the local entries and
+   blocks; reductions are combined into one MPI call per kernel. */
+#include <conefeti/private/separablesetimpl.h>
+#include <cmath>
+
+PetscLogEvent QP_Project, QP_Split;
+
+namespace {
+
+constexpr PetscReal kInf = PETSC_INFINITY;
+
+/* ---------- per-block geometry ---------- */
+
+/* Projection of a point y (relative coordinates z = y - center) onto the disk of radius r. */
+inline void ProjectDisk(PetscReal &z0, PetscReal &z1, PetscReal r)
+{
+  const PetscReal nz = std::hypot(z0, z1);
+  if (nz <= r) return;
+  if (r == 0 || nz == 0) {
+    z0 = z1 = 0;
+    return;
+  }
+  const PetscReal s = r / nz;
+  z0 *= s;
+  z1 *= s;
+}
+
+/* Projection onto K = {|y_t| <= mu y_n} (apex at the origin). */
+inline void ProjectCone(PetscReal &yn, PetscReal &y1, PetscReal &y2, PetscReal mu)
+{
+  const PetscReal st = std::hypot(y1, y2);
+  if (yn >= 0 && st <= mu * yn) return; /* inside (includes the apex) */
+  if (mu * st <= -yn) {                 /* inside the polar cone: projects to the apex */
+    yn = y1 = y2 = 0;
+    return;
+  }
+  /* onto the boundary ray through (1, mu t^), t^ = y_t/|y_t| (st > 0 here unless mu = 0) */
+  const PetscReal a = (yn + mu * st) / (1 + mu * mu);
+  if (st > 0) {
+    y1 = a * mu * y1 / st;
+    y2 = a * mu * y2 / st;
+  } else {
+    y1 = y2 = 0;
+  }
+  yn = a;
+}
+
+/* Largest alpha >= 0 with q(alpha) = a alpha^2 - 2 b alpha + c >= 0 on [0, alpha], given c >= 0.
+   Both curved blocks reduce to this: the stable root formula avoids cancellation. */
+inline PetscReal QuadraticStep(PetscReal a, PetscReal b, PetscReal c)
+{
+  c = PetscMax(c, 0);
+  if (b > 0) {
+    const PetscReal D = b * b - a * c;
+    return D < 0 ? kInf : c / (b + std::sqrt(D));
+  }
+  if (a < 0) return (b - std::sqrt(b * b - a * c)) / a;
+  return kInf;
+}
+
+/* Projected gradient on a block whose point lies on a smooth boundary with outward unit normal nu:
+   -gP is the projection of -g on the half-space {d : nu.d <= 0}. */
+template <int D> inline void BoundaryProjectedGradient(const PetscReal g[D], const PetscReal nu[D], PetscReal gp[D])
+{
+  PetscReal dot = 0;
+  for (int k = 0; k < D; k++) dot += nu[k] * g[k];
+  for (int k = 0; k < D; k++) gp[k] = dot >= 0 ? g[k] : g[k] - dot * nu[k];
+}
+
+} // namespace
+
+/*@C
+  SeparableSetProject - Project a vector onto the set, in place.
+
+  Collective
+
+  Input Parameters:
++ set - the set
+- x   - the vector, overwritten by its projection
+
+  Level: beginner
+
+.seealso: `SeparableSetProjectedGradient()`, `SeparableSetDistance()`
+@*/
+PetscErrorCode SeparableSetProject(SeparableSet set, Vec x)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(set, SEPARABLESET_CLASSID, 1);
+  PetscValidHeaderSpecific(x, VEC_CLASSID, 2);
+  PetscCall(SeparableSetCheckCompatible_Private(set, x));
+  PetscCall(SeparableSetProjectedStep_Private(set, x, 0.0, NULL, x));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = P(x - alpha d); d may be NULL (pure projection); y may alias x. */
+PetscErrorCode SeparableSetProjectedStep_Private(SeparableSet set, Vec x, PetscReal alpha, Vec d_, Vec y)
+{
+  SeparableSetData  *d;
+  const PetscScalar *xa, *da = NULL;
+  PetscScalar       *ya;
+
+  PetscFunctionBegin;
+  PetscCall(SeparableSetSetUp_Private(set));
+  PetscCall(PetscLogEventBegin(QP_Project, 0, 0, 0, 0));
+  d = set->data;
+  if (d_) PetscCall(VecGetArrayRead(d_, &da));
+  if (x == y) {
+    PetscCall(VecGetArray(y, &ya));
+    xa = ya;
+  } else {
+    PetscCall(VecGetArrayRead(x, &xa));
+    PetscCall(VecGetArray(y, &ya));
+  }
+  const PetscReal *lo = d->lo.data(), *hi = d->hi.data();
+  for (PetscInt i = 0; i < d->n; i++) {
+    PetscReal v = PetscRealPart(xa[i]) - (da ? alpha * PetscRealPart(da[i]) : 0.0);
+    if (d->kind[i] == SEPARABLE_SCALAR) v = PetscMin(PetscMax(v, lo[i]), hi[i]);
+    ya[i] = v;
+  }
+  for (size_t k = 0; k < d->disk_radius.size(); k++) {
+    const PetscInt i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];
+    PetscReal      z0 = PetscRealPart(ya[i]) - d->eff_center[2 * k], z1 = PetscRealPart(ya[j]) - d->eff_center[2 * k + 1];
+    ProjectDisk(z0, z1, d->disk_radius[k]);
+    ya[i] = d->eff_center[2 * k] + z0;
+    ya[j] = d->eff_center[2 * k + 1] + z1;
+  }
+  for (size_t k = 0; k < d->cone_mu.size(); k++) {
+    const PetscInt  *id = &d->cone_idx[3 * k];
+    const PetscReal *v  = &d->cone_apex[3 * k];
+    PetscReal        yn = PetscRealPart(ya[id[0]]) - v[0], y1 = PetscRealPart(ya[id[1]]) - v[1], y2 = PetscRealPart(ya[id[2]]) - v[2];
+    ProjectCone(yn, y1, y2, d->cone_mu[k]);
+    ya[id[0]] = v[0] + yn;
+    ya[id[1]] = v[1] + y1;
+    ya[id[2]] = v[2] + y2;
+  }
+  if (x == y) PetscCall(VecRestoreArray(y, &ya));
+  else {
+    PetscCall(VecRestoreArrayRead(x, &xa));
+    PetscCall(VecRestoreArray(y, &ya));
+  }
+  if (d_) PetscCall(VecRestoreArrayRead(d_, &da));
+  PetscCall(PetscLogEventEnd(QP_Project, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One pass: free gradient phi, chopped gradient beta, and the sums of SeparableSplit.
+   The reduced free gradient phi~ = (x - P(x - alpha phi))/alpha enters only through phi~.phi.
+   Ap (may be NULL) gives phi.Ap for the CG update; b (may be NULL) gives x.b for the objective. */
+PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g, PetscReal alpha, Vec phi, Vec beta, Vec Ap, Vec b, SeparableSplit *out)
+{
+  SeparableSetData  *d;
+  const PetscScalar *xa, *ga, *apa = NULL, *ba = NULL;
+  PetscScalar       *pa, *ba_;
+  PetscReal          sum[6] = {0, 0, 0, 0, 0, 0}; /* gp2, beta2, phitphi, phiAp, xg, xb */
+
+  PetscFunctionBegin;
+  PetscCall(SeparableSetSetUp_Private(set));
+  PetscCall(PetscLogEventBegin(QP_Split, 0, 0, 0, 0));
+  d = set->data;
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArrayRead(g, &ga));
+  if (Ap) PetscCall(VecGetArrayRead(Ap, &apa));
+  if (b) PetscCall(VecGetArrayRead(b, &ba));
+  PetscCall(VecGetArrayWrite(phi, &pa));
+  PetscCall(VecGetArrayWrite(beta, &ba_));
+  const PetscReal *lo = d->lo.data(), *hi = d->hi.data();
+  const PetscReal  tol = SEPARABLE_BOUNDARY_RTOL;
+
+  /* scalars */
+  for (PetscInt i = 0; i < d->n; i++) {
+    const PetscReal xi = PetscRealPart(xa[i]), gi = PetscRealPart(ga[i]);
+    if (b) sum[5] += xi * PetscRealPart(ba[i]);
+    sum[4] += xi * gi;
+    if (d->kind[i] != SEPARABLE_SCALAR) continue;
+    PetscReal f = 0, c = 0;
+    if (lo[i] == hi[i]) { /* pinned */
+    } else if (xi <= lo[i]) c = PetscMin(gi, 0);
+    else if (xi >= hi[i]) c = PetscMax(gi, 0);
+    else {
+      f                 = gi;
+      const PetscReal t = gi > 0 ? PetscMin(gi, (xi - lo[i]) / alpha) : PetscMax(gi, (xi - hi[i]) / alpha);
+      sum[2] += t * gi;
+    }
+    pa[i]  = f;
+    ba_[i] = c;
+  }
+
+  /* disks: interior unless within the relative tolerance of the circle */
+  for (size_t k = 0; k < d->disk_radius.size(); k++) {
+    const PetscInt  i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];
+    const PetscReal r     = d->disk_radius[k];
+    const PetscReal z[2]  = {PetscRealPart(xa[i]) - d->eff_center[2 * k], PetscRealPart(xa[j]) - d->eff_center[2 * k + 1]};
+    const PetscReal gg[2] = {PetscRealPart(ga[i]), PetscRealPart(ga[j])};
+    PetscReal       f[2] = {0, 0}, c[2] = {0, 0};
+    const PetscReal nz = std::hypot(z[0], z[1]);
+    if (r == 0) { /* pinned at the center */
+    } else if (nz < r * (1 - tol)) {
+      f[0]         = gg[0];
+      f[1]         = gg[1];
+      PetscReal w0 = z[0] - alpha * gg[0], w1 = z[1] - alpha * gg[1];
+      ProjectDisk(w0, w1, r);
+      sum[2] += ((z[0] - w0) * gg[0] + (z[1] - w1) * gg[1]) / alpha;
+    } else {
+      const PetscReal nu[2] = {z[0] / nz, z[1] / nz};
+      BoundaryProjectedGradient<2>(gg, nu, c);
+    }
+    pa[i]  = f[0];
+    pa[j]  = f[1];
+    ba_[i] = c[0];
+    ba_[j] = c[1];
+  }
+
+  /* cones: apex, interior, or smooth boundary; mu = 0 is a half-line (tangential entries pinned) */
+  for (size_t k = 0; k < d->cone_mu.size(); k++) {
+    const PetscInt  *id    = &d->cone_idx[3 * k];
+    const PetscReal *v     = &d->cone_apex[3 * k];
+    const PetscReal  mu    = d->cone_mu[k];
+    const PetscReal  y[3]  = {PetscRealPart(xa[id[0]]) - v[0], PetscRealPart(xa[id[1]]) - v[1], PetscRealPart(xa[id[2]]) - v[2]};
+    const PetscReal  gg[3] = {PetscRealPart(ga[id[0]]), PetscRealPart(ga[id[1]]), PetscRealPart(ga[id[2]])};
+    PetscReal        f[3] = {0, 0, 0}, c[3] = {0, 0, 0};
+    const PetscReal  st = std::hypot(y[1], y[2]);
+    if (mu == 0) { /* {y_t = 0, y_n >= 0}: y_n is a scalar with lower bound */
+      if (y[0] > 0) {
+        f[0]              = gg[0];
+        const PetscReal t = gg[0] > 0 ? PetscMin(gg[0], y[0] / alpha) : gg[0];
+        sum[2] += t * gg[0];
+      } else c[0] = PetscMin(gg[0], 0);
+    } else if (y[0] <= 0) { /* apex: the tangent cone is K itself, -gP = P_K(-g) */
+      PetscReal m[3] = {-gg[0], -gg[1], -gg[2]};
+      ProjectCone(m[0], m[1], m[2], mu);
+      for (int q = 0; q < 3; q++) c[q] = -m[q];
+    } else if (st < mu * y[0] * (1 - tol)) {
+      for (int q = 0; q < 3; q++) f[q] = gg[q];
+      PetscReal w[3] = {y[0] - alpha * gg[0], y[1] - alpha * gg[1], y[2] - alpha * gg[2]};
+      ProjectCone(w[0], w[1], w[2], mu);
+      sum[2] += ((y[0] - w[0]) * gg[0] + (y[1] - w[1]) * gg[1] + (y[2] - w[2]) * gg[2]) / alpha;
+    } else {
+      const PetscReal s     = 1 / std::sqrt(1 + mu * mu);
+      const PetscReal nu[3] = {-mu * s, s * y[1] / st, s * y[2] / st};
+      BoundaryProjectedGradient<3>(gg, nu, c);
+    }
+    for (int q = 0; q < 3; q++) {
+      pa[id[q]]  = f[q];
+      ba_[id[q]] = c[q];
+    }
+  }
+
+  for (PetscInt i = 0; i < d->n; i++) {
+    const PetscReal f = PetscRealPart(pa[i]), c = PetscRealPart(ba_[i]);
+    sum[0] += f * f + c * c;
+    sum[1] += c * c;
+    if (apa) sum[3] += f * PetscRealPart(apa[i]);
+  }
+  PetscCall(VecRestoreArrayWrite(phi, &pa));
+  PetscCall(VecRestoreArrayWrite(beta, &ba_));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(VecRestoreArrayRead(g, &ga));
+  if (Ap) PetscCall(VecRestoreArrayRead(Ap, &apa));
+  if (b) PetscCall(VecRestoreArrayRead(b, &ba));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 6, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)set)));
+  out->gp2     = sum[0];
+  out->beta2   = sum[1];
+  out->phitphi = sum[2];
+  out->phiAp   = sum[3];
+  out->xg      = sum[4];
+  out->xb      = sum[5];
+  PetscCall(PetscLogEventEnd(QP_Split, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Largest alpha >= 0 such that x - alpha p stays in the set (infinity if unbounded). */
+PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet set, Vec x, Vec p, PetscReal *alpha_f)
+{
+  SeparableSetData  *d;
+  const PetscScalar *xa, *pa;
+  PetscReal          amin = kInf;
+
+  PetscFunctionBegin;
+  PetscCall(SeparableSetSetUp_Private(set));
+  d = set->data;
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArrayRead(p, &pa));
+  const PetscReal *lo = d->lo.data(), *hi = d->hi.data();
+  for (PetscInt i = 0; i < d->n; i++) {
+    if (d->kind[i] != SEPARABLE_SCALAR) continue;
+    const PetscReal pi = PetscRealPart(pa[i]), xi = PetscRealPart(xa[i]);
+    if (pi > 0 && lo[i] > PETSC_NINFINITY) amin = PetscMin(amin, PetscMax(xi - lo[i], 0) / pi);
+    else if (pi < 0 && hi[i] < PETSC_INFINITY) amin = PetscMin(amin, PetscMin(xi - hi[i], 0) / pi);
+  }
+  for (size_t k = 0; k < d->disk_radius.size(); k++) {
+    const PetscInt  i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];
+    const PetscReal p0 = PetscRealPart(pa[i]), p1 = PetscRealPart(pa[j]);
+    if (p0 == 0 && p1 == 0) continue;
+    const PetscReal z0 = PetscRealPart(xa[i]) - d->eff_center[2 * k], z1 = PetscRealPart(xa[j]) - d->eff_center[2 * k + 1], r = d->disk_radius[k];
+    /* |z - alpha p|^2 <= r^2 */
+    amin = PetscMin(amin, QuadraticStep(-(p0 * p0 + p1 * p1), -(z0 * p0 + z1 * p1), r * r - (z0 * z0 + z1 * z1)));
+  }
+  for (size_t k = 0; k < d->cone_mu.size(); k++) {
+    const PetscInt  *id = &d->cone_idx[3 * k];
+    const PetscReal *v  = &d->cone_apex[3 * k];
+    const PetscReal  mu = d->cone_mu[k];
+    const PetscReal  pn = PetscRealPart(pa[id[0]]), p1 = PetscRealPart(pa[id[1]]), p2 = PetscRealPart(pa[id[2]]);
+    if (pn == 0 && p1 == 0 && p2 == 0) continue;
+    const PetscReal yn = PetscRealPart(xa[id[0]]) - v[0], y1 = PetscRealPart(xa[id[1]]) - v[1], y2 = PetscRealPart(xa[id[2]]) - v[2];
+    if (mu == 0) { /* only y_n moves freely above 0; moving a pinned tangential entry is infeasible */
+      if (p1 != 0 || p2 != 0) amin = 0;
+      else if (pn > 0) amin = PetscMin(amin, PetscMax(yn, 0) / pn);
+      continue;
+    }
+    if (yn <= 0) { /* at the apex: feasible iff -p lies in the cone */
+      if (std::hypot(p1, p2) > -mu * pn) amin = 0;
+      continue;
+    }
+    /* mu^2 (y_n - a p_n)^2 - |y_t - a p_t|^2 >= 0, staying on the upper nappe (it cannot jump nappes without q < 0 or the apex) */
+    amin = PetscMin(amin, QuadraticStep(mu * mu * pn * pn - p1 * p1 - p2 * p2, mu * mu * yn * pn - y1 * p1 - y2 * p2, mu * mu * yn * yn - y1 * y1 - y2 * y2));
+  }
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(VecRestoreArrayRead(p, &pa));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &amin, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)set)));
+  *alpha_f = amin;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  SeparableSetProjectedGradient - The projected gradient gP of a function with gradient g at a feasible x:
+  -gP is the projection of -g on the tangent cone of the set at x. Its norm is the KKT residual.
+
+  Collective
+
+  Input Parameters:
++ set - the set
+. x   - a feasible point
+- g   - the gradient at x
+
+  Output Parameter:
+. gp - the projected gradient (may not alias x or g)
+
+  Level: intermediate
+
+.seealso: `SeparableSetProject()`
+@*/
+PetscErrorCode SeparableSetProjectedGradient(SeparableSet set, Vec x, Vec g, Vec gp)
+{
+  Vec            beta;
+  SeparableSplit s;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(set, SEPARABLESET_CLASSID, 1);
+  PetscCall(SeparableSetCheckCompatible_Private(set, x));
+  PetscCall(VecDuplicate(gp, &beta));
+  PetscCall(SeparableSetSplitGradient_Private(set, x, g, 1.0, gp, beta, NULL, NULL, &s));
+  PetscCall(VecAXPY(gp, 1.0, beta));
+  PetscCall(VecDestroy(&beta));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  SeparableSetDistance - Euclidean distance of a vector from the set.
+
+  Collective
+
+  Input Parameters:
++ set - the set
+- x   - the vector
+
+  Output Parameter:
+. dist - |x - P(x)|
+
+  Level: intermediate
+
+.seealso: `SeparableSetProject()`
+@*/
+PetscErrorCode SeparableSetDistance(SeparableSet set, Vec x, PetscReal *dist)
+{
+  Vec px;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(set, SEPARABLESET_CLASSID, 1);
+  PetscCall(SeparableSetCheckCompatible_Private(set, x));
+  PetscCall(VecDuplicate(x, &px));
+  PetscCall(SeparableSetProjectedStep_Private(set, x, 0.0, NULL, px));
+  PetscCall(VecAXPY(px, -1.0, x));
+  PetscCall(VecNorm(px, NORM_2, dist));
+  PetscCall(VecDestroy(&px));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

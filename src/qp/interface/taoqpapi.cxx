@@ -1,0 +1,175 @@
+/* Public setters/getters of the TAO QP types (mprgp, mpgp, smalxe), dispatched to the type. */
+#include <conefeti/qp.h>
+#include <conefeti/private/compat.h>
+#include <petsc/private/taoimpl.h>
+
+/*@C
+  TaoQPSetConstraints - Give a TAO QP solver (`TAOMPGP`, `TAOMPRGP`, `TAOSMALXE`) its feasible set.
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver
+- set - the separable set; referenced, so later in-place changes (e.g. `SeparableSetSetDiskRadii()`) are seen by the next solve
+
+  Notes:
+  Without a set the solvers use the variable bounds (`TaoSetVariableBounds()`). `TAOMPRGP` accepts
+  only sets without disks and cones. Ignored by other TAO types.
+
+  Level: beginner
+
+.seealso: `SeparableSet`, `TaoQPSetLinearTerm()`, `KSPQPSetConstraints()`
+@*/
+PetscErrorCode TaoQPSetConstraints(Tao tao, SeparableSet set)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidHeaderSpecific(set, SEPARABLESET_CLASSID, 2);
+  PetscTryMethod(tao, "TaoQPSetConstraints_C", (Tao, SeparableSet), (tao, set));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPGetConstraints - The feasible set a TAO QP solver uses (NULL before the first solve if none was given).
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. set - the set (not a new reference)
+
+  Level: intermediate
+
+.seealso: `TaoQPSetConstraints()`
+@*/
+PetscErrorCode TaoQPGetConstraints(Tao tao, SeparableSet *set)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  *set = NULL;
+  PetscTryMethod(tao, "TaoQPGetConstraints_C", (Tao, SeparableSet *), (tao, set));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPSetLinearTerm - Give the linear term b of q(x) = 1/2 x'Ax - b'x directly.
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver
+- b   - the linear term (referenced; its values are read at each solve), or NULL to go back to b = -gradient(0)
+
+  Notes:
+  Without it the QP types call the gradient routine once at x = 0.
+
+  Level: intermediate
+
+.seealso: `TaoQPSetConstraints()`, `TaoSetHessian()`
+@*/
+PetscErrorCode TaoQPSetLinearTerm(Tao tao, Vec b)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  if (b) PetscValidHeaderSpecific(b, VEC_CLASSID, 2);
+  PetscTryMethod(tao, "TaoQPSetLinearTerm_C", (Tao, Vec), (tao, b));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPSetNormEstimate - Give ||A|| (for the fixed step length) instead of letting the solver estimate it.
+
+  Logically Collective
+
+  Input Parameters:
++ tao  - the solver
+- norm - an upper bound of the largest eigenvalue of A (0 to estimate again)
+
+  Options Database Key:
+. -tao_mpgp_norm <value> - (or -tao_mprgp_norm, -tao_smalxe_norm)
+
+  Level: intermediate
+
+.seealso: `MatQPEstimateNorm()`, `TaoQPGetNormEstimate()`
+@*/
+PetscErrorCode TaoQPSetNormEstimate(Tao tao, PetscReal norm)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(tao, norm, 2);
+  PetscTryMethod(tao, "TaoQPSetNormEstimate_C", (Tao, PetscReal), (tao, norm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPGetNormEstimate - The value of ||A|| the last solve used.
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. norm - the value (0 before the first solve)
+
+  Level: intermediate
+
+.seealso: `TaoQPSetNormEstimate()`
+@*/
+PetscErrorCode TaoQPGetNormEstimate(Tao tao, PetscReal *norm)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidRealPointer(norm, 2);
+  *norm = 0;
+  PetscTryMethod(tao, "TaoQPGetNormEstimate_C", (Tao, PetscReal *), (tao, norm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPGetCounters - Work a TAO QP solver did since creation or the last reset: Hessian products
+  (own, nested, norm estimate), iterations and steps by kind.
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. counters - the counters (all zero for a TAO type that is not a conefeti QP type)
+
+  Level: beginner
+
+.seealso: `QPCounters`, `TaoQPResetCounters()`, `QPCountersViewJSON()`
+@*/
+PetscErrorCode TaoQPGetCounters(Tao tao, QPCounters *counters)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidPointer(counters, 2);
+  *counters = QPCounters{};
+  PetscTryMethod(tao, "TaoQPGetCounters_C", (Tao, QPCounters *), (tao, counters));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPResetCounters - Zero the counters of a TAO QP solver (and of its nested solvers).
+
+  Logically Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Level: intermediate
+
+.seealso: `TaoQPGetCounters()`
+@*/
+PetscErrorCode TaoQPResetCounters(Tao tao)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscTryMethod(tao, "TaoQPResetCounters_C", (Tao), (tao));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
