@@ -53,6 +53,7 @@ PETSC_EXTERN PetscErrorCode SeparableSetIsUnconstrained(SeparableSet, PetscBool 
 PETSC_EXTERN PetscErrorCode SeparableSetProject(SeparableSet, Vec);
 PETSC_EXTERN PetscErrorCode SeparableSetProjectedGradient(SeparableSet, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode SeparableSetDistance(SeparableSet, Vec, PetscReal *);
+PETSC_EXTERN PetscErrorCode SeparableSetCreateSubset(SeparableSet, IS, SeparableSet *);
 
 /* ---------------------------------------------------------------------------------------------
    Counters: Hessian products and steps, machine independent
@@ -140,6 +141,9 @@ PETSC_EXTERN PetscErrorCode TaoQPSetTolerance(Tao, PetscReal);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetEqualityConstraints(Tao, Mat, Vec);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetProjector(Tao, Mat, Vec);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetSubsolver(Tao, Tao *);
+PETSC_EXTERN PetscErrorCode TaoSMALXESetBlocks(Tao, PetscInt, const IS[]);
+PETSC_EXTERN PetscErrorCode TaoSMALXEGetBlockSubsolver(Tao, PetscInt, Tao *);
+PETSC_EXTERN PetscErrorCode TaoSMALXESetPreSolve(Tao, PetscErrorCode (*)(Tao, PetscInt, Vec, void *), void *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetEqualityMultiplier(Tao, Vec);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetFeasibility(Tao, PetscReal *);
 

@@ -21,9 +21,10 @@ typedef PetscErrorCode (*MPGPPreconditionFn)(void *ctx, Vec g, Vec z);
 
 struct MPGPCore {
   MPGPVariant variant     = MPGPVariant::MPGP;
-  PetscReal   gamma       = 1.0;  /* proportioning parameter Gamma */
-  PetscReal   alpha_scale = 1.95; /* fixed step alpha = alpha_scale / ||A||, in (0, 2] */
-  PetscReal   normA       = 0;    /* estimate of ||A||, provided by the owner before the solve */
+  PetscReal   gamma       = 1.0;        /* proportioning parameter Gamma */
+  PetscReal   alpha_scale = 1.95;       /* fixed step alpha = alpha_scale / ||A||, in (0, 2] */
+  PetscReal   normA       = 0;          /* estimate of ||A||, provided by the owner before the solve */
+  PetscBool   bb          = PETSC_TRUE; /* MPGP: try Barzilai-Borwein lengths in gradient projection steps */
 
   Mat          A   = nullptr; /* not owned */
   Vec          b   = nullptr; /* not owned */
@@ -35,7 +36,9 @@ struct MPGPCore {
   void              *precondition_ctx = nullptr;
   QPCounters        *counters         = nullptr; /* owner's counters, updated in place */
 
-  Vec g = nullptr, p = nullptr, Ap = nullptr, phi = nullptr, beta = nullptr, z = nullptr; /* work */
+  Vec      g = nullptr, p = nullptr, Ap = nullptr, phi = nullptr, beta = nullptr, z = nullptr; /* work */
+  Vec      xprev = nullptr, gprev = nullptr;                                                   /* the previous iterate and gradient (Barzilai-Borwein lengths) */
+  PetscInt bb_rejected = 0;                                                                    /* BB steps that did not decrease q and fell back to the fixed length */
 
   /* state after a solve: g = A x - b is valid for the returned x */
   PetscInt   its    = 0;

@@ -12,6 +12,7 @@
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/sys.h>
 #include <slepceps.h>
+#include <cstdint>
 
 const char *const QPNormMethods[] = {"slepc", "power", "user", "QPNormMethod", "QP_NORM_", NULL};
 
@@ -48,6 +49,28 @@ PetscErrorCode CreateCountingShell(Mat A, CountingContext *ctx, Mat *M)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A start vector that depends only on the global index (a hash), so that the estimate, and with it
+   every iteration count, is the same on any number of ranks. */
+PetscErrorCode SetStartVector(Vec v)
+{
+  PetscInt     rstart, n;
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(v, &rstart, NULL));
+  PetscCall(VecGetLocalSize(v, &n));
+  PetscCall(VecGetArrayWrite(v, &a));
+  for (PetscInt i = 0; i < n; i++) {
+    uint64_t z = (uint64_t)(rstart + i) * 0x9e3779b97f4a7c15ULL + 0x2545f4914f6cdd1dULL;
+    z          = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z          = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    z ^= z >> 31;
+    a[i] = 2.0 * ((double)(z >> 11) / 9007199254740992.0) - 1.0;
+  }
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode EstimateSLEPc(Mat M, const char prefix[], PetscReal *theta_upper, PetscBool *ok)
 {
   EPS         eps;
@@ -60,6 +83,10 @@ PetscErrorCode EstimateSLEPc(Mat M, const char prefix[], PetscReal *theta_upper,
   PetscCall(ConeFETISlepcInitializeIfNeeded());
   PetscCall(EPSCreate(PetscObjectComm((PetscObject)M), &eps));
   PetscCall(EPSSetOperators(eps, M, NULL));
+  PetscCall(MatCreateVecs(M, &v, NULL));
+  PetscCall(SetStartVector(v));
+  PetscCall(EPSSetInitialSpace(eps, 1, &v));
+  PetscCall(VecDestroy(&v));
   PetscCall(EPSSetProblemType(eps, EPS_HEP));
   PetscCall(EPSSetWhichEigenpairs(eps, EPS_LARGEST_REAL));
   PetscCall(EPSSetDimensions(eps, 1, 8, PETSC_DEFAULT));
@@ -92,13 +119,7 @@ PetscErrorCode EstimatePower(Mat M, PetscInt maxit, PetscReal *theta)
 
   PetscFunctionBegin;
   PetscCall(MatCreateVecs(M, &v, &w));
-  /* a deterministic start that is not orthogonal to smooth dominant modes in practice */
-  PetscRandom rnd;
-  PetscCall(PetscRandomCreate(PetscObjectComm((PetscObject)M), &rnd));
-  PetscCall(PetscRandomSetSeed(rnd, 0x5eed));
-  PetscCall(PetscRandomSeed(rnd));
-  PetscCall(VecSetRandom(v, rnd));
-  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(SetStartVector(v));
   PetscCall(VecNormalize(v, NULL));
   for (PetscInt k = 0; k < maxit; k++) {
     PetscCall(MatMult(M, v, w));
@@ -194,7 +215,12 @@ PetscErrorCode MatQPEstimateNorm(Mat A, QPNormMethod method, PetscReal margin, c
   PetscCall(PetscLogEventEnd(QP_NormEstimate, A, 0, 0, 0));
   PetscCheck(theta > 0 && !PetscIsInfOrNanReal(theta), PetscObjectComm((PetscObject)A), PETSC_ERR_NOT_CONVERGED, "MatQPEstimateNorm: the norm estimate is %g; the operator must be nonzero and finite",
              (double)theta);
-  *norm = theta * (1 + margin);
+  /* rounded up to 4 significant digits: rounding noise of the reductions (which differs with the
+     number of ranks) must not change the step length and with it the iteration counts */
+  {
+    const PetscReal v = theta * (1 + margin), e = PetscPowReal(10.0, PetscFloorReal(PetscLog10Real(v)) - 3);
+    *norm = PetscCeilReal(v / e) * e;
+  }
   if (products) *products = count;
 
   if (!container) {

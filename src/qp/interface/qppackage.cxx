@@ -2,6 +2,7 @@
 #include <conefeti/qp.h>
 #include <conefeti/private/package.h>
 #include <conefeti/private/mpgpcore.h>
+#include <conefeti/private/reproduciblesum.h>
 
 PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao);
 PETSC_INTERN PetscErrorCode TaoCreate_MPGP(Tao);
@@ -23,6 +24,7 @@ PetscErrorCode ConeFETIQPInitializePackage(void)
   PetscCall(PetscLogEventRegister("QPSplitGradient", SEPARABLESET_CLASSID, &QP_Split));
   PetscCall(TaoRegister(TAOMPRGP, TaoCreate_MPRGP));
   PetscCall(TaoRegister(TAOMPGP, TaoCreate_MPGP));
+  PetscCall(TaoRegister(TAOSMALXE, TaoCreate_SMALXE));
   PetscCall(KSPRegister(KSPMPRGP, KSPCreate_MPRGP));
   PetscCall(KSPRegister(KSPMPGP, KSPCreate_MPGP));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -31,5 +33,6 @@ PetscErrorCode ConeFETIQPInitializePackage(void)
 PetscErrorCode ConeFETIQPFinalizePackage(void)
 {
   PetscFunctionBegin;
+  PetscCall(ReproducibleSumFinalize());
   PetscFunctionReturn(PETSC_SUCCESS);
 }

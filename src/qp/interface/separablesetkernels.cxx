@@ -2,6 +2,7 @@
    Math: ../shared/ALGORITHMS.md section 3. Every kernel is one pass over the local entries and
    blocks; reductions are combined into one MPI call per kernel. */
 #include <conefeti/private/separablesetimpl.h>
+#include <conefeti/private/reproduciblesum.h>
 #include <cmath>
 
 PetscLogEvent QP_Project, QP_Split;
@@ -152,7 +153,7 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
   SeparableSetData  *d;
   const PetscScalar *xa, *ga, *apa = NULL, *ba = NULL;
   PetscScalar       *pa, *ba_;
-  PetscReal          sum[6] = {0, 0, 0, 0, 0, 0}; /* gp2, beta2, phitphi, phiAp, xg, xb */
+  DoubleDouble       sum[6]; /* gp2, beta2, phitphi, phiAp, xg, xb: rank-count independent */
 
   PetscFunctionBegin;
   PetscCall(SeparableSetSetUp_Private(set));
@@ -170,8 +171,8 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
   /* scalars */
   for (PetscInt i = 0; i < d->n; i++) {
     const PetscReal xi = PetscRealPart(xa[i]), gi = PetscRealPart(ga[i]);
-    if (b) sum[5] += xi * PetscRealPart(ba[i]);
-    sum[4] += xi * gi;
+    if (b) sum[5].addProduct(xi, PetscRealPart(ba[i]));
+    sum[4].addProduct(xi, gi);
     if (d->kind[i] != SEPARABLE_SCALAR) continue;
     PetscReal f = 0, c = 0;
     if (lo[i] == hi[i]) { /* pinned */
@@ -180,7 +181,7 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
     else {
       f                 = gi;
       const PetscReal t = gi > 0 ? PetscMin(gi, (xi - lo[i]) / alpha) : PetscMax(gi, (xi - hi[i]) / alpha);
-      sum[2] += t * gi;
+      sum[2].addProduct(t, gi);
     }
     pa[i]  = f;
     ba_[i] = c;
@@ -200,7 +201,7 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
       f[1]         = gg[1];
       PetscReal w0 = z[0] - alpha * gg[0], w1 = z[1] - alpha * gg[1];
       ProjectDisk(w0, w1, r);
-      sum[2] += ((z[0] - w0) * gg[0] + (z[1] - w1) * gg[1]) / alpha;
+      sum[2].add(((z[0] - w0) * gg[0] + (z[1] - w1) * gg[1]) / alpha);
     } else {
       const PetscReal nu[2] = {z[0] / nz, z[1] / nz};
       BoundaryProjectedGradient<2>(gg, nu, c);
@@ -224,7 +225,7 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
       if (y[0] > 0) {
         f[0]              = gg[0];
         const PetscReal t = gg[0] > 0 ? PetscMin(gg[0], y[0] / alpha) : gg[0];
-        sum[2] += t * gg[0];
+        sum[2].addProduct(t, gg[0]);
       } else c[0] = PetscMin(gg[0], 0);
     } else if (y[0] <= 0) { /* apex: the tangent cone is K itself, -gP = P_K(-g) */
       PetscReal m[3] = {-gg[0], -gg[1], -gg[2]};
@@ -234,7 +235,7 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
       for (int q = 0; q < 3; q++) f[q] = gg[q];
       PetscReal w[3] = {y[0] - alpha * gg[0], y[1] - alpha * gg[1], y[2] - alpha * gg[2]};
       ProjectCone(w[0], w[1], w[2], mu);
-      sum[2] += ((y[0] - w[0]) * gg[0] + (y[1] - w[1]) * gg[1] + (y[2] - w[2]) * gg[2]) / alpha;
+      sum[2].add(((y[0] - w[0]) * gg[0] + (y[1] - w[1]) * gg[1] + (y[2] - w[2]) * gg[2]) / alpha);
     } else {
       const PetscReal s     = 1 / std::sqrt(1 + mu * mu);
       const PetscReal nu[3] = {-mu * s, s * y[1] / st, s * y[2] / st};
@@ -248,9 +249,10 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
 
   for (PetscInt i = 0; i < d->n; i++) {
     const PetscReal f = PetscRealPart(pa[i]), c = PetscRealPart(ba_[i]);
-    sum[0] += f * f + c * c;
-    sum[1] += c * c;
-    if (apa) sum[3] += f * PetscRealPart(apa[i]);
+    sum[0].addProduct(f, f);
+    sum[0].addProduct(c, c);
+    sum[1].addProduct(c, c);
+    if (apa) sum[3].addProduct(f, PetscRealPart(apa[i]));
   }
   PetscCall(VecRestoreArrayWrite(phi, &pa));
   PetscCall(VecRestoreArrayWrite(beta, &ba_));
@@ -258,13 +260,13 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
   PetscCall(VecRestoreArrayRead(g, &ga));
   if (Ap) PetscCall(VecRestoreArrayRead(Ap, &apa));
   if (b) PetscCall(VecRestoreArrayRead(b, &ba));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 6, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)set)));
-  out->gp2     = sum[0];
-  out->beta2   = sum[1];
-  out->phitphi = sum[2];
-  out->phiAp   = sum[3];
-  out->xg      = sum[4];
-  out->xb      = sum[5];
+  PetscCall(ReproducibleAllreduce(sum, 6, PetscObjectComm((PetscObject)set)));
+  out->gp2     = sum[0].value();
+  out->beta2   = sum[1].value();
+  out->phitphi = sum[2].value();
+  out->phiAp   = sum[3].value();
+  out->xg      = sum[4].value();
+  out->xb      = sum[5].value();
   PetscCall(PetscLogEventEnd(QP_Split, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

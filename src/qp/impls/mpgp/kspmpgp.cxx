@@ -159,6 +159,10 @@ PetscErrorCode KSPSetFromOptions_QP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptions
   PetscCall(PetscOptionsReal(opt, "Proportioning parameter Gamma > 0", "KSPQP", qp->core.gamma, &qp->core.gamma, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_alpha", qp->name));
   PetscCall(PetscOptionsReal(opt, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "KSPQP", qp->core.alpha_scale, &qp->core.alpha_scale, NULL));
+  if (qp->core.variant == MPGPVariant::MPGP) {
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_bb", qp->name));
+    PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "KSPQP", qp->core.bb, &qp->core.bb, NULL));
+  }
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_norm", qp->name));
   PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "KSPQPSetNormEstimate", qp->norm_user, &value, &set));
   if (set) PetscCall(KSPQPSetNormEstimate(ksp, value));
@@ -284,6 +288,7 @@ PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name
   PetscFunctionBegin;
   PetscCallCXX(qp = new KSPQP);
   qp->core.variant = variant;
+  qp->core.bb      = variant == MPGPVariant::MPGP ? PETSC_TRUE : PETSC_FALSE;
   qp->name         = name;
   ksp->data        = qp;
   PetscCall(KSPSetSupportedNorm(ksp, KSP_NORM_UNPRECONDITIONED, PC_LEFT, 3));

@@ -6,10 +6,15 @@
    - expansion step otherwise in the proportional case: to the boundary by the largest feasible step
      along p, then a projected step of fixed length alpha along the free gradient, and CG restarts;
    - proportioning step when not proportional: along the chopped gradient with exact line search
-     (MPRGP: it stays feasible for bounds), or a projected gradient step of fixed length (MPGP, which
-     is what curved boundaries need).
+     (MPRGP: it stays feasible for bounds), or a projected gradient step (MPGP, which is what curved
+     boundaries need). MPGP's proportioning step first tries the Barzilai-Borwein length
+     s's/s'(As) of the last step (free: As = g - g_prev for a QP) and keeps it only if q decreased;
+     otherwise it takes Kucera's fixed length alpha, which always decreases q. On curved boundaries
+     the fixed length makes long runs of proportioning steps crawl; BB lengths cut them by a large
+     factor (disable with -tao_mpgp_bb 0 to get the textbook algorithm).
    Math: ../shared/ALGORITHMS.md section 3. */
 #include <conefeti/private/mpgpcore.h>
+#include <conefeti/private/reproduciblesum.h>
 
 PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate;
 
@@ -49,6 +54,8 @@ PetscErrorCode MPGPCoreSetUp(MPGPCore *c, Vec x)
   PetscCall(VecDuplicate(x, &c->Ap));
   PetscCall(VecDuplicate(x, &c->phi));
   PetscCall(VecDuplicate(x, &c->beta));
+  PetscCall(VecDuplicate(x, &c->xprev));
+  PetscCall(VecDuplicate(x, &c->gprev));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -61,6 +68,8 @@ PetscErrorCode MPGPCoreReset(MPGPCore *c)
   PetscCall(VecDestroy(&c->phi));
   PetscCall(VecDestroy(&c->beta));
   PetscCall(VecDestroy(&c->z));
+  PetscCall(VecDestroy(&c->xprev));
+  PetscCall(VecDestroy(&c->gprev));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -118,39 +127,39 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
       break;
     }
     if (s.beta2 <= c->gamma * c->gamma * s.phitphi) { /* proportional: CG or expansion */
-      PetscScalar pAp, gp;
-      PetscReal   acg, af;
+      if (c->bb) {                                    /* the iterate before this step, for the next Barzilai-Borwein length */
+        PetscCall(VecCopy(x, c->xprev));
+        PetscCall(VecCopy(c->g, c->gprev));
+      }
+      PetscReal pAp, gp, acg, af;
       PetscCall(MPGPCoreMult(c, c->p, c->Ap));
-      PetscCall(VecDotBegin(c->Ap, c->p, &pAp));
-      PetscCall(VecDotBegin(c->g, c->p, &gp));
-      PetscCall(VecDotEnd(c->Ap, c->p, &pAp));
-      PetscCall(VecDotEnd(c->g, c->p, &gp));
-      if (!(PetscRealPart(pAp) > 0)) {
-        c->status = PetscIsInfOrNanScalar(pAp) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
+      PetscCall(ReproducibleDot2(c->Ap, c->p, c->g, c->p, &pAp, &gp));
+      if (!(pAp > 0)) {
+        c->status = PetscIsInfOrNanReal(pAp) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
         break;
       }
-      acg = PetscRealPart(gp) / PetscRealPart(pAp);
+      acg = gp / pAp;
       PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->p, &af));
       if (acg <= af) { /* conjugate gradient step */
         PetscReal gamma_cg;
-        PetscCall(VecAXPY(x, -acg, c->p));
-        PetscCall(VecAXPY(c->g, -acg, c->Ap));
+        PetscCall(ReproducibleAXPY(x, -acg, c->p));
+        PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
         PetscCall(MPGPCoreSplit(c, x, alpha, c->Ap, &s));
         if (c->precondition) {
-          PetscScalar zAp;
+          PetscReal zAp;
           PetscCall(c->precondition(c->precondition_ctx, c->g, c->z));
-          PetscCall(VecDot(c->z, c->Ap, &zAp));
-          gamma_cg = PetscRealPart(zAp) / PetscRealPart(pAp);
-          PetscCall(VecAYPX(c->p, -gamma_cg, c->z));
+          PetscCall(ReproducibleDot(c->z, c->Ap, &zAp));
+          gamma_cg = zAp / pAp;
+          PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->z));
         } else {
-          gamma_cg = s.phiAp / PetscRealPart(pAp);
-          PetscCall(VecAYPX(c->p, -gamma_cg, c->phi));
+          gamma_cg = s.phiAp / pAp;
+          PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->phi));
         }
         step = acg;
         c->counters->cg_steps++;
       } else { /* expansion: feasible half step, then a projected step along the free gradient */
-        PetscCall(VecAXPY(x, -af, c->p));
-        PetscCall(VecAXPY(c->g, -af, c->Ap));
+        PetscCall(ReproducibleAXPY(x, -af, c->p));
+        PetscCall(ReproducibleAXPY(c->g, -af, c->Ap));
         PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
         PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->phi, x));
         PetscCall(MPGPCoreGradient(c, x));
@@ -161,25 +170,42 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
       }
     } else { /* proportioning */
       if (c->variant == MPGPVariant::MPRGP) {
-        PetscScalar bAb, gb;
+        PetscReal bAb, gb;
         PetscCall(MPGPCoreMult(c, c->beta, c->Ap));
-        PetscCall(VecDotBegin(c->Ap, c->beta, &bAb));
-        PetscCall(VecDotBegin(c->g, c->beta, &gb));
-        PetscCall(VecDotEnd(c->Ap, c->beta, &bAb));
-        PetscCall(VecDotEnd(c->g, c->beta, &gb));
-        if (!(PetscRealPart(bAb) > 0)) {
-          c->status = PetscIsInfOrNanScalar(bAb) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
+        PetscCall(ReproducibleDot2(c->Ap, c->beta, c->g, c->beta, &bAb, &gb));
+        if (!(bAb > 0)) {
+          c->status = PetscIsInfOrNanReal(bAb) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
           break;
         }
-        step = PetscRealPart(gb) / PetscRealPart(bAb);
-        PetscCall(VecAXPY(x, -step, c->beta));
-        PetscCall(VecAXPY(c->g, -step, c->Ap));
+        step = gb / bAb;
+        PetscCall(ReproducibleAXPY(x, -step, c->beta));
+        PetscCall(ReproducibleAXPY(c->g, -step, c->Ap));
       } else {
-        PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->g, x));
-        PetscCall(MPGPCoreGradient(c, x));
+        PetscReal abb = 0;
+        if (c->bb && it > 0) { /* BB length from the last step s = x - x_prev: s's / s'y, y = g - g_prev = A s */
+          PetscReal ss, sy;
+          PetscCall(VecWAXPY(c->p, -1.0, c->xprev, x));
+          PetscCall(VecWAXPY(c->Ap, -1.0, c->gprev, c->g));
+          PetscCall(ReproducibleDot2(c->p, c->p, c->p, c->Ap, &ss, &sy));
+          if (sy > 0 && ss > 0) abb = ss / sy;
+        }
+        PetscCall(VecCopy(x, c->xprev));
+        PetscCall(VecCopy(c->g, c->gprev));
         step = alpha;
+        if (abb > alpha) { /* keep the longer step only if it decreases q */
+          const PetscReal f0 = c->f;
+          PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, abb, c->gprev, x));
+          PetscCall(MPGPCoreGradient(c, x));
+          PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+          if (0.5 * (s.xg - s.xb) < f0) step = abb;
+          else c->bb_rejected++;
+        }
+        if (step == alpha) {
+          PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, alpha, c->gprev, x));
+          PetscCall(MPGPCoreGradient(c, x));
+        }
       }
-      PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+      if (step == alpha || c->variant == MPGPVariant::MPRGP) PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
       PetscCall(MPGPCoreRestartDirection(c));
       c->counters->proportioning_steps++;
     }

@@ -1,6 +1,7 @@
 /* TAO types mprgp and mpgp: min 1/2 x'Ax - b'x over a SeparableSet, by the shared MPGP core. */
 #include <conefeti.h>
 #include <conefeti/private/mpgpcore.h>
+#include <conefeti/private/reproduciblesum.h>
 #include <petsc/private/taoimpl.h>
 
 namespace {
@@ -174,7 +175,8 @@ PetscErrorCode TaoSolve_QP(Tao tao)
     PetscCall(TaoComputeGradient(tao, tao->stepdirection, qp->b));
     PetscCall(VecScale(qp->b, -1.0));
   }
-  PetscCall(VecNorm(qp->b, NORM_2, &qp->bnorm));
+  PetscCall(ReproducibleDot(qp->b, qp->b, &qp->bnorm));
+  qp->bnorm = PetscSqrtReal(qp->bnorm);
 
   /* the norm estimate for the fixed step length */
   if (qp->norm_user > 0) qp->norm_used = qp->norm_user;
@@ -224,6 +226,10 @@ PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptions
   PetscCall(PetscOptionsReal(opt, "Proportioning parameter Gamma > 0 (|beta|^2 <= Gamma^2 phi~.phi means proportional)", "TaoQP", qp->core.gamma, &qp->core.gamma, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_alpha", qp->name));
   PetscCall(PetscOptionsReal(opt, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "TaoQP", qp->core.alpha_scale, &qp->core.alpha_scale, NULL));
+  if (qp->core.variant == MPGPVariant::MPGP) {
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_bb", qp->name));
+    PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "TaoQP", qp->core.bb, &qp->core.bb, NULL));
+  }
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_norm", qp->name));
   PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "TaoQPSetNormEstimate", qp->norm_user, &value, &set));
   if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
@@ -351,6 +357,7 @@ PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name
   PetscFunctionBegin;
   PetscCallCXX(qp = new TaoQP);
   qp->core.variant = variant;
+  qp->core.bb      = variant == MPGPVariant::MPGP ? PETSC_TRUE : PETSC_FALSE;
   qp->name         = name;
   qp->tao          = tao;
   tao->data        = qp;
@@ -422,6 +429,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_norm <value>        - ||A|| given, not estimated
 . -tao_mpgp_norm_method <slepc> - slepc or power
 . -tao_mpgp_norm_margin         - safety margin on the estimate
+. -tao_mpgp_bb <true>           - try Barzilai-Borwein lengths in gradient projection steps, kept only when q decreases
 . -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
 . -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
 - -tao_mpgp_counters_view       - print the counters as one JSON line after each solve

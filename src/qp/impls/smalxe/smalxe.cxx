@@ -1,0 +1,988 @@
+/* TAO type smalxe: min 1/2 x'Ax - b'x over a SeparableSet subject to C x = d, by Dostal's
+   semi-monotonic augmented Lagrangian (SMALBE) with adaptive precision of the inner solves.
+
+   L(x, mu, rho) = q(x) + mu'(Cx - d) + rho/2 |Cx - d|^2.
+   Outer iteration k: minimize L(., mu_k, rho_k) over the set until |gP| <= min(M_k |Cx - d|, eta);
+   mu_{k+1} = mu_k + rho_k (Cx - d); if L did not grow by at least rho_k/2 |Cx - d|^2, lower M
+   (SMALBE-M, default) or raise rho (SMALBE).
+
+   Projector form (C with orthonormal rows, Q = C'C, P = I - Q, x~ = Q x~ with C x~ = d): the
+   inner Hessian is PAP + rho Q, whose norm is max(|PAP|, rho) and which is well conditioned on
+   the feasible affine space (FETI: Farhat-Mandel-Roux). In that form the inner problem is written
+   in x directly: min 1/2 x'Hx - x'(rho x~ + P(b - A x~) - nu), nu = C'mu, so the feasible set
+   needs no translation.
+
+   The inner minimization is one nested TAO (mprgp/mpgp), or a block Gauss-Seidel sweep over
+   index sets, each block with its own nested TAO (the seed paper's Algorithm 2 splits the
+   multipliers this way). A pre-solve hook runs before every inner solve (the Coulomb friction
+   loop updates disk radii there). Math: ../shared/ALGORITHMS.md section 3. */
+#include <conefeti.h>
+#include <conefeti/private/mpgpcore.h>
+#include <conefeti/private/reproduciblesum.h>
+#include <petsc/private/taoimpl.h>
+#include <vector>
+
+namespace {
+
+enum SMALXEUpdate {
+  SMALXE_UPDATE_M,
+  SMALXE_UPDATE_RHO
+};
+const char *const SMALXEUpdates[] = {"M", "rho", "SMALXEUpdate", "SMALXE_UPDATE_", NULL};
+
+struct SMALXEBlock {
+  IS         is      = nullptr; /* NULL: the whole vector (monolithic inner solve) */
+  Tao        sub     = nullptr;
+  Mat        H       = nullptr; /* this block of the inner Hessian (owned only when is != NULL) */
+  Vec        x       = nullptr; /* block of the solution (owned only when is != NULL) */
+  Vec        b       = nullptr; /* linear term of the block problem */
+  VecScatter scatter = nullptr; /* full vector -> block */
+};
+
+struct TaoSMALXE {
+  Tao tao = nullptr;
+
+  /* the problem */
+  Vec          b         = nullptr; /* linear term */
+  PetscBool    b_user    = PETSC_FALSE;
+  SeparableSet set       = nullptr; /* the user's set, or NULL: the variable bounds */
+  Mat          C         = nullptr; /* equality C x = d */
+  Vec          d         = nullptr;
+  Mat          Q         = nullptr; /* projector form: orthogonal projector onto range(C') */
+  Vec          xt        = nullptr; /* projector form: particular solution, in range(Q) */
+  PetscBool    projector = PETSC_FALSE, Q_from_C = PETSC_FALSE;
+
+  /* augmented Lagrangian state */
+  Vec       mu     = nullptr; /* general form: the multiplier (m-vector) */
+  Vec       nu     = nullptr; /* projector form: C'mu */
+  Vec       bx     = nullptr; /* linear term of the inner problem */
+  Vec       bconst = nullptr; /* projector form: P(b - A x~) */
+  Vec       g      = nullptr; /* gradient of L at the current x */
+  PetscReal rho = 0, M = 0, eta = 0, feas = 0, gpnorm = 0, beff = 0;
+  PetscReal normA = 0, normC2 = 1, normH = 0;
+  PetscReal dnorm2 = 0, qxt = 0; /* |d|^2 or |x~|^2, and q(x~): constants of L */
+
+  /* parameters */
+  PetscReal    rho_rel = 1.0, M_rel = 1.0, eta_rel = 0.1, beta = 10.0;
+  SMALXEUpdate update    = SMALXE_UPDATE_M;
+  PetscInt     sweeps    = 1;
+  PetscReal    norm_user = 0, norm_margin = -1;
+  QPNormMethod norm_method   = QP_NORM_SLEPC;
+  PetscBool    counters_view = PETSC_FALSE;
+
+  /* inner solves */
+  std::vector<SMALXEBlock> blocks; /* one block with is = NULL: monolithic */
+  Mat                      H                             = nullptr;
+  PetscInt                 current_block                 = 0;
+  PetscErrorCode (*presolve)(Tao, PetscInt, Vec, void *) = nullptr;
+  void *presolve_ctx                                     = nullptr;
+
+  /* work: hq, hp, hr for products with H; bin, bout for block products; wf for feasibility; w for the rest */
+  Vec hq = nullptr, hp = nullptr, hr = nullptr, r = nullptr, bin = nullptr, bout = nullptr, wf = nullptr, w = nullptr;
+
+  QPCounters counters = {};
+  PetscBool  setup    = PETSC_FALSE;
+};
+
+TaoSMALXE *Get(Tao tao) { return static_cast<TaoSMALXE *>(tao->data); }
+
+/* 2-norm summed the same way on any number of ranks (see reproduciblesum.h) */
+PetscErrorCode Norm(Vec v, PetscReal *n)
+{
+  PetscFunctionBegin;
+  PetscCall(ReproducibleDot(v, v, n));
+  *n = PetscSqrtReal(*n);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ---------- operators ---------- */
+
+/* y = H x, H = A + rho C'C, or PAP + rho Q in projector form: one product with A. */
+PetscErrorCode MultH(TaoSMALXE *s, Vec x, Vec y)
+{
+  Mat A = s->tao->hessian;
+
+  PetscFunctionBegin;
+  if (s->projector) {
+    PetscCall(MatMult(s->Q, x, s->hq));
+    PetscCall(VecWAXPY(s->hp, -1.0, s->hq, x)); /* P x */
+    PetscCall(MatMult(A, s->hp, y));
+    PetscCall(MatMult(s->Q, y, s->hp));
+    PetscCall(VecAXPY(y, -1.0, s->hp)); /* P A P x */
+    PetscCall(ReproducibleAXPY(y, s->rho, s->hq));
+  } else {
+    PetscCall(MatMult(A, x, y));
+    PetscCall(MatMult(s->C, x, s->hr));
+    PetscCall(VecScale(s->hr, s->rho));
+    PetscCall(MatMultTransposeAdd(s->C, s->hr, y, y));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ShellMultH(Mat H, Vec x, Vec y)
+{
+  TaoSMALXE *s;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(H, &s));
+  PetscCall(MultH(s, x, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+struct BlockShellCtx {
+  TaoSMALXE *s;
+  PetscInt   k;
+};
+
+/* y_b = R_b H R_b' x_b */
+PetscErrorCode ShellMultHBlock(Mat Hb, Vec xb, Vec yb)
+{
+  BlockShellCtx *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(Hb, &c));
+  TaoSMALXE   *s   = c->s;
+  SMALXEBlock &blk = s->blocks[c->k];
+  PetscCall(VecSet(s->bin, 0.0));
+  PetscCall(VecScatterBegin(blk.scatter, xb, s->bin, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(blk.scatter, xb, s->bin, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(MultH(s, s->bin, s->bout));
+  PetscCall(VecScatterBegin(blk.scatter, s->bout, yb, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(blk.scatter, s->bout, yb, INSERT_VALUES, SCATTER_FORWARD));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BlockShellDestroy(Mat Hb)
+{
+  BlockShellCtx *c;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(Hb, &c));
+  delete c;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Q x = C'(C x) when the projector form comes from C with orthonormal rows */
+PetscErrorCode QFromCMult(Mat Qm, Vec x, Vec y)
+{
+  TaoSMALXE *s;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(Qm, &s));
+  PetscCall(MatMult(s->C, x, s->hr));
+  PetscCall(MatMultTranspose(s->C, s->hr, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* e = |C x - d| (projector form: |Q x - x~|). Leaves C x - d in r, or Q x - x~ in wf. */
+PetscErrorCode Feasibility(TaoSMALXE *s, Vec x, PetscReal *e)
+{
+  PetscFunctionBegin;
+  if (s->projector) {
+    PetscCall(MatMult(s->Q, x, s->wf));
+    PetscCall(VecAXPY(s->wf, -1.0, s->xt));
+    PetscCall(Norm(s->wf, e));
+  } else {
+    PetscCall(MatMult(s->C, x, s->r));
+    PetscCall(VecAXPY(s->r, -1.0, s->d));
+    PetscCall(Norm(s->r, e));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* the linear term of the inner problem for the current multiplier */
+PetscErrorCode UpdateInnerLinearTerm(TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  if (s->projector) { /* rho x~ + P(b - A x~) - nu */
+    PetscCall(VecWAXPY(s->bx, -1.0, s->nu, s->bconst));
+    PetscCall(ReproducibleAXPY(s->bx, s->rho, s->xt));
+  } else {                           /* b + C'(rho d - mu) */
+    PetscCall(VecCopy(s->mu, s->r)); /* rho d - mu, rounded alike everywhere */
+    PetscCall(VecScale(s->r, -1.0));
+    PetscCall(ReproducibleAXPY(s->r, s->rho, s->d));
+    PetscCall(MatMultTransposeAdd(s->C, s->r, s->b, s->bx));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Tolerances(Tao tao, TaoSMALXE *s, PetscReal *tol_g, PetscReal *tol_e)
+{
+  PetscFunctionBegin;
+  *tol_g = PetscMax(tao->gatol, tao->gttol * s->beff);
+  *tol_e = PetscMax(tao->catol, (tao->crtol_changed ? tao->crtol : tao->gttol) * s->beff / s->normH);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ---------- stopping rules ---------- */
+
+/* Inner solves stop at the adaptive precision |gP| <= min(M |Cx - d|, eta), or when the final
+   tolerances already hold. */
+PetscErrorCode InnerConvergenceTest(Tao sub, void *ctx)
+{
+  TaoSMALXE *s   = static_cast<TaoSMALXE *>(ctx);
+  Tao        tao = s->tao;
+  PetscReal  gp  = sub->residual, e, tol_g, tol_e;
+  Vec        xfull;
+
+  PetscFunctionBegin;
+  if (sub->reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(PETSC_SUCCESS);
+  if (PetscIsInfOrNanReal(gp) || PetscIsInfOrNanReal(sub->fc)) {
+    PetscCall(TaoSetConvergedReason(sub, TAO_DIVERGED_NAN));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  SMALXEBlock &blk = s->blocks[s->current_block];
+  if (blk.is) { /* the full iterate: the block's current values in place */
+    PetscCall(VecCopy(tao->solution, s->w));
+    PetscCall(VecScatterBegin(blk.scatter, sub->solution, s->w, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(blk.scatter, sub->solution, s->w, INSERT_VALUES, SCATTER_REVERSE));
+    xfull = s->w;
+  } else xfull = sub->solution;
+  PetscCall(Feasibility(s, xfull, &e));
+  PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
+  if (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e)) PetscCall(TaoSetConvergedReason(sub, TAO_CONVERGED_USER));
+  else if (sub->niter >= sub->max_it) PetscCall(TaoSetConvergedReason(sub, TAO_DIVERGED_MAXITS));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Outer: |gP| <= max(gatol, gttol |b_eff|) and |Cx - d| <= max(catol, crtol |b_eff|/||H||) (crtol
+   defaults to gttol); both relative, so scaling A and b does not change the iterations. */
+PetscErrorCode OuterConvergenceTest(Tao tao, void *)
+{
+  TaoSMALXE *s = Get(tao);
+  PetscReal  tol_g, tol_e;
+
+  PetscFunctionBegin;
+  if (tao->reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
+  if (PetscIsInfOrNanReal(tao->residual) || PetscIsInfOrNanReal(tao->cnorm) || PetscIsInfOrNanReal(tao->fc)) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
+  else if (tao->residual <= tol_g && tao->cnorm <= tol_e) PetscCall(TaoSetConvergedReason(tao, tao->gttol * s->beff >= tao->gatol ? TAO_CONVERGED_GTTOL : TAO_CONVERGED_GATOL));
+  else if (tao->niter >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ---------- setup ---------- */
+
+PetscErrorCode CreateSubsolver(Tao tao, const char *suffix, Tao *sub)
+{
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(TaoCreate(PetscObjectComm((PetscObject)tao), sub));
+  PetscCall(PetscObjectIncrementTabLevel((PetscObject)*sub, (PetscObject)tao, 1));
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  PetscCall(TaoSetOptionsPrefix(*sub, prefix));
+  PetscCall(TaoAppendOptionsPrefix(*sub, suffix));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode DestroyBlocks(TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  for (auto &blk : s->blocks) {
+    PetscCall(TaoDestroy(&blk.sub));
+    PetscCall(VecDestroy(&blk.b));
+    if (blk.is) {
+      PetscCall(ISDestroy(&blk.is));
+      PetscCall(VecScatterDestroy(&blk.scatter));
+      PetscCall(MatDestroy(&blk.H));
+      PetscCall(VecDestroy(&blk.x));
+    }
+  }
+  s->blocks.clear();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The equality from TaoSMALXESetEqualityConstraints(), or from TAO's equality-constraint routines. */
+PetscErrorCode PrepareEquality(Tao tao, TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  if (s->C || (s->Q && s->xt)) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(tao->ops->computeequalityconstraints && tao->ops->computejacobianequality, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE,
+             "TAO smalxe: no equality constraint; call TaoSMALXESetEqualityConstraints(), TaoSMALXESetProjector(), or TaoSetEqualityConstraintsRoutine() with TaoSetJacobianEqualityRoutine()");
+  PetscCall(TaoComputeJacobianEquality(tao, tao->solution, tao->jacobian_equality, tao->jacobian_equality_pre));
+  PetscCall(VecSet(tao->stepdirection, 0.0));
+  PetscCall(TaoComputeEqualityConstraints(tao, tao->stepdirection, tao->constraints_equality));
+  PetscCall(PetscObjectReference((PetscObject)tao->jacobian_equality));
+  s->C = tao->jacobian_equality;
+  PetscCall(VecDuplicate(tao->constraints_equality, &s->d));
+  PetscCall(VecAXPY(s->d, -1.0, tao->constraints_equality)); /* ce(x) = C x - d, so d = -ce(0) */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SetUpOnce(Tao tao, TaoSMALXE *s)
+{
+  PetscInt n, N;
+  MPI_Comm comm = PetscObjectComm((PetscObject)tao);
+
+  PetscFunctionBegin;
+  if (s->setup) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PrepareEquality(tao, s));
+  PetscCall(VecGetLocalSize(tao->solution, &n));
+  PetscCall(VecGetSize(tao->solution, &N));
+  if (s->set) PetscCall(SeparableSetCheckCompatible_Private(s->set, tao->solution));
+  if (s->C) {
+    PetscInt cm, cn, cM, cN, dM;
+    PetscCall(MatGetLocalSize(s->C, &cm, &cn));
+    PetscCall(MatGetSize(s->C, &cM, &cN));
+    PetscCheck(cN == N && cn == n, comm, PETSC_ERR_ARG_SIZ,
+               "TAO smalxe: C has %" PetscInt_FMT " columns (local %" PetscInt_FMT "), the solution has %" PetscInt_FMT " entries (local %" PetscInt_FMT ")", cN, cn, N, n);
+    PetscCall(VecGetSize(s->d, &dM));
+    PetscCheck(dM == cM, comm, PETSC_ERR_ARG_SIZ, "TAO smalxe: d has %" PetscInt_FMT " entries, C has %" PetscInt_FMT " rows", dM, cM);
+    PetscCall(MatCreateVecs(s->C, NULL, &s->r));
+    PetscCall(VecDuplicate(s->r, &s->hr));
+    PetscCall(VecDuplicate(s->r, &s->mu));
+  }
+  if (s->projector && !s->Q) { /* projector form from C with orthonormal rows: Q = C'C, x~ = C'd */
+    PetscCheck(s->C, comm, PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: -tao_smalxe_projector needs C");
+    PetscCall(MatCreateShell(comm, n, n, N, N, s, &s->Q));
+    PetscCall(MatShellSetOperation(s->Q, MATOP_MULT, (void (*)(void))QFromCMult));
+    PetscCall(VecDuplicate(tao->solution, &s->xt));
+    PetscCall(MatMultTranspose(s->C, s->d, s->xt));
+    s->Q_from_C = PETSC_TRUE;
+  }
+  if (s->Q) {
+    PetscInt qm, qn;
+    PetscCall(MatGetSize(s->Q, &qm, &qn));
+    PetscCheck(qm == N && qn == N, comm, PETSC_ERR_ARG_SIZ, "TAO smalxe: the projector is %" PetscInt_FMT " x %" PetscInt_FMT ", it must be %" PetscInt_FMT " x %" PetscInt_FMT, qm, qn, N, N);
+    s->projector = PETSC_TRUE;
+    PetscCall(VecDuplicate(tao->solution, &s->nu));
+    PetscCall(VecDuplicate(tao->solution, &s->bconst));
+    PetscCall(VecDuplicate(tao->solution, &s->hq));
+    PetscCall(VecDuplicate(tao->solution, &s->hp));
+    PetscCall(VecDuplicate(tao->solution, &s->wf));
+  }
+  for (Vec *v : {&s->bx, &s->g, &s->bin, &s->bout, &s->w}) PetscCall(VecDuplicate(tao->solution, v));
+  PetscCall(MatCreateShell(comm, n, n, N, N, s, &s->H));
+  PetscCall(MatShellSetOperation(s->H, MATOP_MULT, (void (*)(void))ShellMultH));
+  PetscCall(MatSetOption(s->H, MAT_SYMMETRIC, PETSC_TRUE));
+
+  for (size_t k = 0; k < s->blocks.size(); k++) {
+    SMALXEBlock &blk  = s->blocks[k];
+    SeparableSet bset = nullptr;
+    if (blk.is) {
+      PetscInt       nb, Nb;
+      BlockShellCtx *ctx;
+      PetscCall(ISGetLocalSize(blk.is, &nb));
+      PetscCall(VecCreateMPI(comm, nb, PETSC_DETERMINE, &blk.x));
+      PetscCall(VecGetSize(blk.x, &Nb));
+      PetscCall(VecScatterCreate(tao->solution, blk.is, blk.x, NULL, &blk.scatter));
+      PetscCallCXX(ctx = new BlockShellCtx{s, (PetscInt)k});
+      PetscCall(MatCreateShell(comm, nb, nb, Nb, Nb, ctx, &blk.H));
+      PetscCall(MatShellSetOperation(blk.H, MATOP_MULT, (void (*)(void))ShellMultHBlock));
+      PetscCall(MatShellSetOperation(blk.H, MATOP_DESTROY, (void (*)(void))BlockShellDestroy));
+      PetscCall(MatSetOption(blk.H, MAT_SYMMETRIC, PETSC_TRUE));
+      if (s->set) PetscCall(SeparableSetCreateSubset(s->set, blk.is, &bset));
+    } else {
+      blk.H = s->H;
+      blk.x = tao->solution;
+      if (s->set) {
+        PetscCall(PetscObjectReference((PetscObject)s->set));
+        bset = s->set;
+      }
+    }
+    PetscCall(VecDuplicate(blk.x, &blk.b));
+    /* default inner type: mprgp on bounds only (its exact line search beats a fixed step), mpgp otherwise */
+    if (!((PetscObject)blk.sub)->type_name) {
+      PetscBool curved = PETSC_FALSE;
+      if (bset) PetscCall(SeparableSetHasCurvedBlocks(bset, &curved));
+      PetscCall(TaoSetType(blk.sub, curved ? TAOMPGP : TAOMPRGP));
+      PetscCall(TaoSetFromOptions(blk.sub));
+    }
+    if (bset) PetscCall(TaoQPSetConstraints(blk.sub, bset));
+    PetscCall(SeparableSetDestroy(&bset));
+    PetscCall(TaoSetSolution(blk.sub, blk.x));
+    PetscCall(TaoSetHessian(blk.sub, blk.H, blk.H, NULL, NULL));
+    PetscCall(TaoQPSetLinearTerm(blk.sub, blk.b));
+    PetscCall(TaoSetConvergenceTest(blk.sub, InnerConvergenceTest, s));
+  }
+  s->setup = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Variable bounds (when no set was given) reach the nested solvers, per block. */
+PetscErrorCode PassVariableBounds(Tao tao, TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  if (s->set || (!tao->XL && !tao->XU)) PetscFunctionReturn(PETSC_SUCCESS);
+  for (auto &blk : s->blocks) {
+    if (!blk.is) {
+      PetscCall(TaoSetVariableBounds(blk.sub, tao->XL, tao->XU));
+      continue;
+    }
+    Vec bounds[2] = {tao->XL, tao->XU}, sub[2] = {NULL, NULL};
+    for (int i = 0; i < 2; i++) {
+      if (!bounds[i]) continue;
+      PetscCall(VecDuplicate(blk.x, &sub[i]));
+      PetscCall(VecScatterBegin(blk.scatter, bounds[i], sub[i], INSERT_VALUES, SCATTER_FORWARD));
+      PetscCall(VecScatterEnd(blk.scatter, bounds[i], sub[i], INSERT_VALUES, SCATTER_FORWARD));
+    }
+    PetscCall(TaoSetVariableBounds(blk.sub, sub[0], sub[1]));
+    PetscCall(VecDestroy(&sub[0]));
+    PetscCall(VecDestroy(&sub[1]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode UpdateNormH(TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  /* |PAP + rho Q| = max(|PAP|, rho): the two parts act on orthogonal subspaces */
+  s->normH = s->projector ? PetscMax(s->normA, s->rho) : s->normA + s->rho * s->normC2;
+  for (auto &blk : s->blocks) PetscCall(TaoQPSetNormEstimate(blk.sub, s->normH));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode EstimateNorms(Tao tao, TaoSMALXE *s)
+{
+  PetscInt    products = 0;
+  char        prefix[256];
+  const char *tprefix;
+  PetscReal   margin = s->norm_margin >= 0 ? s->norm_margin : (s->norm_method == QP_NORM_SLEPC ? 0.01 : 0.05);
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%stao_smalxe_norm_", tprefix ? tprefix : ""));
+  if (s->norm_user > 0) s->normA = s->norm_user;
+  else if (s->projector) { /* |PAP|: H with rho = 0, each product one product with A */ s->rho = 0;
+    PetscCall(MatQPClearNormEstimate(s->H));
+    PetscCall(MatQPEstimateNorm(s->H, s->norm_method, margin, prefix, &s->normA, &products));
+    PetscCall(MatQPClearNormEstimate(s->H));
+  } else PetscCall(MatQPEstimateNorm(tao->hessian, s->norm_method, margin, prefix, &s->normA, &products));
+  s->counters.estimate_mults += products;
+  if (!s->projector) { /* |C|^2 = |C'C|: no product with A */
+    Mat CtC;
+    PetscCall(MatCreateNormal(s->C, &CtC));
+    PetscCall(MatQPEstimateNorm(CtC, QP_NORM_POWER, 0.05, NULL, &s->normC2, NULL));
+    PetscCall(MatDestroy(&CtC));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One inner minimization: `sweeps` block Gauss-Seidel sweeps (one solve when monolithic).
+   Leaves the gradient of L at the new x in s->g and returns the norm of its projected gradient. */
+PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
+{
+  PetscBool monolithic = (s->blocks.size() == 1 && !s->blocks[0].is) ? PETSC_TRUE : PETSC_FALSE;
+
+  PetscFunctionBegin;
+  for (PetscInt sweep = 0; sweep < s->sweeps; sweep++) {
+    for (size_t k = 0; k < s->blocks.size(); k++) {
+      SMALXEBlock       &blk = s->blocks[k];
+      QPCounters         before, after;
+      TaoConvergedReason reason;
+      s->current_block = (PetscInt)k;
+      if (s->presolve) PetscCall(s->presolve(tao, (PetscInt)k, tao->solution, s->presolve_ctx));
+      if (blk.is) { /* block linear term R_b (bx - H x_{-b}), x_{-b} = x with the block zeroed */
+        PetscCall(VecCopy(tao->solution, s->w));
+        PetscCall(VecISSet(s->w, blk.is, 0.0));
+        PetscCall(MultH(s, s->w, s->g));
+        s->counters.hessian_mults++;
+        PetscCall(VecAYPX(s->g, -1.0, s->bx));
+        PetscCall(VecScatterBegin(blk.scatter, s->g, blk.b, INSERT_VALUES, SCATTER_FORWARD));
+        PetscCall(VecScatterEnd(blk.scatter, s->g, blk.b, INSERT_VALUES, SCATTER_FORWARD));
+        PetscCall(VecScatterBegin(blk.scatter, tao->solution, blk.x, INSERT_VALUES, SCATTER_FORWARD));
+        PetscCall(VecScatterEnd(blk.scatter, tao->solution, blk.x, INSERT_VALUES, SCATTER_FORWARD));
+      } else PetscCall(VecCopy(s->bx, blk.b));
+      PetscCall(TaoQPGetCounters(blk.sub, &before));
+      PetscCall(TaoSolve(blk.sub));
+      PetscCall(TaoQPGetCounters(blk.sub, &after));
+      s->counters.nested_hessian_mults += after.hessian_mults - before.hessian_mults;
+      s->counters.nested_iterations += after.iterations - before.iterations;
+      s->counters.estimate_mults += after.estimate_mults - before.estimate_mults;
+      PetscCall(TaoGetConvergedReason(blk.sub, &reason));
+      PetscCheck(reason != TAO_DIVERGED_USER && reason != TAO_DIVERGED_NAN, PetscObjectComm((PetscObject)tao), PETSC_ERR_NOT_CONVERGED,
+                 "TAO smalxe: the inner solve of block %zu failed (%s); is the Hessian positive definite on the feasible set?", k, TaoConvergedReasons[reason]);
+      if (blk.is) {
+        PetscCall(VecScatterBegin(blk.scatter, blk.x, tao->solution, INSERT_VALUES, SCATTER_REVERSE));
+        PetscCall(VecScatterEnd(blk.scatter, blk.x, tao->solution, INSERT_VALUES, SCATTER_REVERSE));
+      }
+    }
+  }
+  if (monolithic && s->sweeps == 1) { /* the nested solver's final gradient is the gradient of L */
+    Vec g;
+    PetscCall(TaoGetGradient(s->blocks[0].sub, &g, NULL, NULL));
+    PetscCall(VecCopy(g, s->g));
+    *gp = s->blocks[0].sub->residual;
+  } else { /* after a sweep the earlier blocks' gradients are stale: one fresh product */
+    SeparableSet set = s->set;
+    PetscCall(MultH(s, tao->solution, s->g));
+    s->counters.hessian_mults++;
+    PetscCall(VecAXPY(s->g, -1.0, s->bx));
+    if (set) PetscCall(PetscObjectReference((PetscObject)set));
+    else {
+      PetscInt n, N;
+      PetscCall(VecGetLocalSize(tao->solution, &n));
+      PetscCall(VecGetSize(tao->solution, &N));
+      PetscCall(SeparableSetCreate(PetscObjectComm((PetscObject)tao), n, N, &set));
+      PetscCall(SeparableSetSetBounds(set, tao->XL, tao->XU));
+    }
+    PetscCall(SeparableSetProjectedGradient(set, tao->solution, s->g, s->w));
+    PetscCall(SeparableSetDestroy(&set));
+    PetscCall(Norm(s->w, gp));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoSolve_SMALXE(Tao tao)
+{
+  TaoSMALXE *s     = Get(tao);
+  PetscReal  Lprev = 0;
+
+  PetscFunctionBegin;
+  if (tao->ops->computehessian) PetscCall(TaoComputeHessian(tao, tao->solution, tao->hessian, tao->hessian_pre));
+  PetscCheck(tao->hessian, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: no Hessian; call TaoSetHessian()");
+  {
+    PetscInt m, n, N;
+    PetscCall(MatGetSize(tao->hessian, &m, &n));
+    PetscCall(VecGetSize(tao->solution, &N));
+    PetscCheck(m == n && n == N, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_SIZ,
+               "TAO smalxe: the Hessian must be square with the solution's size %" PetscInt_FMT ", it is %" PetscInt_FMT " x %" PetscInt_FMT, N, m, n);
+  }
+  PetscCall(TaoComputeVariableBounds(tao));
+  PetscCall(SetUpOnce(tao, s));
+  PetscCall(PassVariableBounds(tao, s));
+  if (!s->b_user) {
+    if (!s->b) PetscCall(VecDuplicate(tao->solution, &s->b));
+    PetscCheck(tao->ops->computegradient || tao->ops->computeobjectiveandgradient, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE,
+               "TAO smalxe: no linear term; call TaoQPSetLinearTerm() or set a gradient routine (b = -gradient at 0)");
+    PetscCall(VecSet(tao->stepdirection, 0.0));
+    PetscCall(TaoComputeGradient(tao, tao->stepdirection, s->b));
+    PetscCall(VecScale(s->b, -1.0));
+  }
+
+  /* norms, penalty, and the constant part of the linear term */
+  PetscCall(EstimateNorms(tao, s));
+  s->rho = s->rho_rel * s->normA / (s->projector ? 1.0 : s->normC2);
+  if (s->projector) {
+    if (!s->Q_from_C) { /* a particular solution in range(Q), then P(b - A x~) */
+      PetscCall(MatMult(s->Q, s->xt, s->w));
+      PetscCall(VecCopy(s->w, s->xt));
+    }
+    PetscCall(MatMult(tao->hessian, s->xt, s->w));
+    s->counters.hessian_mults++;
+    {
+      PetscReal xAx, xb;
+      PetscCall(ReproducibleDot2(s->xt, s->w, s->xt, s->b, &xAx, &xb));
+      PetscCall(ReproducibleDot(s->xt, s->xt, &s->dnorm2));
+      s->qxt = 0.5 * xAx - xb;
+    }
+    PetscCall(VecAYPX(s->w, -1.0, s->b));
+    PetscCall(MatMult(s->Q, s->w, s->hq));
+    PetscCall(VecWAXPY(s->bconst, -1.0, s->hq, s->w));
+    PetscCall(Norm(s->bconst, &s->beff));
+    PetscCall(VecSet(s->nu, 0.0));
+  } else {
+    PetscCall(Norm(s->b, &s->beff));
+    PetscCall(ReproducibleDot(s->d, s->d, &s->dnorm2));
+    s->qxt = 0;
+    PetscCall(VecSet(s->mu, 0.0));
+  }
+  PetscCall(UpdateNormH(s));
+  s->M   = s->M_rel * s->normH;
+  s->eta = s->eta_rel * s->beff;
+
+  tao->reason = TAO_CONTINUE_ITERATING;
+  s->counters.solves++;
+  for (PetscInt k = 0;; k++) {
+    PetscReal gp, e, L;
+    PetscReal xg, xb, md;
+    PetscCall(UpdateInnerLinearTerm(s));
+    PetscCall(InnerSolve(tao, s, &gp));
+    PetscCall(Feasibility(s, tao->solution, &e));
+    /* L(x, mu, rho) = 1/2 x'(g - bx) - mu'd + rho/2 |d|^2 (general form), or
+       1/2 x'(g - bx) - nu'x~ + rho/2 |x~|^2 + q(x~) (projector form) */
+    PetscCall(ReproducibleDot2(tao->solution, s->g, tao->solution, s->bx, &xg, &xb));
+    if (s->projector) PetscCall(ReproducibleDot(s->nu, s->xt, &md));
+    else PetscCall(ReproducibleDot(s->mu, s->d, &md));
+    L         = 0.5 * (xg - xb) - md + 0.5 * s->rho * s->dnorm2 + s->qxt;
+    s->gpnorm = gp;
+    s->feas   = e;
+    PetscCall(VecCopy(s->g, tao->gradient));
+    tao->niter = k;
+    s->counters.iterations++;
+    PetscCall(TaoLogConvergenceHistory(tao, L, gp, e, tao->ksp_its));
+    PetscCall(TaoMonitor(tao, k, L, gp, e, 0.0));
+    /* the multiplier update comes before the test: the returned multiplier is the updated one */
+    if (s->projector) PetscCall(ReproducibleAXPY(s->nu, s->rho, s->wf)); /* wf = Qx - x~ from Feasibility() */
+    else PetscCall(ReproducibleAXPY(s->mu, s->rho, s->r));               /* r = Cx - d */
+    PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
+    if (tao->reason != TAO_CONTINUE_ITERATING) break;
+    /* semi-monotonicity: if L did not grow enough, tighten the inner precision (M) or raise rho */
+    if (k > 0 && L < Lprev + 0.5 * s->rho * e * e) {
+      if (s->update == SMALXE_UPDATE_M) s->M /= s->beta;
+      else {
+        s->rho *= s->beta;
+        PetscCall(UpdateNormH(s));
+      }
+    }
+    Lprev = L;
+  }
+  if (s->counters_view) {
+    PetscViewer viewer;
+    PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)tao), &viewer));
+    PetscCall(QPCountersViewJSON(&s->counters, TAOSMALXE, viewer));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoSetUp_SMALXE(Tao tao)
+{
+  PetscFunctionBegin;
+  if (!tao->gradient) PetscCall(VecDuplicate(tao->solution, &tao->gradient));
+  if (!tao->stepdirection) PetscCall(VecDuplicate(tao->solution, &tao->stepdirection));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
+{
+  TaoSMALXE *s = Get(tao);
+  PetscReal  value;
+  PetscBool  set;
+
+  PetscFunctionBegin;
+  PetscOptionsHeadBegin(PetscOptionsObject, "smalxe: semi-monotonic augmented Lagrangian for C x = d (conefeti)");
+  PetscCall(PetscOptionsReal("-tao_smalxe_rho", "Penalty rho relative to ||A|| (||PAP|| in projector form, ||A||/||C||^2 otherwise)", "TaoSMALXE", s->rho_rel, &s->rho_rel, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_M", "Initial M relative to ||H||: inner solves stop when |gP| <= min(M |Cx - d|, eta)", "TaoSMALXE", s->M_rel, &s->M_rel, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_eta", "eta relative to |b| (|P(b - A x~)| in projector form)", "TaoSMALXE", s->eta_rel, &s->eta_rel, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_beta", "Factor > 1 by which M falls (or rho grows) when the Lagrangian did not grow enough", "TaoSMALXE", s->beta, &s->beta, NULL));
+  PetscCall(
+      PetscOptionsEnum("-tao_smalxe_update", "What the semi-monotonicity test updates: M (SMALBE-M) or rho (SMALBE)", "TaoSMALXE", SMALXEUpdates, (PetscEnum)s->update, (PetscEnum *)&s->update, NULL));
+  PetscCall(PetscOptionsBool("-tao_smalxe_projector", "Projector form: C has orthonormal rows; inner Hessian PAP + rho Q", "TaoSMALXESetProjector", s->projector, &s->projector, NULL));
+  PetscCall(PetscOptionsInt("-tao_smalxe_sweeps", "Block Gauss-Seidel sweeps per outer iteration (with TaoSMALXESetBlocks())", "TaoSMALXESetBlocks", s->sweeps, &s->sweeps, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_norm", "Use this ||A|| (||PAP|| in projector form) instead of estimating it", "TaoQPSetNormEstimate", s->norm_user, &value, &set));
+  if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
+  PetscCall(PetscOptionsEnum("-tao_smalxe_norm_method", "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)s->norm_method, (PetscEnum *)&s->norm_method, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_norm_margin", "Relative safety margin of the norm estimate", "MatQPEstimateNorm", s->norm_margin, &s->norm_margin, NULL));
+  PetscCall(PetscOptionsBool("-tao_smalxe_counters_view", "Print the counters as one JSON line after each solve", "QPCountersViewJSON", s->counters_view, &s->counters_view, NULL));
+  PetscOptionsHeadEnd();
+  PetscCheck(s->rho_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_rho must be positive, got %g", (double)s->rho_rel);
+  PetscCheck(s->M_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_M must be positive, got %g", (double)s->M_rel);
+  PetscCheck(s->eta_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_eta must be positive, got %g", (double)s->eta_rel);
+  PetscCheck(s->beta > 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_beta must be > 1, got %g", (double)s->beta);
+  PetscCheck(s->sweeps >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_sweeps must be >= 1, got %" PetscInt_FMT, s->sweeps);
+  PetscCheck(s->norm_method != QP_NORM_USER || s->norm_user > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_smalxe_norm_method user needs -tao_smalxe_norm <value>");
+  /* the nested solvers read their options with ours (their type: from the options, else decided at setup) */
+  for (auto &blk : s->blocks) {
+    PetscBool typed;
+    PetscCall(PetscOptionsHasName(((PetscObject)blk.sub)->options, ((PetscObject)blk.sub)->prefix, "-tao_type", &typed));
+    if (typed || ((PetscObject)blk.sub)->type_name) PetscCall(TaoSetFromOptions(blk.sub));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
+{
+  TaoSMALXE *s = Get(tao);
+  PetscBool  iascii;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
+  if (!iascii) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "smalxe: %s form, %s update (beta %g), rho %g, M %g, eta %g, ||%s|| %s %g\n", s->projector ? "projector" : "penalty", SMALXEUpdates[s->update],
+                                   (double)s->beta, (double)s->rho, (double)s->M, (double)s->eta, s->projector ? "PAP" : "A", s->norm_user > 0 ? "given" : "estimated", (double)s->normA));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "last iterate: |projected gradient| %g, |Cx - d| %g\n", (double)s->gpnorm, (double)s->feas));
+  PetscCall(QPCountersView(&s->counters, NULL, viewer));
+  if (s->blocks.size() > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "inner solves: %zu blocks, %" PetscInt_FMT " Gauss-Seidel sweep(s) per outer iteration\n", s->blocks.size(), s->sweeps));
+  for (auto &blk : s->blocks) PetscCall(TaoView(blk.sub, viewer));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ResetWork(TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  for (Vec *v : {&s->mu, &s->nu, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w}) PetscCall(VecDestroy(v));
+  PetscCall(MatDestroy(&s->H));
+  if (s->Q_from_C) {
+    PetscCall(MatDestroy(&s->Q));
+    PetscCall(VecDestroy(&s->xt));
+    s->Q_from_C = PETSC_FALSE;
+  }
+  s->setup = PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+const char *const kComposed[] = {"TaoQPSetConstraints_C",    "TaoQPGetConstraints_C",
+                                 "TaoQPSetLinearTerm_C",     "TaoQPSetNormEstimate_C",
+                                 "TaoQPGetNormEstimate_C",   "TaoQPGetCounters_C",
+                                 "TaoQPResetCounters_C",     "TaoSMALXESetEqualityConstraints_C",
+                                 "TaoSMALXESetProjector_C",  "TaoSMALXEGetSubsolver_C",
+                                 "TaoSMALXESetBlocks_C",     "TaoSMALXEGetBlockSubsolver_C",
+                                 "TaoSMALXESetPreSolve_C",   "TaoSMALXEGetEqualityMultiplier_C",
+                                 "TaoSMALXEGetFeasibility_C"};
+
+PetscErrorCode TaoDestroy_SMALXE(Tao tao)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  PetscCall(ResetWork(s));
+  PetscCall(DestroyBlocks(s));
+  PetscCall(VecDestroy(&s->b));
+  PetscCall(SeparableSetDestroy(&s->set));
+  PetscCall(MatDestroy(&s->C));
+  PetscCall(VecDestroy(&s->d));
+  PetscCall(MatDestroy(&s->Q));
+  PetscCall(VecDestroy(&s->xt));
+  for (const char *fn : kComposed) PetscCall(PetscObjectComposeFunction((PetscObject)tao, fn, NULL));
+  delete s;
+  tao->data = NULL;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ---------- type-specific functions ---------- */
+
+PetscErrorCode SetConstraints_SMALXE(Tao tao, SeparableSet set)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  PetscCheck(!s->setup, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: set the constraints before the first solve (change radii in place instead)");
+  PetscCall(PetscObjectReference((PetscObject)set));
+  PetscCall(SeparableSetDestroy(&s->set));
+  s->set = set;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetConstraints_SMALXE(Tao tao, SeparableSet *set)
+{
+  PetscFunctionBegin;
+  *set = Get(tao)->set;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SetLinearTerm_SMALXE(Tao tao, Vec b)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  if (b) PetscCall(PetscObjectReference((PetscObject)b));
+  PetscCall(VecDestroy(&s->b));
+  s->b      = b;
+  s->b_user = b ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SetNormEstimate_SMALXE(Tao tao, PetscReal norm)
+{
+  PetscFunctionBegin;
+  PetscCheck(norm >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TaoQPSetNormEstimate: ||A|| must be finite and > 0 (0 to estimate), got %g",
+             (double)norm);
+  Get(tao)->norm_user = norm;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetNormEstimate_SMALXE(Tao tao, PetscReal *norm)
+{
+  PetscFunctionBegin;
+  *norm = Get(tao)->normA;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetCounters_SMALXE(Tao tao, QPCounters *c)
+{
+  PetscFunctionBegin;
+  *c = Get(tao)->counters;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ResetCounters_SMALXE(Tao tao)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  s->counters = QPCounters{};
+  for (auto &blk : s->blocks) PetscCall(TaoQPResetCounters(blk.sub));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SetEqualityConstraints_SMALXE(Tao tao, Mat C, Vec d)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  PetscCheck(!s->setup, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: set the equality before the first solve");
+  PetscCall(PetscObjectReference((PetscObject)C));
+  PetscCall(PetscObjectReference((PetscObject)d));
+  PetscCall(MatDestroy(&s->C));
+  PetscCall(VecDestroy(&s->d));
+  s->C = C;
+  s->d = d;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SetProjector_SMALXE(Tao tao, Mat Q, Vec xt)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  PetscCheck(!s->setup, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: set the projector before the first solve");
+  PetscCall(PetscObjectReference((PetscObject)Q));
+  PetscCall(MatDestroy(&s->Q));
+  s->Q = Q;
+  PetscCall(VecDestroy(&s->xt));
+  PetscCall(VecDuplicate(xt, &s->xt)); /* a copy: it is replaced by Q x~ at each solve */
+  PetscCall(VecCopy(xt, s->xt));
+  s->projector = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetSubsolver_SMALXE(Tao tao, Tao *sub)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  PetscCheck(s->blocks.size() == 1 && !s->blocks[0].is, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: with blocks, use TaoSMALXEGetBlockSubsolver()");
+  *sub = s->blocks[0].sub;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SetBlocks_SMALXE(Tao tao, PetscInt n, const IS is[])
+{
+  TaoSMALXE *s     = Get(tao);
+  PetscInt   total = 0, nlocal = -1;
+
+  PetscFunctionBegin;
+  PetscCheck(!s->setup, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: set the blocks before the first solve");
+  PetscCheck(n >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TaoSMALXESetBlocks: need at least one block, got %" PetscInt_FMT, n);
+  if (tao->solution) PetscCall(VecGetLocalSize(tao->solution, &nlocal));
+  for (PetscInt k = 0; k < n; k++) {
+    PetscInt nk;
+    PetscCall(ISGetLocalSize(is[k], &nk));
+    total += nk;
+  }
+  PetscCheck(nlocal < 0 || total == nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "TaoSMALXESetBlocks: the blocks have %" PetscInt_FMT " local entries in all, the solution %" PetscInt_FMT, total,
+             nlocal);
+  PetscCall(DestroyBlocks(s));
+  for (PetscInt k = 0; k < n; k++) {
+    SMALXEBlock blk;
+    char        suffix[64];
+    PetscCall(PetscObjectReference((PetscObject)is[k]));
+    blk.is = is[k];
+    PetscCall(PetscSNPrintf(suffix, sizeof(suffix), "tao_smalxe_block%" PetscInt_FMT "_", k));
+    PetscCall(CreateSubsolver(tao, suffix, &blk.sub));
+    PetscCallCXX(s->blocks.push_back(blk));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetBlockSubsolver_SMALXE(Tao tao, PetscInt k, Tao *sub)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  PetscCheck(k >= 0 && k < (PetscInt)s->blocks.size(), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TAO smalxe: block %" PetscInt_FMT " does not exist (%zu blocks)", k,
+             s->blocks.size());
+  *sub = s->blocks[k].sub;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SetPreSolve_SMALXE(Tao tao, PetscErrorCode (*fn)(Tao, PetscInt, Vec, void *), void *ctx)
+{
+  PetscFunctionBegin;
+  Get(tao)->presolve     = fn;
+  Get(tao)->presolve_ctx = ctx;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetEqualityMultiplier_SMALXE(Tao tao, Vec w)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  PetscCheck(s->setup, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: no multiplier before the first solve");
+  if (s->projector) { /* C'mu = nu - Q(Ax - b) (the projected problem's multiplier misses the range(Q) part of the gradient) */
+    PetscCall(MatMult(tao->hessian, tao->solution, s->w));
+    s->counters.hessian_mults++;
+    PetscCall(VecAXPY(s->w, -1.0, s->b));
+    PetscCall(MatMult(s->Q, s->w, w));
+    PetscCall(VecAYPX(w, -1.0, s->nu));
+  } else PetscCall(MatMultTranspose(s->C, s->mu, w));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
+{
+  PetscFunctionBegin;
+  *e = Get(tao)->feas;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+/*MC
+  TAOSMALXE - "smalxe": min 1/2 x'Ax - b'x over a separable set subject to C x = d, by the
+  semi-monotonic augmented Lagrangian with adaptive precision (Dostal's SMALBE) around a nested
+  `TAOMPRGP`/`TAOMPGP` solver.
+
+  Options Database Keys:
++ -tao_smalxe_rho <1>          - penalty rho relative to ||A|| (||PAP|| in projector form)
+. -tao_smalxe_M <1>            - initial M relative to ||H|| (inner precision |gP| <= min(M |Cx - d|, eta))
+. -tao_smalxe_eta <0.1>        - eta relative to |b|
+. -tao_smalxe_beta <10>        - update factor of M or rho
+. -tao_smalxe_update <M>       - M (SMALBE-M, rho fixed) or rho (SMALBE)
+. -tao_smalxe_projector        - C has orthonormal rows: use the projector form, inner Hessian PAP + rho Q
+. -tao_smalxe_sweeps <1>       - block Gauss-Seidel sweeps per outer iteration (with `TaoSMALXESetBlocks()`)
+. -tao_smalxe_norm <value>     - ||A|| (||PAP||) given, not estimated
+. -tao_smalxe_norm_method      - slepc or power
+. -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
+. -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner solves)
+- -tao_smalxe_block<k>_tao_*   - options of block k's nested solver
+
+  Notes:
+  A, b and the set as for `TAOMPGP`. The equality comes from `TaoSMALXESetEqualityConstraints()`, from
+  `TaoSMALXESetProjector()` (projector form with a given projector and particular solution), or
+  from TAO's equality routines (`TaoSetEqualityConstraintsRoutine()` with c(x) = C x - d, and
+  `TaoSetJacobianEqualityRoutine()` giving C). The solver stops when |gP| <= max(gatol, gttol |b|)
+  and |Cx - d| <= max(catol, crtol |b| / ||H||), crtol defaulting to gttol (|b| is |P(b - A x~)| in
+  projector form). `-tao_monitor` prints the augmented Lagrangian L(x, mu, rho) and |gP|
+  (`-tao_cmonitor` also |Cx - d|). Counters: outer iterations and own products, nested solvers' products separately.
+
+  Level: beginner
+
+.seealso: `TAOMPGP`, `TAOMPRGP`, `TaoSMALXESetEqualityConstraints()`, `TaoSMALXESetBlocks()`
+M*/
+PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
+{
+  TaoSMALXE  *s;
+  SMALXEBlock blk;
+
+  PetscFunctionBegin;
+  PetscCallCXX(s = new TaoSMALXE);
+  s->tao    = tao;
+  tao->data = s;
+
+  tao->ops->setup          = TaoSetUp_SMALXE;
+  tao->ops->solve          = TaoSolve_SMALXE;
+  tao->ops->setfromoptions = TaoSetFromOptions_SMALXE;
+  tao->ops->view           = TaoView_SMALXE;
+  tao->ops->destroy        = TaoDestroy_SMALXE;
+  if (tao->ops->convergencetest == TaoDefaultConvergenceTest) tao->ops->convergencetest = OuterConvergenceTest;
+  if (!tao->gatol_changed) tao->gatol = 0.0;
+  if (!tao->grtol_changed) tao->grtol = 0.0;
+  if (!tao->gttol_changed) tao->gttol = 1e-8;
+  if (!tao->catol_changed) tao->catol = 0.0;
+  if (!tao->max_it_changed) tao->max_it = 1000;
+
+  PetscCall(CreateSubsolver(tao, "tao_smalxe_subsolver_", &blk.sub));
+  PetscCallCXX(s->blocks.push_back(blk));
+
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetConstraints_C", SetConstraints_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetConstraints_C", GetConstraints_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetLinearTerm_C", SetLinearTerm_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetNormEstimate_C", SetNormEstimate_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetNormEstimate_C", GetNormEstimate_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetCounters_C", GetCounters_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPResetCounters_C", ResetCounters_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetEqualityConstraints_C", SetEqualityConstraints_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetProjector_C", SetProjector_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetSubsolver_C", GetSubsolver_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetBlocks_C", SetBlocks_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetBlockSubsolver_C", GetBlockSubsolver_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPreSolve_C", SetPreSolve_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetEqualityMultiplier_C", GetEqualityMultiplier_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetFeasibility_C", GetFeasibility_SMALXE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,217 @@
+/* Public functions of the TAO type smalxe, dispatched to the type. */
+#include <conefeti/qp.h>
+#include <conefeti/private/compat.h>
+#include <petsc/private/taoimpl.h>
+
+/*@C
+  TaoSMALXESetEqualityConstraints - The equality C x = d of a `TAOSMALXE` problem.
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver
+. C   - the constraint matrix (any Mat with MatMult and MatMultTranspose, MATSHELL included), full row rank
+- d   - the right-hand side
+
+  Notes:
+  With `-tao_smalxe_projector` the rows of C must be orthonormal (C C' = I); the solver then uses
+  Q = C'C and x~ = C'd. Alternatively give TAO's equality routines (see `TAOSMALXE`).
+
+  Level: beginner
+
+.seealso: `TAOSMALXE`, `TaoSMALXESetProjector()`
+@*/
+PetscErrorCode TaoSMALXESetEqualityConstraints(Tao tao, Mat C, Vec d)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidHeaderSpecific(C, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(d, VEC_CLASSID, 3);
+  PetscTryMethod(tao, "TaoSMALXESetEqualityConstraints_C", (Tao, Mat, Vec), (tao, C, d));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoSMALXESetProjector - Projector form of the equality: Q is the orthogonal projector onto the
+  range of C' and xt any particular solution (C xt = d).
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver
+. Q   - the projector (typically a MATSHELL: FETI's Q = G'(GG')^{-1}G)
+- xt  - a particular solution (copied; the solver uses Q xt)
+
+  Notes:
+  The inner Hessian becomes PAP + rho Q with P = I - Q; feasibility is measured as |Q x - Q xt| = |C x - d|
+  for C with orthonormal rows spanning range(Q).
+
+  Level: intermediate
+
+.seealso: `TAOSMALXE`, `TaoSMALXESetEqualityConstraints()`
+@*/
+PetscErrorCode TaoSMALXESetProjector(Tao tao, Mat Q, Vec xt)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidHeaderSpecific(Q, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(xt, VEC_CLASSID, 3);
+  PetscTryMethod(tao, "TaoSMALXESetProjector_C", (Tao, Mat, Vec), (tao, Q, xt));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoSMALXEGetSubsolver - The nested TAO of monolithic inner solves (options prefix -tao_smalxe_subsolver_).
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. sub - the nested solver
+
+  Level: intermediate
+
+.seealso: `TAOSMALXE`, `TaoSMALXEGetBlockSubsolver()`
+@*/
+PetscErrorCode TaoSMALXEGetSubsolver(Tao tao, Tao *sub)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidPointer(sub, 2);
+  PetscUseMethod(tao, "TaoSMALXEGetSubsolver_C", (Tao, Tao *), (tao, sub));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoSMALXESetBlocks - Split the inner minimization into a block Gauss-Seidel sweep: each block is
+  minimized in turn with the others fixed, by its own nested TAO.
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver
+. n   - number of blocks
+- is  - index sets of global indices owned by this rank; together a partition of the local entries,
+        each disk or cone of the set entirely inside one block
+
+  Notes:
+  Block k's nested solver has the options prefix -tao_smalxe_block<k>_ (`TaoSMALXEGetBlockSubsolver()`);
+  its default type is mprgp if its part of the set has only bounds, else mpgp. Each block solve
+  costs one extra product with the Hessian for its linear term, and each sweep one more for the
+  gradient at its end. `-tao_smalxe_sweeps` sets the number of sweeps per outer iteration. This is
+  the seed paper's Algorithm 2 split: normal and gluing multipliers by MPRGP, tangential by MPGP.
+
+  Level: advanced
+
+.seealso: `TAOSMALXE`, `TaoSMALXEGetBlockSubsolver()`, `TaoSMALXESetPreSolve()`
+@*/
+PetscErrorCode TaoSMALXESetBlocks(Tao tao, PetscInt n, const IS is[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscTryMethod(tao, "TaoSMALXESetBlocks_C", (Tao, PetscInt, const IS[]), (tao, n, is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoSMALXEGetBlockSubsolver - The nested TAO of block k (see `TaoSMALXESetBlocks()`).
+
+  Not Collective
+
+  Input Parameters:
++ tao - the solver
+- k   - the block
+
+  Output Parameter:
+. sub - its nested solver
+
+  Level: advanced
+
+.seealso: `TaoSMALXESetBlocks()`
+@*/
+PetscErrorCode TaoSMALXEGetBlockSubsolver(Tao tao, PetscInt k, Tao *sub)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidPointer(sub, 3);
+  PetscUseMethod(tao, "TaoSMALXEGetBlockSubsolver_C", (Tao, PetscInt, Tao *), (tao, k, sub));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoSMALXESetPreSolve - A function called before every inner (block) solve with the current full
+  iterate, e.g. to change disk radii in place (the Coulomb friction loop sets radius = F lambda_n).
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver
+. fn  - fn(tao, block, x, ctx): block is the index of the block about to be solved (0 when monolithic)
+- ctx - context for fn
+
+  Level: advanced
+
+.seealso: `TaoSMALXESetBlocks()`, `SeparableSetSetDiskRadii()`
+@*/
+PetscErrorCode TaoSMALXESetPreSolve(Tao tao, PetscErrorCode (*fn)(Tao, PetscInt, Vec, void *), void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscTryMethod(tao, "TaoSMALXESetPreSolve_C", (Tao, PetscErrorCode(*)(Tao, PetscInt, Vec, void *), void *), (tao, fn, ctx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoSMALXEGetEqualityMultiplier - w = C'mu for the multiplier mu of C x = d at the last solution,
+  with the sign convention A x - b + C'mu in -N(x) (minus the normal cone of the set).
+
+  Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. w - the vector C'mu (same layout as the solution)
+
+  Notes:
+  In projector form this costs one product with A. For FETI, alpha = -(GG')^{-1} G w gives the
+  rigid-body amplitudes of the primal solution u = K+(f - B'lambda) + R alpha.
+
+  Level: intermediate
+
+.seealso: `TAOSMALXE`
+@*/
+PetscErrorCode TaoSMALXEGetEqualityMultiplier(Tao tao, Vec w)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidHeaderSpecific(w, VEC_CLASSID, 2);
+  PetscUseMethod(tao, "TaoSMALXEGetEqualityMultiplier_C", (Tao, Vec), (tao, w));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoSMALXEGetFeasibility - |C x - d| at the last iterate.
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. e - the norm of the equality residual
+
+  Level: intermediate
+
+.seealso: `TAOSMALXE`
+@*/
+PetscErrorCode TaoSMALXEGetFeasibility(Tao tao, PetscReal *e)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidRealPointer(e, 2);
+  PetscUseMethod(tao, "TaoSMALXEGetFeasibility_C", (Tao, PetscReal *), (tao, e));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

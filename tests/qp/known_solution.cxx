@@ -1,0 +1,112 @@
+/* Solves a QP with a known solution (knownqp.h) by one of the conefeti QP solvers and checks
+   the result against the known solution.
+
+   Options:
+     -kind bounds|disks|cones|mixed|disk_radius0|boundary_zero_multiplier|cone_apex
+     -solver tao_mprgp|tao_mpgp|ksp_mprgp|ksp_mpgp|tao_smalxe
+     -units <n>   number of 6-entry units        -cond <c>   condition number of A
+     -scale <s>   A and b scaled by s             -equality <m>  rows of C x = d (tao_smalxe)
+     -rtol <r>    stopping tolerance |gP| <= r |b|
+     -tol <t>     asserted bound on |x - x*| / |x*|
+
+   Assertions (each can fail):
+   - x is feasible (distance to the set <= 1e-12 (1 + |x|));
+   - |x - x*| <= 1.01 |gP(x)| / lambda_min(A) + 1e-12 |x*|, with gP computed afresh from A x - b: for a
+     strongly convex QP over a convex set this bound holds at every feasible x, so a point the solver
+     wrongly calls converged cannot pass (without equality constraints);
+   - |x - x*| / |x*| <= tol.
+   Prints one RESULT line with iteration and product counts (compared across rank counts). */
+#include "knownqp.h"
+
+int main(int argc, char **argv)
+{
+  KnownQP     qp;
+  char        kind[64] = "bounds", solver[64] = "tao_mpgp";
+  PetscInt    units = 20, m = 0, its = 0;
+  PetscReal   cond = 100, scale = 1, rtol = 1e-10, tol = 1e-6, err, dist, xnorm, xsnorm, gpnorm, bound, bnorm;
+  Vec         x, g, gp;
+  QPCounters  counters;
+  std::string reason;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, "QP with a known solution"));
+  PetscCall(ConeFETIInitializePackage());
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-kind", kind, sizeof(kind), NULL));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-solver", solver, sizeof(solver), NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-units", &units, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-equality", &m, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-cond", &cond, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-scale", &scale, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-rtol", &rtol, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
+  PetscCall(KnownQPCreate(PETSC_COMM_WORLD, kind, units, cond, scale, m, &qp));
+  PetscCall(VecDuplicate(qp.xstar, &x));
+  PetscCall(VecSet(x, 0.0));
+  PetscCall(VecNorm(qp.b, NORM_2, &bnorm));
+
+  std::string s(solver);
+  if (s.rfind("tao_", 0) == 0) {
+    Tao                tao;
+    TaoConvergedReason r;
+    PetscCall(TaoCreate(PETSC_COMM_WORLD, &tao));
+    PetscCall(TaoSetType(tao, s.substr(4).c_str()));
+    PetscCall(TaoSetSolution(tao, x));
+    PetscCall(TaoSetHessian(tao, qp.A, qp.A, NULL, NULL));
+    PetscCall(TaoQPSetLinearTerm(tao, qp.b));
+    PetscCall(TaoQPSetConstraints(tao, qp.set));
+    PetscCall(TaoSetTolerances(tao, 0.0, 0.0, rtol));
+    if (m > 0) PetscCall(TaoSMALXESetEqualityConstraints(tao, qp.C, qp.d));
+    PetscCall(TaoSetFromOptions(tao));
+    PetscCall(TaoSolve(tao));
+    PetscCall(TaoGetConvergedReason(tao, &r));
+    PetscCall(TaoGetIterationNumber(tao, &its));
+    PetscCall(TaoQPGetCounters(tao, &counters));
+    reason = TaoConvergedReasons[r];
+    PetscCheck(r > 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "TAO did not converge: %s", reason.c_str());
+    PetscCall(TaoDestroy(&tao));
+  } else {
+    KSP                ksp;
+    KSPConvergedReason r;
+    PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
+    PetscCall(KSPSetType(ksp, s.substr(4).c_str()));
+    PetscCall(KSPSetOperators(ksp, qp.A, qp.A));
+    PetscCall(KSPQPSetConstraints(ksp, qp.set));
+    PetscCall(KSPSetTolerances(ksp, rtol, 0.0, PETSC_DEFAULT, 100000));
+    PetscCall(KSPSetFromOptions(ksp));
+    PetscCall(KSPSolve(ksp, qp.b, x));
+    PetscCall(KSPGetConvergedReason(ksp, &r));
+    PetscCall(KSPGetIterationNumber(ksp, &its));
+    PetscCall(KSPQPGetCounters(ksp, &counters));
+    reason = KSPConvergedReasons[r];
+    PetscCheck(r > 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "KSP did not converge: %s", reason.c_str());
+    PetscCall(KSPDestroy(&ksp));
+  }
+
+  /* independent checks */
+  PetscCall(VecNorm(x, NORM_2, &xnorm));
+  PetscCall(SeparableSetDistance(qp.set, x, &dist));
+  PetscCheck(dist <= 1e-12 * (1 + xnorm), PETSC_COMM_WORLD, PETSC_ERR_PLIB, "the solution is not feasible: distance to the set %g", (double)dist);
+  PetscCall(VecDuplicate(x, &g));
+  PetscCall(VecDuplicate(x, &gp));
+  PetscCall(MatMult(qp.A, x, g));
+  PetscCall(VecAXPY(g, -1.0, qp.b));
+  PetscCall(SeparableSetProjectedGradient(qp.set, x, g, gp));
+  PetscCall(VecNorm(gp, NORM_2, &gpnorm));
+  PetscCall(KnownQPError(&qp, x, &err));
+  PetscCall(VecNorm(qp.xstar, NORM_2, &xsnorm));
+  bound = 1.01 * gpnorm / (qp.lambda_min * xsnorm) + 1e-12; /* relative */
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                        "RESULT kind=%s solver=%s cond=%g scale=%g its=%" PetscInt_FMT " hessian_mults=%" PetscInt_FMT " nested=%" PetscInt_FMT " cg=%" PetscInt_FMT " expansion=%" PetscInt_FMT
+                        " proportioning=%" PetscInt_FMT " reason=%s\n",
+                        kind, solver, (double)cond, (double)scale, its, counters.hessian_mults, counters.nested_hessian_mults, counters.cg_steps, counters.expansion_steps,
+                        counters.proportioning_steps, reason.c_str()));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "error |x - x*|/|x*| = %.2e (asserted <= %.1e), |gP|/|b| = %.2e, strong-convexity bound on the error %.2e\n", (double)err, (double)tol,
+                        (double)(gpnorm / bnorm), (double)bound));
+  if (m == 0) PetscCheck(err <= bound, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "error %g exceeds the strong-convexity bound %g: the returned point is not the minimizer", (double)err, (double)bound);
+  PetscCheck(err <= tol, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "error %g exceeds the asserted tolerance %g", (double)err, (double)tol);
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&g));
+  PetscCall(VecDestroy(&gp));
+  PetscCall(KnownQPDestroy(&qp));
+  PetscCall(PetscFinalize());
+  return 0;
+}
