@@ -10,3 +10,4 @@
 #include <conefeti/qp.h>
 #include <conefeti/feti.h>
 #include <conefeti/fem.h>
+#include <conefeti/contact.h>

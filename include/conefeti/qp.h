@@ -146,6 +146,8 @@ PETSC_EXTERN PetscErrorCode TaoSMALXEGetBlockSubsolver(Tao, PetscInt, Tao *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetPreSolve(Tao, PetscErrorCode (*)(Tao, PetscInt, Vec, void *), void *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetEqualityMultiplier(Tao, Vec);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetFeasibility(Tao, PetscReal *);
+PETSC_EXTERN PetscErrorCode TaoSMALXESetConsistencyCheck(Tao, PetscErrorCode (*)(Tao, Vec, PetscBool *, void *), void *);
+PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);
 
 /* ---------------------------------------------------------------------------------------------
    KSP types: the same algorithms through KSPSolve(A x = b), i.e. min 1/2 x'Ax - b'x

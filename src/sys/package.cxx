@@ -20,6 +20,7 @@ PetscErrorCode ConeFETIFinalizePackage(void)
   PetscCall(ConeFETIQPFinalizePackage());
   PetscCall(ConeFETIFETIFinalizePackage());
   PetscCall(ConeFETIFEMFinalizePackage());
+  PetscCall(ConeFETIContactFinalizePackage());
   if (conefeti_began_slepc) {
     PetscBool finalized;
     PetscCall(SlepcFinalized(&finalized));
@@ -53,6 +54,7 @@ PetscErrorCode ConeFETIInitializePackage(void)
   PetscCall(ConeFETIQPInitializePackage());
   PetscCall(ConeFETIFETIInitializePackage());
   PetscCall(ConeFETIFEMInitializePackage());
+  PetscCall(ConeFETIContactInitializePackage());
   PetscCall(PetscRegisterFinalize(ConeFETIFinalizePackage));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

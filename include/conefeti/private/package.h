@@ -10,3 +10,5 @@ PETSC_INTERN PetscErrorCode ConeFETIFETIInitializePackage(void);
 PETSC_INTERN PetscErrorCode ConeFETIFETIFinalizePackage(void);
 PETSC_INTERN PetscErrorCode ConeFETIFEMInitializePackage(void);
 PETSC_INTERN PetscErrorCode ConeFETIFEMFinalizePackage(void);
+PETSC_INTERN PetscErrorCode ConeFETIContactInitializePackage(void);
+PETSC_INTERN PetscErrorCode ConeFETIContactFinalizePackage(void);

@@ -215,3 +215,55 @@ PetscErrorCode TaoSMALXEGetFeasibility(Tao tao, PetscReal *e)
   PetscUseMethod(tao, "TaoSMALXEGetFeasibility_C", (Tao, PetscReal *), (tao, e));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/*@C
+  TaoSMALXESetConsistencyCheck - A function that can veto convergence: when the tolerances hold,
+  smalxe asks fn whether the iterate is also consistent with whatever the pre-solve hook keeps in
+  step with it (e.g. disk radii F lambda_n of a Coulomb problem), and iterates on if not.
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver
+. fn  - fn(tao, x, &consistent, ctx)
+- ctx - context for fn
+
+  Level: advanced
+
+.seealso: `TaoSMALXESetPreSolve()`
+@*/
+PetscErrorCode TaoSMALXESetConsistencyCheck(Tao tao, PetscErrorCode (*fn)(Tao, Vec, PetscBool *, void *), void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscTryMethod(tao, "TaoSMALXESetConsistencyCheck_C", (Tao, PetscErrorCode(*)(Tao, Vec, PetscBool *, void *), void *), (tao, fn, ctx));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoSMALXEGetStagnated - Whether the last solve stopped because |Cx - d| stagnated, which means
+  that C x = d cannot be met over the set (or that rho is far too small).
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. flag - `PETSC_TRUE` if the solve stopped for stagnation (reason `TAO_DIVERGED_USER`)
+
+  Options Database Key:
+. -tao_smalxe_stagnation_its <30> - the window: less than 1% progress in this many outer iterations
+
+  Level: intermediate
+
+.seealso: `TAOSMALXE`, `TaoSMALXEGetFeasibility()`
+@*/
+PetscErrorCode TaoSMALXEGetStagnated(Tao tao, PetscBool *flag)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidBoolPointer(flag, 2);
+  PetscUseMethod(tao, "TaoSMALXEGetStagnated_C", (Tao, PetscBool *), (tao, flag));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

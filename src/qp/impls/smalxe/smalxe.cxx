@@ -26,9 +26,10 @@ namespace {
 
 enum SMALXEUpdate {
   SMALXE_UPDATE_M,
-  SMALXE_UPDATE_RHO
+  SMALXE_UPDATE_RHO,
+  SMALXE_UPDATE_NONE
 };
-const char *const SMALXEUpdates[] = {"M", "rho", "SMALXEUpdate", "SMALXE_UPDATE_", NULL};
+const char *const SMALXEUpdates[] = {"M", "rho", "none", "SMALXEUpdate", "SMALXE_UPDATE_", NULL};
 
 struct SMALXEBlock {
   IS         is      = nullptr; /* NULL: the whole vector (monolithic inner solve) */
@@ -63,7 +64,7 @@ struct TaoSMALXE {
   PetscReal dnorm2 = 0, qxt = 0; /* |d|^2 or |x~|^2, and q(x~): constants of L */
 
   /* parameters */
-  PetscReal    rho_rel = 1.0, M_rel = 1.0, eta_rel = 0.1, beta = 10.0;
+  PetscReal    rho_rel = 1.0, M_rel = 1.0, M_min_rel = 1e-4, eta_rel = 0.1, beta = 10.0;
   SMALXEUpdate update    = SMALXE_UPDATE_M;
   PetscInt     sweeps    = 1;
   PetscReal    norm_user = 0, norm_margin = -1;
@@ -72,10 +73,17 @@ struct TaoSMALXE {
 
   /* inner solves */
   std::vector<SMALXEBlock> blocks; /* one block with is = NULL: monolithic */
-  Mat                      H                             = nullptr;
-  PetscInt                 current_block                 = 0;
-  PetscErrorCode (*presolve)(Tao, PetscInt, Vec, void *) = nullptr;
-  void *presolve_ctx                                     = nullptr;
+  Mat                      H                                  = nullptr;
+  PetscInt                 current_block                      = 0;
+  PetscErrorCode (*presolve)(Tao, PetscInt, Vec, void *)      = nullptr;
+  void *presolve_ctx                                          = nullptr;
+  PetscErrorCode (*consistent)(Tao, Vec, PetscBool *, void *) = nullptr; /* may veto convergence */
+  void *consistent_ctx                                        = nullptr;
+
+  /* feasibility history: an equality that cannot be met over the set makes |Cx - d| level off */
+  std::vector<PetscReal> feas_history;
+  PetscInt               stagnation_its = 30;
+  PetscBool              stagnated      = PETSC_FALSE;
 
   /* work: hq, hp, hr for products with H; bin, bout for block products; wf for feasibility; w for the rest */
   Vec hq = nullptr, hp = nullptr, hr = nullptr, r = nullptr, bin = nullptr, bout = nullptr, wf = nullptr, w = nullptr;
@@ -251,13 +259,25 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
 {
   TaoSMALXE *s = Get(tao);
   PetscReal  tol_g, tol_e;
+  PetscInt   k = (PetscInt)s->feas_history.size() - 1;
 
   PetscFunctionBegin;
   if (tao->reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
   if (PetscIsInfOrNanReal(tao->residual) || PetscIsInfOrNanReal(tao->cnorm) || PetscIsInfOrNanReal(tao->fc)) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
-  else if (tao->residual <= tol_g && tao->cnorm <= tol_e) PetscCall(TaoSetConvergedReason(tao, tao->gttol * s->beff >= tao->gatol ? TAO_CONVERGED_GTTOL : TAO_CONVERGED_GATOL));
-  else if (tao->niter >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
+  else if (tao->residual <= tol_g && tao->cnorm <= tol_e) {
+    PetscBool consistent = PETSC_TRUE;
+    if (s->consistent) PetscCall(s->consistent(tao, tao->solution, &consistent, s->consistent_ctx));
+    if (consistent) PetscCall(TaoSetConvergedReason(tao, tao->gttol * s->beff >= tao->gatol ? TAO_CONVERGED_GTTOL : TAO_CONVERGED_GATOL));
+  }
+  if (tao->reason == TAO_CONTINUE_ITERATING && s->stagnation_its > 0 && k >= s->stagnation_its && tao->cnorm > tol_e && s->feas_history[k] > 0.99 * s->feas_history[k - s->stagnation_its]) {
+    /* |Cx - d| did not fall by 1% in stagnation_its outer iterations */
+    s->stagnated = PETSC_TRUE;
+    PetscCall(PetscInfo(tao, "TAO smalxe: |Cx - d| = %g stagnates (%" PetscInt_FMT " iterations without 1%% progress): C x = d cannot be met over the set, or rho is far too small\n",
+                        (double)tao->cnorm, s->stagnation_its));
+    PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+  }
+  if (tao->reason == TAO_CONTINUE_ITERATING && tao->niter >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -450,8 +470,14 @@ PetscErrorCode EstimateNorms(Tao tao, TaoSMALXE *s)
     PetscCall(MatQPClearNormEstimate(s->H));
   } else PetscCall(MatQPEstimateNorm(tao->hessian, s->norm_method, margin, prefix, &s->normA, &products));
   s->counters.estimate_mults += products;
-  if (!s->projector) { /* |C|^2 = |C'C|: no product with A */
-    Mat CtC;
+  if (!s->projector) { /* |C|^2 = |C'C|: no product with A (an empty C: a problem without equality) */
+    Mat      CtC;
+    PetscInt rows;
+    PetscCall(MatGetSize(s->C, &rows, NULL));
+    if (!rows) {
+      s->normC2 = 1;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
     PetscCall(MatCreateNormal(s->C, &CtC));
     PetscCall(MatQPEstimateNorm(CtC, QP_NORM_POWER, 0.05, NULL, &s->normC2, NULL));
     PetscCall(MatDestroy(&CtC));
@@ -584,6 +610,8 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
 
   tao->reason = TAO_CONTINUE_ITERATING;
   s->counters.solves++;
+  s->feas_history.clear();
+  s->stagnated = PETSC_FALSE;
   for (PetscInt k = 0;; k++) {
     PetscReal gp, e, L;
     PetscReal xg, xb, md;
@@ -598,6 +626,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     L         = 0.5 * (xg - xb) - md + 0.5 * s->rho * s->dnorm2 + s->qxt;
     s->gpnorm = gp;
     s->feas   = e;
+    PetscCallCXX(s->feas_history.push_back(e));
     PetscCall(VecCopy(s->g, tao->gradient));
     tao->niter = k;
     s->counters.iterations++;
@@ -608,10 +637,13 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     else PetscCall(ReproducibleAXPY(s->mu, s->rho, s->r));               /* r = Cx - d */
     PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
     if (tao->reason != TAO_CONTINUE_ITERATING) break;
-    /* semi-monotonicity: if L did not grow enough, tighten the inner precision (M) or raise rho */
+    /* semi-monotonicity: if L did not grow enough, tighten the inner precision (M) or raise rho.
+       M stops at a floor: when a pre-solve hook moves the set (the radii of a friction law), L may
+       drop for that reason alone, and without a floor M would collapse and with it the inner
+       tolerances (thousands of useless inner iterations) */
     if (k > 0 && L < Lprev + 0.5 * s->rho * e * e) {
-      if (s->update == SMALXE_UPDATE_M) s->M /= s->beta;
-      else {
+      if (s->update == SMALXE_UPDATE_M) s->M = PetscMax(s->M / s->beta, s->M_min_rel * s->normH);
+      else if (s->update == SMALXE_UPDATE_RHO) {
         s->rho *= s->beta;
         PetscCall(UpdateNormH(s));
       }
@@ -644,16 +676,19 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscOptionsHeadBegin(PetscOptionsObject, "smalxe: semi-monotonic augmented Lagrangian for C x = d (conefeti)");
   PetscCall(PetscOptionsReal("-tao_smalxe_rho", "Penalty rho relative to ||A|| (||PAP|| in projector form, ||A||/||C||^2 otherwise)", "TaoSMALXE", s->rho_rel, &s->rho_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_M", "Initial M relative to ||H||: inner solves stop when |gP| <= min(M |Cx - d|, eta)", "TaoSMALXE", s->M_rel, &s->M_rel, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_M_min", "Floor of M relative to ||H|| (the semi-monotonicity updates stop there)", "TaoSMALXE", s->M_min_rel, &s->M_min_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_eta", "eta relative to |b| (|P(b - A x~)| in projector form)", "TaoSMALXE", s->eta_rel, &s->eta_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_beta", "Factor > 1 by which M falls (or rho grows) when the Lagrangian did not grow enough", "TaoSMALXE", s->beta, &s->beta, NULL));
-  PetscCall(
-      PetscOptionsEnum("-tao_smalxe_update", "What the semi-monotonicity test updates: M (SMALBE-M) or rho (SMALBE)", "TaoSMALXE", SMALXEUpdates, (PetscEnum)s->update, (PetscEnum *)&s->update, NULL));
+  PetscCall(PetscOptionsEnum("-tao_smalxe_update", "What the semi-monotonicity test updates: M (SMALBE-M), rho (SMALBE) or none", "TaoSMALXE", SMALXEUpdates, (PetscEnum)s->update,
+                             (PetscEnum *)&s->update, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_projector", "Projector form: C has orthonormal rows; inner Hessian PAP + rho Q", "TaoSMALXESetProjector", s->projector, &s->projector, NULL));
   PetscCall(PetscOptionsInt("-tao_smalxe_sweeps", "Block Gauss-Seidel sweeps per outer iteration (with TaoSMALXESetBlocks())", "TaoSMALXESetBlocks", s->sweeps, &s->sweeps, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_norm", "Use this ||A|| (||PAP|| in projector form) instead of estimating it", "TaoQPSetNormEstimate", s->norm_user, &value, &set));
   if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
   PetscCall(PetscOptionsEnum("-tao_smalxe_norm_method", "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)s->norm_method, (PetscEnum *)&s->norm_method, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_norm_margin", "Relative safety margin of the norm estimate", "MatQPEstimateNorm", s->norm_margin, &s->norm_margin, NULL));
+  PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its", "Stop (infeasible) when |Cx - d| falls by less than 1% in this many outer iterations (0: never)", "TaoSMALXEGetStagnated", s->stagnation_its,
+                            &s->stagnation_its, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_counters_view", "Print the counters as one JSON line after each solve", "QPCountersViewJSON", s->counters_view, &s->counters_view, NULL));
   PetscOptionsHeadEnd();
   PetscCheck(s->rho_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_rho must be positive, got %g", (double)s->rho_rel);
@@ -683,6 +718,7 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "smalxe: %s form, %s update (beta %g), rho %g, M %g, eta %g, ||%s|| %s %g\n", s->projector ? "projector" : "penalty", SMALXEUpdates[s->update],
                                    (double)s->beta, (double)s->rho, (double)s->M, (double)s->eta, s->projector ? "PAP" : "A", s->norm_user > 0 ? "given" : "estimated", (double)s->normA));
   PetscCall(PetscViewerASCIIPrintf(viewer, "last iterate: |projected gradient| %g, |Cx - d| %g\n", (double)s->gpnorm, (double)s->feas));
+  if (s->stagnated) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stagnated: the equality cannot be met over the set (or rho is far too small)\n"));
   PetscCall(QPCountersView(&s->counters, NULL, viewer));
   if (s->blocks.size() > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "inner solves: %zu blocks, %" PetscInt_FMT " Gauss-Seidel sweep(s) per outer iteration\n", s->blocks.size(), s->sweeps));
   for (auto &blk : s->blocks) PetscCall(TaoView(blk.sub, viewer));
@@ -903,6 +939,21 @@ PetscErrorCode GetEqualityMultiplier_SMALXE(Tao tao, Vec w)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SetConsistencyCheck_SMALXE(Tao tao, PetscErrorCode (*fn)(Tao, Vec, PetscBool *, void *), void *ctx)
+{
+  PetscFunctionBegin;
+  Get(tao)->consistent     = fn;
+  Get(tao)->consistent_ctx = ctx;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetStagnated_SMALXE(Tao tao, PetscBool *flag)
+{
+  PetscFunctionBegin;
+  *flag = Get(tao)->stagnated;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 {
   PetscFunctionBegin;
@@ -920,6 +971,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   Options Database Keys:
 + -tao_smalxe_rho <1>          - penalty rho relative to ||A|| (||PAP|| in projector form)
 . -tao_smalxe_M <1>            - initial M relative to ||H|| (inner precision |gP| <= min(M |Cx - d|, eta))
+. -tao_smalxe_M_min <1e-4>     - floor of M relative to ||H||
 . -tao_smalxe_eta <0.1>        - eta relative to |b|
 . -tao_smalxe_beta <10>        - update factor of M or rho
 . -tao_smalxe_update <M>       - M (SMALBE-M, rho fixed) or rho (SMALBE)
@@ -927,6 +979,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 . -tao_smalxe_sweeps <1>       - block Gauss-Seidel sweeps per outer iteration (with `TaoSMALXESetBlocks()`)
 . -tao_smalxe_norm <value>     - ||A|| (||PAP||) given, not estimated
 . -tao_smalxe_norm_method      - slepc or power
+. -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
 . -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
 . -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner solves)
 - -tao_smalxe_block<k>_tao_*   - options of block k's nested solver
@@ -984,5 +1037,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPreSolve_C", SetPreSolve_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetEqualityMultiplier_C", GetEqualityMultiplier_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetFeasibility_C", GetFeasibility_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetConsistencyCheck_C", SetConsistencyCheck_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStagnated_C", GetStagnated_SMALXE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

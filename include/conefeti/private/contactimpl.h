@@ -1,0 +1,56 @@
+/* ContactProblem internals shared by the files of the contact layer. */
+#pragma once
+
+#include <conefeti/contact.h>
+#include <conefeti/private/compat.h>
+#include <petsc/private/petscimpl.h>
+#include <vector>
+
+struct _ContactProblemOps {
+  PetscErrorCode (*unused)(void);
+};
+
+struct ContactProblemData {
+  /* the problem */
+  Mat F  = nullptr;
+  Vec h  = nullptr;
+  Mat G  = nullptr; /* equality G l = e (general form) */
+  Vec e  = nullptr;
+  Mat Q  = nullptr; /* projector form: Q and a particular solution l~ (FETI) */
+  Vec lt = nullptr;
+
+  /* contact nodes owned by this rank: global indices of the multipliers (t1 = t2 = -1 when frictionless) */
+  std::vector<PetscInt>   normal, t1, t2;
+  std::vector<ContactLaw> law;
+  std::vector<PetscReal>  coef; /* Tresca: slip bound; Coulomb: friction coefficient; frictionless: unused */
+
+  /* derived at setup */
+  PetscInt                rstart = 0, nlocal = 0;
+  SeparableSet            set = nullptr;
+  Vec                     lb  = nullptr;
+  std::vector<PetscInt>   disk_node; /* node of each local disk (friction nodes, in order) */
+  std::vector<PetscReal>  radius;    /* current radii, one per local disk */
+  ContactPipeline         pipeline    = CONTACT_PIPELINE_LINEAR;
+  ContactCoulombAlgorithm algorithm   = CONTACT_COULOMB_MERGED;
+  PetscBool               has_coulomb = PETSC_FALSE, has_tresca = PETSC_FALSE, has_normal = PETSC_FALSE;
+  Tao                     tao   = nullptr;
+  Mat                     C0    = nullptr; /* empty equality when the problem has none */
+  Vec                     d0    = nullptr;
+  PetscBool               setup = PETSC_FALSE;
+
+  /* options */
+  PetscReal rtol             = 1e-6; /* smalxe: |gP| and feasibility relative to |h| */
+  PetscReal msa_rtol         = 1e-6; /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| */
+  PetscInt  msa_max_it       = 100;
+  PetscReal fixed_point_rtol = 1e-6; /* monolithic: radii consistent with F l_n to this relative tolerance */
+
+  ContactStatistics stats = {};
+};
+
+struct _p_ContactProblem {
+  PETSCHEADER(struct _ContactProblemOps);
+  ContactProblemData *data;
+};
+
+PETSC_INTERN PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem, Vec, PetscReal *);
+PETSC_INTERN PetscLogEvent  CONTACT_Solve;

@@ -1,0 +1,429 @@
+/* ContactProblem: a dual contact problem (operator, right-hand side, equality, contact nodes). */
+#include <conefeti/private/contactimpl.h>
+#include <conefeti/sys.h>
+
+PetscClassId      CONTACTPROBLEM_CLASSID;
+const char *const ContactLaws[]              = {"frictionless", "tresca", "coulomb", "ContactLaw", "CONTACT_", NULL};
+const char *const ContactPipelines[]         = {"linear", "frictionless", "tresca", "coulomb", "ContactPipeline", "CONTACT_PIPELINE_", NULL};
+const char *const ContactCoulombAlgorithms[] = {"msa", "merged", "monolithic", "ContactCoulombAlgorithm", "CONTACT_COULOMB_", NULL};
+
+/*@C
+  ContactProblemCreate - Create an empty dual contact problem.
+
+  Collective
+
+  Input Parameter:
+. comm - the communicator
+
+  Output Parameter:
+. cp - the problem
+
+  Level: beginner
+
+.seealso: `ContactProblemSetOperator()`, `ContactProblemAddNodes()`, `ContactProblemSolve()`
+@*/
+PetscErrorCode ContactProblemCreate(MPI_Comm comm, ContactProblem *cp)
+{
+  ContactProblem c;
+
+  PetscFunctionBegin;
+  PetscValidPointer(cp, 2);
+  PetscCall(ConeFETIInitializePackage());
+  PetscCall(PetscHeaderCreate(c, CONTACTPROBLEM_CLASSID, "ContactProblem", "Dual contact problem", "Contact", comm, ContactProblemDestroy, ContactProblemView));
+  PetscCallCXX(c->data = new ContactProblemData);
+  *cp = c;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemDestroy - Destroy a contact problem.
+
+  Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Level: beginner
+
+.seealso: `ContactProblemCreate()`
+@*/
+PetscErrorCode ContactProblemDestroy(ContactProblem *cp)
+{
+  ContactProblemData *d;
+
+  PetscFunctionBegin;
+  if (!*cp) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscValidHeaderSpecific(*cp, CONTACTPROBLEM_CLASSID, 1);
+  if (--((PetscObject)(*cp))->refct > 0) {
+    *cp = NULL;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  d = (*cp)->data;
+  PetscCall(MatDestroy(&d->F));
+  PetscCall(VecDestroy(&d->h));
+  PetscCall(MatDestroy(&d->G));
+  PetscCall(VecDestroy(&d->e));
+  PetscCall(MatDestroy(&d->Q));
+  PetscCall(VecDestroy(&d->lt));
+  PetscCall(SeparableSetDestroy(&d->set));
+  PetscCall(VecDestroy(&d->lb));
+  PetscCall(TaoDestroy(&d->tao));
+  PetscCall(MatDestroy(&d->C0));
+  PetscCall(VecDestroy(&d->d0));
+  delete d;
+  PetscCall(PetscHeaderDestroy(cp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Replace(PetscObject src, PetscObject *dst)
+{
+  PetscFunctionBegin;
+  if (src) PetscCall(PetscObjectReference(src));
+  PetscCall(PetscObjectDestroy(dst));
+  *dst = src;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CheckNotSetUp(ContactProblem cp, const char *what)
+{
+  PetscFunctionBegin;
+  PetscCheck(!cp->data->setup, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_WRONGSTATE, "ContactProblem: %s must be given before the first solve", what);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemSetOperator - The quadratic part: F (symmetric positive semidefinite, any Mat with
+  MatMult, e.g. FETI's MATSHELL B K+ B') and the right-hand side h.
+
+  Logically Collective
+
+  Input Parameters:
++ cp - the problem
+. F  - the operator
+- h  - the linear term (minimize 1/2 l'Fl - l'h)
+
+  Level: beginner
+
+.seealso: `ContactProblemSetProjector()`, `ContactProblemSetEquality()`
+@*/
+PetscErrorCode ContactProblemSetOperator(ContactProblem cp, Mat F, Vec h)
+{
+  PetscInt m, n, N;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscValidHeaderSpecific(F, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(h, VEC_CLASSID, 3);
+  PetscCall(CheckNotSetUp(cp, "the operator"));
+  PetscCall(MatGetSize(F, &m, &n));
+  PetscCall(VecGetSize(h, &N));
+  PetscCheck(m == n && n == N, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_SIZ, "ContactProblemSetOperator: F is %" PetscInt_FMT " x %" PetscInt_FMT ", h has %" PetscInt_FMT " entries", m, n, N);
+  PetscCall(Replace((PetscObject)F, (PetscObject *)&cp->data->F));
+  PetscCall(Replace((PetscObject)h, (PetscObject *)&cp->data->h));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemSetEquality - An equality G l = e (full row rank); the solver uses the penalty form
+  of the augmented Lagrangian.
+
+  Logically Collective
+
+  Input Parameters:
++ cp - the problem
+. G  - the constraint matrix
+- e  - the right-hand side
+
+  Level: intermediate
+
+.seealso: `ContactProblemSetProjector()`
+@*/
+PetscErrorCode ContactProblemSetEquality(ContactProblem cp, Mat G, Vec e)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCall(CheckNotSetUp(cp, "the equality"));
+  PetscCall(Replace((PetscObject)G, (PetscObject *)&cp->data->G));
+  PetscCall(Replace((PetscObject)e, (PetscObject *)&cp->data->e));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemSetProjector - The equality in projector form: Q the orthogonal projector onto the
+  range of G' and lt a particular solution (G lt = e). FETI provides both (`FETIGetOperators()`,
+  `FETIGetParticularSolution()`); the inner Hessian is then PFP + rho Q.
+
+  Logically Collective
+
+  Input Parameters:
++ cp - the problem
+. Q  - the projector
+- lt - the particular solution
+
+  Level: beginner
+
+.seealso: `ContactProblemSetEquality()`, `TaoSMALXESetProjector()`
+@*/
+PetscErrorCode ContactProblemSetProjector(ContactProblem cp, Mat Q, Vec lt)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCall(CheckNotSetUp(cp, "the projector"));
+  PetscCall(Replace((PetscObject)Q, (PetscObject *)&cp->data->Q));
+  PetscCall(Replace((PetscObject)lt, (PetscObject *)&cp->data->lt));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemAddNodes - Add contact nodes of one law, owned by this rank.
+
+  Not Collective
+
+  Input Parameters:
++ cp     - the problem
+. law    - `CONTACT_FRICTIONLESS`, `CONTACT_TRESCA` or `CONTACT_COULOMB`
+. n      - number of nodes
+. normal - global index of each node's normal multiplier (constrained to >= 0)
+. t1     - global index of each node's first tangential multiplier (NULL when frictionless)
+. t2     - global index of the second tangential multiplier (NULL when frictionless)
+- coef   - Tresca: slip bound g_k >= 0 (in multiplier units); Coulomb: coefficient F_k >= 0; NULL when frictionless
+
+  Notes:
+  The three multipliers of a node must be owned by this rank (a block never straddles ranks).
+  Frictionless nodes have no tangential multipliers at all: a frictionless scene creates none.
+
+  Level: beginner
+
+.seealso: `ContactLaw`, `ContactProblemSolve()`
+@*/
+PetscErrorCode ContactProblemAddNodes(ContactProblem cp, ContactLaw law, PetscInt n, const PetscInt normal[], const PetscInt t1[], const PetscInt t2[], const PetscReal coef[])
+{
+  ContactProblemData *d;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCall(CheckNotSetUp(cp, "contact nodes"));
+  d = cp->data;
+  PetscCheck(n >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddNodes: negative count %" PetscInt_FMT, n);
+  PetscCheck(law == CONTACT_FRICTIONLESS || (t1 && t2 && coef) || n == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "ContactProblemAddNodes: %s nodes need t1, t2 and coefficients", ContactLaws[law]);
+  for (PetscInt k = 0; k < n; k++) {
+    PetscReal c = law == CONTACT_FRICTIONLESS ? 0.0 : coef[k];
+    PetscCheck(c >= 0 && !PetscIsInfOrNanReal(c), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddNodes: node %" PetscInt_FMT " has invalid %s %g (must be finite and >= 0)", k,
+               law == CONTACT_TRESCA ? "slip bound" : "friction coefficient", (double)c);
+    PetscCallCXX(d->normal.push_back(normal[k]));
+    PetscCallCXX(d->t1.push_back(law == CONTACT_FRICTIONLESS ? -1 : t1[k]));
+    PetscCallCXX(d->t2.push_back(law == CONTACT_FRICTIONLESS ? -1 : t2[k]));
+    PetscCallCXX(d->law.push_back(law));
+    PetscCallCXX(d->coef.push_back(c));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemGetNodes - The contact nodes of this rank.
+
+  Not Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Output Parameters:
++ n      - number of local nodes
+. normal - global indices of the normal multipliers
+. t1     - first tangential multipliers (-1 for frictionless nodes)
+. t2     - second tangential multipliers (-1 for frictionless nodes)
+. law    - law per node
+- coef   - slip bound (Tresca) or coefficient (Coulomb) per node
+
+  Level: intermediate
+
+.seealso: `ContactProblemAddNodes()`
+@*/
+PetscErrorCode ContactProblemGetNodes(ContactProblem cp, PetscInt *n, const PetscInt **normal, const PetscInt **t1, const PetscInt **t2, const ContactLaw **law, const PetscReal **coef)
+{
+  ContactProblemData *d;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  d = cp->data;
+  if (n) *n = (PetscInt)d->normal.size();
+  if (normal) *normal = d->normal.data();
+  if (t1) *t1 = d->t1.data();
+  if (t2) *t2 = d->t2.data();
+  if (law) *law = d->law.data();
+  if (coef) *coef = d->coef.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemSetOptionsPrefix - Prefix for the options of the problem and its solvers.
+
+  Logically Collective
+
+  Input Parameters:
++ cp     - the problem
+- prefix - the prefix (options become -<prefix>contact_...)
+
+  Level: intermediate
+
+.seealso: `ContactProblemSetFromOptions()`
+@*/
+PetscErrorCode ContactProblemSetOptionsPrefix(ContactProblem cp, const char prefix[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)cp, prefix));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemGetPipeline - The pipeline the problem calls for (valid after `ContactProblemSetUp()`).
+
+  Not Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Output Parameter:
+. pipeline - linear, frictionless, tresca or coulomb
+
+  Level: beginner
+
+.seealso: `ContactPipeline`
+@*/
+PetscErrorCode ContactProblemGetPipeline(ContactProblem cp, ContactPipeline *pipeline)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  *pipeline = cp->data->pipeline;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemGetStatistics - Iterations, Hessian products and how the last solve ended.
+
+  Not Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Output Parameter:
+. stats - the statistics
+
+  Level: beginner
+
+.seealso: `ContactStatistics`
+@*/
+PetscErrorCode ContactProblemGetStatistics(ContactProblem cp, ContactStatistics *stats)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  *stats = cp->data->stats;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemGetTao - The smalxe solver the contact solve uses (after `ContactProblemSetUp()`).
+
+  Not Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Output Parameter:
+. tao - the solver (options prefix -contact_)
+
+  Level: advanced
+
+.seealso: `TAOSMALXE`
+@*/
+PetscErrorCode ContactProblemGetTao(ContactProblem cp, Tao *tao)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  *tao = cp->data->tao;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemGetSlipBounds - The slip bound of every local contact node for given multipliers:
+  the given bound (Tresca), F_k max(l_n,k, 0) (Coulomb), 0 (frictionless).
+
+  Collective
+
+  Input Parameters:
++ cp     - the problem
+- lambda - the multipliers
+
+  Output Parameter:
+. bounds - one value per local node, in the order of `ContactProblemGetNodes()`
+
+  Level: intermediate
+
+.seealso: `ContactProblemGetNodes()`
+@*/
+PetscErrorCode ContactProblemGetSlipBounds(ContactProblem cp, Vec lambda, PetscReal bounds[])
+{
+  ContactProblemData *d;
+  const PetscScalar  *l;
+  PetscInt            rstart;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  d = cp->data;
+  PetscCall(VecGetOwnershipRange(lambda, &rstart, NULL));
+  PetscCall(VecGetArrayRead(lambda, &l));
+  for (size_t k = 0; k < d->normal.size(); k++) {
+    switch (d->law[k]) {
+    case CONTACT_FRICTIONLESS: bounds[k] = 0; break;
+    case CONTACT_TRESCA: bounds[k] = d->coef[k]; break;
+    case CONTACT_COULOMB: bounds[k] = d->coef[k] * PetscMax(PetscRealPart(l[d->normal[k] - rstart]), 0.0); break;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(lambda, &l));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemView - Describe the problem: sizes, nodes per law, pipeline, last solve.
+
+  Collective
+
+  Input Parameters:
++ cp     - the problem
+- viewer - an ASCII viewer (or NULL)
+
+  Level: beginner
+
+.seealso: `ContactProblemSolve()`
+@*/
+PetscErrorCode ContactProblemView(ContactProblem cp, PetscViewer viewer)
+{
+  ContactProblemData *d;
+  PetscInt            counts[3] = {0, 0, 0}, m = 0;
+  PetscBool           iascii;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  d = cp->data;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)cp), &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
+  if (!iascii) PetscFunctionReturn(PETSC_SUCCESS);
+  for (ContactLaw l : d->law) counts[l]++;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 3, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)cp)));
+  if (d->h) PetscCall(VecGetSize(d->h, &m));
+  PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)cp, viewer));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " multipliers; contact nodes: %" PetscInt_FMT " frictionless, %" PetscInt_FMT " Tresca, %" PetscInt_FMT " Coulomb; equality: %s\n", m,
+                                   counts[0], counts[1], counts[2], d->Q ? "projector form" : (d->G ? "penalty form" : "none")));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "pipeline: %s%s%s\n", ContactPipelines[d->pipeline], d->pipeline == CONTACT_PIPELINE_COULOMB ? ", algorithm " : "",
+                                   d->pipeline == CONTACT_PIPELINE_COULOMB ? ContactCoulombAlgorithms[d->algorithm] : ""));
+  if (d->stats.outer_iterations)
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "last solve: %s; Iter %" PetscInt_FMT ", n_A = %" PetscInt_FMT " (QPP %" PetscInt_FMT " + QPQ %" PetscInt_FMT " + other %" PetscInt_FMT "), norm estimate %" PetscInt_FMT "\n",
+        d->stats.reason, d->stats.outer_iterations, d->stats.products_qpp + d->stats.products_qpq + d->stats.products_other, d->stats.products_qpp, d->stats.products_qpq, d->stats.products_other,
+        d->stats.products_estimate));
+  if (d->tao) PetscCall(TaoView(d->tao, viewer));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,476 @@
+/* The contact solve: pipeline choice, the Coulomb loops (MSA, merged, monolithic), statistics.
+
+   Everything runs through one smalxe solver (the augmented Lagrangian for the equality) whose
+   feasible set has a lower bound 0 on each normal multiplier and a disk on each tangential pair:
+   - frictionless: only bounds, so smalxe's inner solver is mprgp;
+   - Tresca: disks of given radius, inner mpgp;
+   - Coulomb, merged (the seed paper's Algorithm 2): smalxe with two Gauss-Seidel blocks, all
+     non-tangential multipliers (mprgp) then the tangential ones (mpgp); before the tangential
+     block the radii become F l_n of the normal multipliers just computed;
+   - Coulomb, monolithic: one mpgp over everything; radii F l_n refreshed before each inner solve,
+     and convergence only when the radii agree with F l_n (smalxe's consistency check);
+   - Coulomb, MSA (Algorithm 1): a full smalxe Tresca solve per successive approximation. */
+#include <conefeti/private/contactimpl.h>
+#include <conefeti/private/reproduciblesum.h>
+#include <algorithm>
+#include <cstring>
+
+PetscLogEvent CONTACT_Solve;
+
+namespace {
+
+ContactProblemData *Data(ContactProblem cp) { return cp->data; }
+
+/* the set whose disk radii the friction law drives */
+PetscErrorCode FrictionSet(ContactProblem cp, SeparableSet *set)
+{
+  ContactProblemData *d = Data(cp);
+
+  PetscFunctionBegin;
+  *set = d->set;
+  if (d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED) {
+    Tao sub;
+    PetscCall(TaoSMALXEGetBlockSubsolver(d->tao, 1, &sub));
+    PetscCall(TaoQPGetConstraints(sub, set));
+    PetscCheck(*set, PetscObjectComm((PetscObject)cp), PETSC_ERR_PLIB, "ContactProblem: the tangential block has no set yet");
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* radii of the disks for the multipliers l: Tresca bounds, Coulomb F l_n */
+PetscErrorCode TargetRadii(ContactProblem cp, Vec lambda, std::vector<PetscReal> &r)
+{
+  ContactProblemData *d = Data(cp);
+  const PetscScalar  *l;
+
+  PetscFunctionBegin;
+  PetscCallCXX(r.resize(d->disk_node.size()));
+  PetscCall(VecGetArrayRead(lambda, &l));
+  for (size_t k = 0; k < d->disk_node.size(); k++) {
+    const PetscInt j = d->disk_node[k];
+    r[k]             = d->law[j] == CONTACT_COULOMB ? d->coef[j] * PetscMax(PetscRealPart(l[d->normal[j] - d->rstart]), 0.0) : d->coef[j];
+  }
+  PetscCall(VecRestoreArrayRead(lambda, &l));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* |a - b| / |a| over all ranks (0 when both vanish) */
+PetscErrorCode RelativeChange(MPI_Comm comm, const std::vector<PetscReal> &a, const std::vector<PetscReal> &b, PetscReal *rel)
+{
+  DoubleDouble s[2];
+
+  PetscFunctionBegin;
+  for (size_t k = 0; k < a.size(); k++) {
+    s[0].addProduct(a[k] - b[k], a[k] - b[k]);
+    s[1].addProduct(a[k], a[k]);
+  }
+  PetscCall(ReproducibleAllreduce(s, 2, comm));
+  *rel = s[1].value() > 0 ? PetscSqrtReal(s[0].value() / s[1].value()) : (s[0].value() > 0 ? 1.0 : 0.0);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* pre-solve hook: set radii F l_n before the tangential block (merged) or every inner solve (monolithic) */
+PetscErrorCode PreSolve(Tao, PetscInt block, Vec lambda, void *ctx)
+{
+  ContactProblem cp = static_cast<ContactProblem>(ctx);
+
+  PetscFunctionBegin;
+  if (Data(cp)->algorithm == CONTACT_COULOMB_MERGED && block != 1) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, NULL));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* monolithic: converged only if the radii used agree with F l_n of the result */
+PetscErrorCode Consistent(Tao, Vec lambda, PetscBool *ok, void *ctx)
+{
+  ContactProblem         cp = static_cast<ContactProblem>(ctx);
+  ContactProblemData    *d  = Data(cp);
+  std::vector<PetscReal> target;
+  PetscReal              rel;
+
+  PetscFunctionBegin;
+  PetscCall(TargetRadii(cp, lambda, target));
+  PetscCall(RelativeChange(PetscObjectComm((PetscObject)cp), target, d->radius, &rel));
+  *ok = rel <= d->fixed_point_rtol ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode BuildSet(ContactProblem cp)
+{
+  ContactProblemData   *d = Data(cp);
+  std::vector<PetscInt> idx;
+  PetscScalar          *lb;
+  PetscInt              N;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetSize(d->h, &N));
+  PetscCall(SeparableSetCreate(PetscObjectComm((PetscObject)cp), d->nlocal, N, &d->set));
+  PetscCall(VecDuplicate(d->h, &d->lb));
+  PetscCall(VecSet(d->lb, PETSC_NINFINITY));
+  PetscCall(VecGetArray(d->lb, &lb));
+  for (PetscInt n : d->normal) lb[n - d->rstart] = 0.0;
+  PetscCall(VecRestoreArray(d->lb, &lb));
+  PetscCall(SeparableSetSetBounds(d->set, d->lb, NULL));
+  d->disk_node.clear();
+  for (size_t j = 0; j < d->normal.size(); j++) {
+    if (d->law[j] == CONTACT_FRICTIONLESS) continue;
+    PetscCallCXX(idx.insert(idx.end(), {d->t1[j], d->t2[j]}));
+    PetscCallCXX(d->disk_node.push_back((PetscInt)j));
+  }
+  PetscCallCXX(d->radius.assign(d->disk_node.size(), 0.0));
+  for (size_t k = 0; k < d->disk_node.size(); k++)
+    if (d->law[d->disk_node[k]] == CONTACT_TRESCA) d->radius[k] = d->coef[d->disk_node[k]];
+  PetscCall(SeparableSetAddDisks(d->set, (PetscInt)d->radius.size(), idx.data(), NULL, d->radius.data()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* merged: block 0 = all but the tangential multipliers, block 1 = the tangential pairs in node order */
+PetscErrorCode SetBlocks(ContactProblem cp)
+{
+  ContactProblemData   *d = Data(cp);
+  std::vector<char>     tangential(d->nlocal, 0);
+  std::vector<PetscInt> c, t;
+  IS                    is[2];
+
+  PetscFunctionBegin;
+  for (PetscInt k : d->disk_node) {
+    tangential[d->t1[k] - d->rstart] = 1;
+    tangential[d->t2[k] - d->rstart] = 1;
+    PetscCallCXX(t.insert(t.end(), {d->t1[k], d->t2[k]}));
+  }
+  for (PetscInt i = 0; i < d->nlocal; i++)
+    if (!tangential[i]) PetscCallCXX(c.push_back(d->rstart + i));
+  PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)cp), (PetscInt)c.size(), c.data(), PETSC_COPY_VALUES, &is[0]));
+  PetscCall(ISCreateGeneral(PetscObjectComm((PetscObject)cp), (PetscInt)t.size(), t.data(), PETSC_COPY_VALUES, &is[1]));
+  PetscCall(TaoSMALXESetBlocks(d->tao, 2, is));
+  PetscCall(ISDestroy(&is[0]));
+  PetscCall(ISDestroy(&is[1]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* the equality of the augmented Lagrangian: projector form, penalty form, or an empty one */
+PetscErrorCode SetEquality(ContactProblem cp)
+{
+  ContactProblemData *d = Data(cp);
+
+  PetscFunctionBegin;
+  if (d->Q) PetscCall(TaoSMALXESetProjector(d->tao, d->Q, d->lt));
+  else if (d->G) PetscCall(TaoSMALXESetEqualityConstraints(d->tao, d->G, d->e));
+  else {
+    PetscInt N;
+    PetscCall(VecGetSize(d->h, &N));
+    PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)cp), 0, d->nlocal, 0, N, 0, NULL, 0, NULL, &d->C0));
+    PetscCall(MatAssemblyBegin(d->C0, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(d->C0, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatCreateVecs(d->C0, NULL, &d->d0));
+    PetscCall(TaoSMALXESetEqualityConstraints(d->tao, d->C0, d->d0));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ValidateNodes(ContactProblem cp)
+{
+  ContactProblemData *d = Data(cp);
+  std::vector<char>   used(d->nlocal, 0);
+
+  PetscFunctionBegin;
+  for (size_t j = 0; j < d->normal.size(); j++) {
+    PetscInt ids[3] = {d->normal[j], d->t1[j], d->t2[j]};
+    for (int q = 0; q < (d->law[j] == CONTACT_FRICTIONLESS ? 1 : 3); q++) {
+      const PetscInt i = ids[q] - d->rstart;
+      PetscCheck(i >= 0 && i < d->nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                 "ContactProblem: contact node %zu uses multiplier %" PetscInt_FMT ", not owned by this rank (range [%" PetscInt_FMT ", %" PetscInt_FMT "))", j, ids[q], d->rstart,
+                 d->rstart + d->nlocal);
+      PetscCheck(!used[i], PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "ContactProblem: multiplier %" PetscInt_FMT " belongs to two contact roles", ids[q]);
+      used[i] = 1;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+/* Sets the disk radii for the multipliers lambda; returns their relative change if asked. */
+PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, PetscReal *change)
+{
+  ContactProblemData    *d = Data(cp);
+  std::vector<PetscReal> target;
+  SeparableSet           set;
+
+  PetscFunctionBegin;
+  PetscCall(TargetRadii(cp, lambda, target));
+  if (change) PetscCall(RelativeChange(PetscObjectComm((PetscObject)cp), target, d->radius, change));
+  d->radius = target;
+  PetscCall(FrictionSet(cp, &set));
+  PetscCall(SeparableSetSetDiskRadii(set, d->radius.data()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemSetFromOptions - Read the contact solver's options.
+
+  Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Options Database Keys:
++ -contact_coulomb_algorithm <merged>  - msa (Algorithm 1), merged (Algorithm 2), monolithic
+. -contact_rtol <1e-6>                  - projected gradient and equality residual relative to |h| (smalxe's gttol)
+. -contact_msa_rtol <1e-6>              - MSA: stop when the slip bounds change by less than this, relatively
+. -contact_msa_max_it <100>             - MSA: most successive approximations
+. -contact_fixed_point_rtol <1e-6>      - monolithic: radii must agree with F l_n to this relative tolerance
+- -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
+
+  Level: beginner
+
+.seealso: `ContactProblemSolve()`
+@*/
+PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
+{
+  ContactProblemData *d;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  d = cp->data;
+  PetscObjectOptionsBegin((PetscObject)cp);
+  PetscCall(PetscOptionsEnum("-contact_coulomb_algorithm", "Coulomb friction: msa (Algorithm 1), merged (Algorithm 2), monolithic", "ContactCoulombAlgorithm", ContactCoulombAlgorithms,
+                             (PetscEnum)d->algorithm, (PetscEnum *)&d->algorithm, NULL));
+  PetscCall(PetscOptionsReal("-contact_rtol", "Projected gradient and equality residual relative to |h|", "ContactProblemSolve", d->rtol, &d->rtol, NULL));
+  PetscCall(PetscOptionsReal("-contact_msa_rtol", "MSA: relative change of the slip bounds at which the successive approximations stop", "ContactProblemSolve", d->msa_rtol, &d->msa_rtol, NULL));
+  PetscCall(PetscOptionsInt("-contact_msa_max_it", "MSA: most successive approximations", "ContactProblemSolve", d->msa_max_it, &d->msa_max_it, NULL));
+  PetscCall(
+      PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance", "ContactProblemSolve", d->fixed_point_rtol, &d->fixed_point_rtol, NULL));
+  PetscOptionsEnd();
+  PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_rtol must be in (0, 1), got %g", (double)d->rtol);
+  PetscCheck(d->msa_rtol > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_rtol must be positive, got %g", (double)d->msa_rtol);
+  PetscCheck(d->msa_max_it > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_max_it must be positive, got %" PetscInt_FMT, d->msa_max_it);
+  PetscCheck(d->fixed_point_rtol > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_fixed_point_rtol must be positive, got %g", (double)d->fixed_point_rtol);
+  if (d->tao) PetscCall(TaoSetFromOptions(d->tao));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemSetUp - Choose the pipeline from the problem, build the feasible set and the solver.
+
+  Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Notes:
+  Only the effects the problem contains are set up: no tangential multipliers enter the set for
+  frictionless nodes, and the Coulomb machinery only exists when a Coulomb node does.
+
+  Level: intermediate
+
+.seealso: `ContactProblemSolve()`, `ContactProblemGetPipeline()`
+@*/
+PetscErrorCode ContactProblemSetUp(ContactProblem cp)
+{
+  ContactProblemData *d;
+  PetscInt            flags[3];
+  const char         *prefix;
+  char                taoprefix[256];
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  d = cp->data;
+  if (d->setup) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(d->F && d->h, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_WRONGSTATE, "ContactProblem: call ContactProblemSetOperator() first");
+  PetscCheck(!(d->Q && d->G), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_WRONGSTATE, "ContactProblem: give the equality once, as a projector or as G l = e");
+  PetscCall(VecGetOwnershipRange(d->h, &d->rstart, NULL));
+  PetscCall(VecGetLocalSize(d->h, &d->nlocal));
+  PetscCall(ValidateNodes(cp));
+
+  flags[0] = d->normal.empty() ? 0 : 1;
+  flags[1] = std::count(d->law.begin(), d->law.end(), CONTACT_TRESCA) ? 1 : 0;
+  flags[2] = std::count(d->law.begin(), d->law.end(), CONTACT_COULOMB) ? 1 : 0;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, flags, 3, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)cp)));
+  d->has_normal  = flags[0] ? PETSC_TRUE : PETSC_FALSE;
+  d->has_tresca  = flags[1] ? PETSC_TRUE : PETSC_FALSE;
+  d->has_coulomb = flags[2] ? PETSC_TRUE : PETSC_FALSE;
+  d->pipeline    = d->has_coulomb ? CONTACT_PIPELINE_COULOMB : (d->has_tresca ? CONTACT_PIPELINE_TRESCA : (d->has_normal ? CONTACT_PIPELINE_FRICTIONLESS : CONTACT_PIPELINE_LINEAR));
+
+  PetscCall(BuildSet(cp));
+  PetscCall(TaoCreate(PetscObjectComm((PetscObject)cp), &d->tao));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cp, &prefix));
+  PetscCall(PetscSNPrintf(taoprefix, sizeof(taoprefix), "%scontact_", prefix ? prefix : ""));
+  PetscCall(TaoSetOptionsPrefix(d->tao, taoprefix));
+  PetscCall(TaoSetType(d->tao, TAOSMALXE));
+  PetscCall(TaoSetHessian(d->tao, d->F, d->F, NULL, NULL));
+  PetscCall(TaoQPSetLinearTerm(d->tao, d->h));
+  PetscCall(TaoQPSetConstraints(d->tao, d->set));
+  PetscCall(SetEquality(cp));
+  PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol));
+  if (d->pipeline == CONTACT_PIPELINE_COULOMB) {
+    if (d->algorithm == CONTACT_COULOMB_MERGED) PetscCall(SetBlocks(cp));
+    if (d->algorithm != CONTACT_COULOMB_MSA) PetscCall(TaoSMALXESetPreSolve(d->tao, PreSolve, cp));
+    if (d->algorithm == CONTACT_COULOMB_MONOLITHIC) PetscCall(TaoSMALXESetConsistencyCheck(d->tao, Consistent, cp));
+  }
+  PetscCall(TaoSetFromOptions(d->tao));
+  d->setup = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CollectStatistics(ContactProblem cp, PetscInt outer, PetscInt al)
+{
+  ContactProblemData *d = cp->data;
+  QPCounters          total;
+  ContactStatistics  &st = d->stats;
+
+  PetscFunctionBegin;
+  PetscCall(TaoQPGetCounters(d->tao, &total));
+  st.pipeline          = d->pipeline;
+  st.algorithm         = d->algorithm;
+  st.outer_iterations  = outer;
+  st.al_iterations     = al;
+  st.products_other    = total.hessian_mults;
+  st.products_estimate = total.estimate_mults;
+  st.products_qpp = st.products_qpq = 0;
+  if (d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED) {
+    for (PetscInt k = 0; k < 2; k++) {
+      Tao        sub;
+      QPCounters c;
+      PetscCall(TaoSMALXEGetBlockSubsolver(d->tao, k, &sub));
+      PetscCall(TaoQPGetCounters(sub, &c));
+      (k ? st.products_qpq : st.products_qpp) += c.hessian_mults;
+    }
+  } else {
+    Tao       sub;
+    PetscBool mprgp;
+    PetscCall(TaoSMALXEGetSubsolver(d->tao, &sub));
+    PetscCall(PetscObjectTypeCompare((PetscObject)sub, TAOMPRGP, &mprgp));
+    (mprgp ? st.products_qpp : st.products_qpq) = total.nested_hessian_mults;
+  }
+  PetscCall(TaoSMALXEGetFeasibility(d->tao, &st.feasibility));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A sentence for how the augmented Lagrangian loop ended. */
+static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reason, PetscInt its)
+{
+  ContactProblemData *d = cp->data;
+  PetscBool           stagnated;
+
+  PetscFunctionBegin;
+  PetscCall(TaoSMALXEGetStagnated(d->tao, &stagnated));
+  d->stats.converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (reason > 0) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "converged (%s) in %" PetscInt_FMT " outer iterations", TaoConvergedReasons[reason], its));
+  else if (stagnated)
+    PetscCall(PetscSNPrintf(
+        d->stats.reason, sizeof(d->stats.reason),
+        "no equilibrium: the equality (rigid-body equilibrium) cannot be met with admissible contact forces (|G l - e| stagnates at %.3g); the loads exceed what supports and friction can carry",
+        (double)d->stats.feasibility));
+  else if (reason == TAO_DIVERGED_MAXITS) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -contact_tao_max_it)", its));
+  else PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %s", TaoConvergedReasons[reason]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemSolve - Solve the contact problem: the pipeline its content calls for.
+
+  Collective
+
+  Input Parameters:
++ cp     - the problem
+- lambda - initial guess on input (projected onto the set), the multipliers on output
+
+  Notes:
+  The solve never ends with NaN: it stops with a stated reason (see `ContactProblemGetStatistics()`):
+  converged; not converged after the iteration limit; or no equilibrium, when the equality cannot be
+  met with admissible contact forces (e.g. a free body under a shear beyond the friction bound).
+  Counters: Iter (outer iterations), n_A^QPP (mprgp products), n_A^QPQ (mpgp products), and products
+  outside the inner solvers, each separately.
+
+  Level: beginner
+
+.seealso: `ContactProblemGetStatistics()`, `ContactProblemSetFromOptions()`
+@*/
+PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
+{
+  ContactProblemData *d;
+  TaoConvergedReason  reason;
+  PetscInt            its = 0, outer = 0, al = 0;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
+  PetscCall(ContactProblemSetUp(cp));
+  d = cp->data;
+  PetscCall(PetscLogEventBegin(CONTACT_Solve, cp, 0, 0, 0));
+  PetscCall(TaoSetSolution(d->tao, lambda));
+  PetscCall(TaoQPResetCounters(d->tao));
+  d->stats             = ContactStatistics{};
+  d->stats.fixed_point = 0;
+
+  if (d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MSA) {
+    PetscReal change = 1;
+    /* successive approximations: g from the current multipliers, a full Tresca solve, repeat */
+    PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, NULL));
+    for (outer = 0; outer < d->msa_max_it; outer++) {
+      PetscCall(TaoSolve(d->tao));
+      PetscCall(TaoGetConvergedReason(d->tao, &reason));
+      PetscCall(TaoGetIterationNumber(d->tao, &its));
+      al += its + 1;
+      if (reason <= 0) break;
+      PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, &change));
+      PetscCall(PetscInfo(cp, "MSA step %" PetscInt_FMT ": %" PetscInt_FMT " outer iterations, relative change of the slip bounds %g\n", outer + 1, its + 1, (double)change));
+      if (change <= d->msa_rtol) {
+        outer++;
+        break;
+      }
+    }
+    d->stats.fixed_point = change;
+    PetscCall(CollectStatistics(cp, outer, al));
+    if (reason <= 0) PetscCall(DescribeReason(cp, reason, its + 1));
+    else if (change <= d->msa_rtol) {
+      d->stats.converged = PETSC_TRUE;
+      PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "converged: %" PetscInt_FMT " successive approximations, slip bounds change %.2e <= %.2e", outer, (double)change,
+                              (double)d->msa_rtol));
+    } else
+      PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
+                              "not converged: the successive approximations did not settle in %" PetscInt_FMT
+                              " steps (slip bounds still change by %.2e; friction coefficient too large for a contractive fixed point?)",
+                              d->msa_max_it, (double)change));
+  } else {
+    PetscCall(TaoSolve(d->tao));
+    PetscCall(TaoGetConvergedReason(d->tao, &reason));
+    PetscCall(TaoGetIterationNumber(d->tao, &its));
+    PetscCall(CollectStatistics(cp, its + 1, its + 1));
+    if (d->pipeline == CONTACT_PIPELINE_COULOMB) {
+      std::vector<PetscReal> target;
+      PetscCall(TargetRadii(cp, lambda, target));
+      PetscCall(RelativeChange(PetscObjectComm((PetscObject)cp), target, d->radius, &d->stats.fixed_point));
+    }
+    PetscCall(DescribeReason(cp, reason, its + 1));
+  }
+  PetscCall(PetscLogEventEnd(CONTACT_Solve, cp, 0, 0, 0));
+  PetscCall(PetscObjectViewFromOptions((PetscObject)cp, NULL, "-contact_view"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemGetEqualityMultiplier - w = G'mu for the multiplier mu of the equality at the
+  solution (A l - h + w in -N(l)); FETI's rigid-body amplitudes are alpha = -(GG')^{-1} G w.
+
+  Collective
+
+  Input Parameter:
+. cp - the problem (after a solve)
+
+  Output Parameter:
+. w - the vector G'mu
+
+  Level: intermediate
+
+.seealso: `TaoSMALXEGetEqualityMultiplier()`
+@*/
+PetscErrorCode ContactProblemGetEqualityMultiplier(ContactProblem cp, Vec w)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCheck(cp->data->tao, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_WRONGSTATE, "ContactProblem: solve first");
+  PetscCall(TaoSMALXEGetEqualityMultiplier(cp->data->tao, w));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
