@@ -96,4 +96,6 @@ PETSC_EXTERN PetscErrorCode FEMCreateFETI(FEM, FETI *);
 PETSC_EXTERN PetscErrorCode FEMAssembleGlobal(FEM, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode FEMCreateGlobalCoordinates(FEM, Vec *);
 PETSC_EXTERN PetscErrorCode FEMPrimalToGlobal(FEM, Vec, Vec);
+PETSC_EXTERN PetscErrorCode FEMGlobalToPrimal(FEM, Vec, Vec);
+PETSC_EXTERN PetscErrorCode FEMGetGlobalDirichletDofs(FEM, IS *);
 PETSC_EXTERN PetscErrorCode FEMElementStiffness(const PetscReal[12], PetscReal, PetscReal, PetscReal[144], PetscReal *);

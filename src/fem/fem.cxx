@@ -412,7 +412,7 @@ PetscErrorCode FEMSetOptionsPrefix(FEM fem, const char prefix[])
 + -fem_decomposition <structured,metis> - decomposition of every body without `FEMSetDecomposition()`
 . -fem_subdomains <px,py,pz or n>         - subdomain counts (structured: per axis; METIS: total per body)
 . -fem_dirichlet <multipliers,primal>     - Total FETI (Dirichlet by multipliers) or Dirichlet kept in the primal
-. -fem_matrix_type <sbaij,aij>            - storage of the subdomain stiffness matrices (SBAIJ halves the memory)
+. -fem_matrix_type <aij,sbaij>            - storage of the subdomain stiffness matrices (SBAIJ halves it, suits MUMPS; CHOLMOD needs AIJ)
 . -fem_E <E>                              - Young's modulus of every body without `FEMSetMaterial()`
 . -fem_nu <nu>                            - Poisson's ratio of every body without `FEMSetMaterial()`
 - -fem_view                               - view the model after `FEMSetUp()`
@@ -428,10 +428,11 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
   PetscInt             parts[3] = {1, 1, 1}, nparts = 3;
   PetscBool            settype, setparts, setE, setnu;
   PetscReal            E = 2.12e11, nu = 0.277;
-  char                 mattype[16] = "sbaij";
+  char                 mattype[16];
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(PetscStrncpy(mattype, impl.sbaij ? "sbaij" : "aij", sizeof(mattype)));
   PetscObjectOptionsBegin((PetscObject)fem);
   PetscCall(PetscOptionsEnum("-fem_decomposition", "Decomposition of the bodies into subdomains", "FEMSetDecomposition", FEMDecompositionTypes, (PetscEnum)type, (PetscEnum *)&type, &settype));
   PetscCall(PetscOptionsIntArray("-fem_subdomains", "Subdomains per body: px,py,pz (structured) or n (metis)", "FEMSetDecomposition", parts, &nparts, &setparts));
@@ -857,13 +858,47 @@ PetscErrorCode FEMGetAppendedRows(FEM fem, PetscInt *n, const PetscInt **rows)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The scatter from primal copies to global dofs and the inverse multiplicity, built on first use */
+static PetscErrorCode PrimalGlobalScatter(FEM fem, Vec uprimal, Vec uglobal)
+{
+  FEM_Impl &impl = *fem->impl;
+
+  PetscFunctionBegin;
+  if (impl.primaltoglobal) PetscFunctionReturn(PETSC_SUCCESS);
+  std::vector<PetscInt> from, to;
+  IS                    isfrom, isto;
+  Vec                   ones;
+  for (const FEMSubdomain &sd : impl.local) {
+    const PetscInt offset = impl.bodies[sd.body].nodeoffset;
+    for (size_t l = 0; l < sd.nodes.size(); l++)
+      for (PetscInt c = 0; c < 3; c++) {
+        PetscCallCXX(from.push_back(sd.primaloffset + 3 * (PetscInt)l + c));
+        PetscCallCXX(to.push_back(3 * (offset + sd.nodes[l]) + c));
+      }
+  }
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)from.size(), from.data(), PETSC_COPY_VALUES, &isfrom));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)to.size(), to.data(), PETSC_COPY_VALUES, &isto));
+  PetscCall(VecScatterCreate(uprimal, isfrom, uglobal, isto, &impl.primaltoglobal));
+  PetscCall(ISDestroy(&isfrom));
+  PetscCall(ISDestroy(&isto));
+  PetscCall(VecDuplicate(uglobal, &impl.inversemultiplicity));
+  PetscCall(VecDuplicate(uprimal, &ones));
+  PetscCall(VecSet(ones, 1.0));
+  PetscCall(VecSet(impl.inversemultiplicity, 0.0));
+  PetscCall(VecScatterBegin(impl.primaltoglobal, ones, impl.inversemultiplicity, ADD_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(impl.primaltoglobal, ones, impl.inversemultiplicity, ADD_VALUES, SCATTER_FORWARD));
+  PetscCall(VecReciprocal(impl.inversemultiplicity));
+  PetscCall(VecDestroy(&ones));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*@C
   FEMPrimalToGlobal - Map a FETI primal vector (subdomain copies) to the undecomposed global vector, averaging the copies of each node.
 
   Collective
 
   Input Parameters:
-+ fem     - the model, after `FEMCreateFETI()`
++ fem     - the model, set up
 - uprimal - primal vector (layout of the FETI's primal vectors)
 
   Output Parameter:
@@ -871,7 +906,7 @@ PetscErrorCode FEMGetAppendedRows(FEM fem, PetscInt *n, const PetscInt **rows)
 
   Level: intermediate
 
-.seealso: `FEMAssembleGlobal()`, `FETIRecoverPrimal()`
+.seealso: `FEMGlobalToPrimal()`, `FEMAssembleGlobal()`, `FETIRecoverPrimal()`
 @*/
 PetscErrorCode FEMPrimalToGlobal(FEM fem, Vec uprimal, Vec uglobal)
 {
@@ -882,35 +917,79 @@ PetscErrorCode FEMPrimalToGlobal(FEM fem, Vec uprimal, Vec uglobal)
   PetscValidHeaderSpecific(uprimal, VEC_CLASSID, 2);
   PetscValidHeaderSpecific(uglobal, VEC_CLASSID, 3);
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() first");
-  if (!impl.primaltoglobal) {
-    std::vector<PetscInt> from, to;
-    IS                    isfrom, isto;
-    Vec                   ones;
-    for (const FEMSubdomain &sd : impl.local) {
-      const PetscInt offset = impl.bodies[sd.body].nodeoffset;
-      for (size_t l = 0; l < sd.nodes.size(); l++)
-        for (PetscInt c = 0; c < 3; c++) {
-          PetscCallCXX(from.push_back(sd.primaloffset + 3 * (PetscInt)l + c));
-          PetscCallCXX(to.push_back(3 * (offset + sd.nodes[l]) + c));
-        }
-    }
-    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)from.size(), from.data(), PETSC_COPY_VALUES, &isfrom));
-    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)to.size(), to.data(), PETSC_COPY_VALUES, &isto));
-    PetscCall(VecScatterCreate(uprimal, isfrom, uglobal, isto, &impl.primaltoglobal));
-    PetscCall(ISDestroy(&isfrom));
-    PetscCall(ISDestroy(&isto));
-    PetscCall(VecDuplicate(uglobal, &impl.inversemultiplicity));
-    PetscCall(VecDuplicate(uprimal, &ones));
-    PetscCall(VecSet(ones, 1.0));
-    PetscCall(VecSet(impl.inversemultiplicity, 0.0));
-    PetscCall(VecScatterBegin(impl.primaltoglobal, ones, impl.inversemultiplicity, ADD_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(impl.primaltoglobal, ones, impl.inversemultiplicity, ADD_VALUES, SCATTER_FORWARD));
-    PetscCall(VecReciprocal(impl.inversemultiplicity));
-    PetscCall(VecDestroy(&ones));
-  }
+  PetscCall(PrimalGlobalScatter(fem, uprimal, uglobal));
   PetscCall(VecSet(uglobal, 0.0));
   PetscCall(VecScatterBegin(impl.primaltoglobal, uprimal, uglobal, ADD_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(impl.primaltoglobal, uprimal, uglobal, ADD_VALUES, SCATTER_FORWARD));
   PetscCall(VecPointwiseMult(uglobal, uglobal, impl.inversemultiplicity));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGlobalToPrimal - Copy an undecomposed global vector to every subdomain copy of each node (a continuous field in FETI primal form).
+
+  Collective
+
+  Input Parameters:
++ fem     - the model, set up
+- uglobal - vector in the layout of `FEMAssembleGlobal()`
+
+  Output Parameter:
+. uprimal - primal vector (layout of the FETI's primal vectors)
+
+  Level: intermediate
+
+.seealso: `FEMPrimalToGlobal()`
+@*/
+PetscErrorCode FEMGlobalToPrimal(FEM fem, Vec uglobal, Vec uprimal)
+{
+  FEM_Impl &impl = *fem->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscValidHeaderSpecific(uglobal, VEC_CLASSID, 2);
+  PetscValidHeaderSpecific(uprimal, VEC_CLASSID, 3);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  PetscCall(PrimalGlobalScatter(fem, uprimal, uglobal));
+  PetscCall(VecScatterBegin(impl.primaltoglobal, uglobal, uprimal, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(impl.primaltoglobal, uglobal, uprimal, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetGlobalDirichletDofs - The Dirichlet dofs in the undecomposed numbering of `FEMAssembleGlobal()`, owned by this rank.
+
+  Collective
+
+  Input Parameter:
+. fem - the model, set up
+
+  Output Parameter:
+. is - global dof indices (destroy it)
+
+  Level: intermediate
+
+.seealso: `FEMAssembleGlobal()`, `FEMSetDirichlet()`
+@*/
+PetscErrorCode FEMGetGlobalDirichletDofs(FEM fem, IS *is)
+{
+  FEM_Impl             &impl        = *fem->impl;
+  PetscInt              nlocalnodes = PETSC_DECIDE, nglobal = impl.nglobalnodes, last;
+  std::vector<PetscInt> dofs;
+  MPI_Comm              comm = PetscObjectComm((PetscObject)fem);
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  PetscCall(PetscSplitOwnership(comm, &nlocalnodes, &nglobal));
+  PetscCallMPI(MPI_Scan(&nlocalnodes, &last, 1, MPIU_INT, MPI_SUM, comm));
+  const PetscInt first = last - nlocalnodes;
+  for (const FEMBody &b : impl.bodies) {
+    const PetscInt lo = std::max(first, b.nodeoffset), hi = std::min(last, b.nodeoffset + b.nnodes);
+    for (PetscInt g = lo; g < hi; g++)
+      for (PetscInt c = 0; c < 3; c++)
+        if (b.dirichletmask[g - b.nodeoffset] & (1u << c)) PetscCallCXX(dofs.push_back(3 * g + c));
+  }
+  PetscCall(ISCreateGeneral(comm, (PetscInt)dofs.size(), dofs.data(), PETSC_COPY_VALUES, is));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

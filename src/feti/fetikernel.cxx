@@ -74,72 +74,73 @@ PetscErrorCode FETIOrthonormalizeColumns(PetscInt n, PetscInt *k, std::vector<Pe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Cyclic Jacobi for a small symmetric matrix A (m x m, row-major); eigenvalues in w, eigenvectors in columns of V */
-static void SymmetricEigen(PetscInt m, std::vector<PetscReal> A, std::vector<PetscReal> &w, std::vector<PetscReal> &V)
+/* One-sided (Hestenes) Jacobi SVD of A (rows x m, column-major): on return the columns of A are
+   orthogonal with norms sigma_j, and A_in V = A_out. Works on A itself, not on A'A, so a singular
+   value at roundoff level stays at roundoff level (a Gram matrix would square it into 1e-8 noise). */
+static void OneSidedJacobi(PetscInt rows, PetscInt m, std::vector<PetscReal> &A, std::vector<PetscReal> &sigma, std::vector<PetscReal> &V)
 {
   V.assign((size_t)m * m, 0.0);
-  for (PetscInt i = 0; i < m; i++) V[i * m + i] = 1.0;
-  for (PetscInt sweep = 0; sweep < 100; sweep++) {
-    PetscReal off = 0, total = 0;
-    for (PetscInt i = 0; i < m; i++)
-      for (PetscInt j = 0; j < m; j++) {
-        total += A[i * m + j] * A[i * m + j];
-        if (i != j) off += A[i * m + j] * A[i * m + j];
-      }
-    if (off <= 1e-30 * total || off == 0) break;
+  for (PetscInt i = 0; i < m; i++) V[(size_t)i * m + i] = 1.0;
+  for (PetscInt sweep = 0; sweep < 60; sweep++) {
+    PetscBool rotated = PETSC_FALSE;
     for (PetscInt p = 0; p < m; p++)
       for (PetscInt q = p + 1; q < m; q++) {
-        if (A[p * m + q] == 0) continue;
-        const PetscReal theta = (A[q * m + q] - A[p * m + p]) / (2 * A[p * m + q]);
-        const PetscReal t     = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-        const PetscReal c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (PetscInt r = 0; r < m; r++) { /* A <- A J */
-          const PetscReal arp = A[r * m + p], arq = A[r * m + q];
-          A[r * m + p] = c * arp - s * arq;
-          A[r * m + q] = s * arp + c * arq;
+        PetscReal  alpha = 0, beta = 0, gamma = 0;
+        PetscReal *ap = &A[(size_t)p * rows], *aq = &A[(size_t)q * rows];
+        for (PetscInt i = 0; i < rows; i++) {
+          alpha += ap[i] * ap[i];
+          beta += aq[i] * aq[i];
+          gamma += ap[i] * aq[i];
         }
-        for (PetscInt r = 0; r < m; r++) { /* A <- J' A */
-          const PetscReal apr = A[p * m + r], aqr = A[q * m + r];
-          A[p * m + r] = c * apr - s * aqr;
-          A[q * m + r] = s * apr + c * aqr;
+        if (gamma == 0 || std::abs(gamma) <= 1e-15 * std::sqrt(alpha * beta)) continue;
+        rotated              = PETSC_TRUE;
+        const PetscReal zeta = (beta - alpha) / (2 * gamma);
+        const PetscReal t    = (zeta >= 0 ? 1.0 : -1.0) / (std::abs(zeta) + std::sqrt(1 + zeta * zeta));
+        const PetscReal c = 1 / std::sqrt(1 + t * t), s = c * t;
+        for (PetscInt i = 0; i < rows; i++) {
+          const PetscReal x = ap[i], y = aq[i];
+          ap[i] = c * x - s * y;
+          aq[i] = s * x + c * y;
         }
-        for (PetscInt r = 0; r < m; r++) {
-          const PetscReal vrp = V[r * m + p], vrq = V[r * m + q];
-          V[r * m + p] = c * vrp - s * vrq;
-          V[r * m + q] = s * vrp + c * vrq;
+        for (PetscInt i = 0; i < m; i++) {
+          const PetscReal x = V[(size_t)p * m + i], y = V[(size_t)q * m + i];
+          V[(size_t)p * m + i] = c * x - s * y;
+          V[(size_t)q * m + i] = s * x + c * y;
         }
       }
+    if (!rotated) break;
   }
-  w.resize(m);
-  for (PetscInt i = 0; i < m; i++) w[i] = A[i * m + i];
+  sigma.assign(m, 0.0);
+  for (PetscInt j = 0; j < m; j++) {
+    PetscReal norm = 0;
+    for (PetscInt i = 0; i < rows; i++) norm += A[(size_t)j * rows + i] * A[(size_t)j * rows + i];
+    sigma[j] = std::sqrt(norm);
+  }
 }
 
 /* Replace the orthonormal basis R (n x k) by an orthonormal basis of its vectors that vanish on the dofs D.
    A combination v counts as vanishing when its RMS value on D is below tol times its RMS value overall. */
 PetscErrorCode FETIKernelVanishingOn(PetscInt n, PetscInt *k, std::vector<PetscScalar> &R, const std::vector<PetscInt> &D, PetscReal tol)
 {
-  const PetscInt           m = *k;
-  std::vector<PetscReal>   gram((size_t)m * m, 0.0), w, V;
+  const PetscInt           m = *k, nd = (PetscInt)D.size();
+  std::vector<PetscReal>   RD((size_t)nd * m), sigma, V;
   std::vector<PetscScalar> Rnew;
   PetscInt                 knew = 0;
 
   PetscFunctionBegin;
   if (D.empty() || m == 0) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt a = 0; a < m; a++)
-    for (PetscInt b = a; b < m; b++) {
-      PetscReal s = 0;
-      for (PetscInt d : D) s += PetscRealPart(R[(size_t)a * n + d] * PetscConj(R[(size_t)b * n + d]));
-      gram[a * m + b] = gram[b * m + a] = s;
-    }
-  SymmetricEigen(m, gram, w, V);
-  /* for unit v: RMS on D = sqrt(w/|D|), RMS overall = sqrt(1/n) */
-  const PetscReal scale = (PetscReal)n / (PetscReal)D.size();
+  for (PetscInt j = 0; j < m; j++)
+    for (PetscInt i = 0; i < nd; i++) RD[(size_t)j * nd + i] = PetscRealPart(R[(size_t)j * n + D[i]]);
+  OneSidedJacobi(nd, m, RD, sigma, V);
+  /* for unit v: RMS on D = sigma / sqrt(|D|), RMS overall = 1 / sqrt(n) */
+  const PetscReal scale = std::sqrt((PetscReal)n / (PetscReal)nd);
   PetscCallCXX(Rnew.assign((size_t)m * n, 0.0));
   for (PetscInt j = 0; j < m; j++) {
-    if (std::sqrt(std::max(w[j], (PetscReal)0) * scale) > tol) continue;
+    PetscCall(PetscInfo(NULL, "kernel candidate %" PetscInt_FMT ": RMS on the %" PetscInt_FMT " Dirichlet dofs / RMS overall = %g\n", j, nd, (double)(sigma[j] * scale)));
+    if (sigma[j] * scale > tol) continue;
     PetscScalar *col = &Rnew[(size_t)knew * n];
     for (PetscInt a = 0; a < m; a++)
-      for (PetscInt i = 0; i < n; i++) col[i] += V[a * m + j] * R[(size_t)a * n + i];
+      for (PetscInt i = 0; i < n; i++) col[i] += V[(size_t)j * m + a] * R[(size_t)a * n + i];
     for (PetscInt d : D) col[d] = 0; /* exactly zero where u = 0 is imposed */
     knew++;
   }

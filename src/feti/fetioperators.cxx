@@ -356,7 +356,6 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
   /* global load; the subdomain loads are not needed any more */
   PetscCall(MatCreateVecs(impl.B, &impl.wp1, &impl.wd1));
-  PetscCall(VecSetBlockSize(impl.wp1, 3));
   PetscCall(VecDuplicate(impl.wp1, &impl.f));
   PetscCall(VecDuplicate(impl.wp1, &impl.wp2));
   PetscCall(VecDuplicate(impl.wd1, &impl.wd2));

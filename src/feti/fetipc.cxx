@@ -91,7 +91,8 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
       PetscCall(KSPSetUp(sd.kspii));
       PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
       PetscCall(MatDestroy(&Kii));
-      PetscCall(MatCreateVecs(sd.Kib, &sd.xi, &sd.yi));
+      PetscCall(MatCreateVecs(sd.Kib, NULL, &sd.xi)); /* interior-sized */
+      PetscCall(VecDuplicate(sd.xi, &sd.yi));
     }
     PetscCall(MatDestroy(&KV));
   }
