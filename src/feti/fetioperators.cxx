@@ -225,9 +225,32 @@ static PetscErrorCode CreateShell(FETI feti, PetscInt m, PetscInt n, PetscErrorC
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* KSPSetUp() of a direct solver, reporting a failed factorization (zero or negative pivot: a singular
+   matrix) through *failed instead of the factorization package's own error, so that the caller can
+   say what the singularity means */
+PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscBool *failed)
+{
+  PetscErrorCode ierr;
+  PC             pc;
+  PCFailedReason reason = PC_NOERROR;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = KSPSetUp(ksp);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+  if (!ierr) {
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCGetFailedReason(pc, &reason));
+  }
+  *failed = (ierr || reason != PC_NOERROR) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* A direct solver for a coarse matrix (prefix feti_coarse_): Cholesky on one rank, otherwise every rank
    factors the whole (small) matrix (one gather per solve, no parallel triangular solves) */
-PetscErrorCode FETICreateCoarseKSP(FETI feti, Mat A, KSP *ksp)
+PetscErrorCode FETICreateCoarseKSP(FETI feti, Mat A, KSP *ksp, PetscBool *failed)
 {
   FETI_Impl  &impl = *feti->impl;
   MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
@@ -259,27 +282,22 @@ PetscErrorCode FETICreateCoarseKSP(FETI feti, Mat A, KSP *ksp)
     PetscCall(PCFactorSetMatSolverType(innerpc, impl.subsolver));
   }
   PetscCall(KSPSetFromOptions(*ksp));
-  PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
-  PetscCall(KSPSetUp(*ksp));
-  PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+  PetscCall(FETIKSPSetUpFactorization(feti, *ksp, failed));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 static PetscErrorCode SetUpCoarse(FETI feti)
 {
-  FETI_Impl     &impl = *feti->impl;
-  PC             pc;
-  PCFailedReason reason;
+  FETI_Impl &impl = *feti->impl;
+  PetscBool  failed;
 
   PetscFunctionBegin;
   PetscCall(MatTransposeMatMult(impl.Gt, impl.Gt, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &impl.GGt));
   PetscCall(MatSetOption(impl.GGt, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(impl.GGt, MAT_SPD, PETSC_TRUE));
-  PetscCall(FETICreateCoarseKSP(feti, impl.GGt, &impl.coarse));
-  PetscCall(KSPGetPC(impl.coarse, &pc));
-  PetscCall(PCGetFailedReason(pc, &reason));
-  PetscCheck(reason == PC_NOERROR, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
-             "The coarse matrix G G' could not be factored (%s): the constraints do not fix every rigid-body mode (a body without Dirichlet condition?)", PCFailedReasons[reason]);
+  PetscCall(FETICreateCoarseKSP(feti, impl.GGt, &impl.coarse, &failed));
+  PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
+             "The coarse matrix G G' is singular: the constraints do not fix every rigid-body mode (a body without Dirichlet condition?)");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -87,9 +87,12 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
       PetscCall(PCSetType(pc, PCCHOLESKY));
       PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
       PetscCall(KSPSetFromOptions(sd.kspii));
-      PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
-      PetscCall(KSPSetUp(sd.kspii));
-      PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+      {
+        PetscBool failed;
+        PetscCall(FETIKSPSetUpFactorization(feti, sd.kspii, &failed));
+        PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+                   "Dirichlet preconditioner: the interior block K_ii of a subdomain is singular (a part of the subdomain not connected to its interface?)");
+      }
       PetscCall(MatDestroy(&Kii));
       PetscCall(MatCreateVecs(sd.Kib, NULL, &sd.xi)); /* interior-sized */
       PetscCall(VecDuplicate(sd.xi, &sd.yi));

@@ -278,16 +278,13 @@ PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
   PetscCall(PCSetType(pc, PCCHOLESKY));
   PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
   PetscCall(KSPSetFromOptions(sd.ksp));
-  PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
-  PetscCall(KSPSetUp(sd.ksp));
-  PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
   {
-    PCFailedReason reason;
-    PetscCall(PCGetFailedReason(pc, &reason));
-    PetscCheck(reason == PC_NOERROR, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
-               "Subdomain %" PetscInt_FMT ": the factorization of the regularized K_s failed (%s); K_s has more zero-energy modes than the %" PetscInt_FMT
-               " of its kernel basis (a disconnected subdomain, a mechanism?)",
-               s, PCFailedReasons[reason], sd.nkernel);
+    PetscBool failed;
+    PetscCall(FETIKSPSetUpFactorization(feti, sd.ksp, &failed));
+    PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+               "Subdomain %" PetscInt_FMT ": the regularized K_s is not positive definite: K_s has zero-energy modes outside its kernel basis of dimension %" PetscInt_FMT
+               " (a disconnected subdomain, a mechanism, wrong coordinates?)",
+               s, sd.nkernel);
   }
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &sd.x));
   PetscCall(VecDuplicate(sd.x, &sd.y));

@@ -50,6 +50,11 @@ int main(int argc, char **argv)
   PetscCall(MatMult(B, u, Bu));
   PetscCall(VecNorm(Bu, NORM_2, &gluing));
   PetscCall(VecNorm(u, NORM_2, &unorm));
+  {
+    PetscInt nprimal, ndual, ncoarse;
+    PetscCall(FETIGetSizes(feti, &nprimal, &ndual, &ncoarse));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "primal %d, dual %d, coarse dimension %d\n", (int)nprimal, (int)ndual, (int)ncoarse));
+  }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "FETI iterations %d\n", (int)its));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "relative difference to the direct solution %.2e, ||B u||/||u|| %.2e\n", (double)(err / norm), (double)(gluing / unorm)));
   /* the CG tolerance (-feti_ksp_rtol 1e-12 in the tests) leaves about 1e-10 */

@@ -96,7 +96,8 @@ PETSC_INTERN PetscErrorCode FETISubdomainDestroy(FETISubdomain &);
 PETSC_INTERN PetscErrorCode FETISetUpOperators(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplus(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyP(FETI, Vec, Vec);
-PETSC_INTERN PetscErrorCode FETICreateCoarseKSP(FETI, Mat, KSP *);
+PETSC_INTERN PetscErrorCode FETICreateCoarseKSP(FETI, Mat, KSP *, PetscBool *);
+PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscBool *);
 
 /* fetipc.cxx */
 PETSC_INTERN PetscErrorCode FETISetUpPreconditionerData(FETI, PetscBool);
