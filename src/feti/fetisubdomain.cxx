@@ -46,6 +46,12 @@ PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &sd, Vec x, Vec y)
 static PetscErrorCode KernelFromInput(FETI feti, FETISubdomain &sd, PetscInt s)
 {
   PetscFunctionBegin;
+  if (sd.coords) {
+    PetscInt nc;
+    PetscCall(VecGetSize(sd.coords, &nc));
+    PetscCheck(nc == sd.n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "FETISetSubdomainCoordinates(): subdomain %" PetscInt_FMT ": %" PetscInt_FMT " coordinates for %" PetscInt_FMT " dofs (need 3 per node, interleaved like the dofs)", s, nc, sd.n);
+  }
   if (sd.Ruser) {
     Mat                dense;
     const PetscScalar *a;
@@ -223,7 +229,7 @@ PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
                "Subdomain %" PetscInt_FMT ": ||K_s R_s|| / ||K_s|| = %g exceeds -feti_check_tol %g: the coordinates (or kernel) do not match K_s (dof order x,y,z per node? same node order?)", s,
                (double)res, (double)impl.checktol);
   }
-  PetscCall(FETIChooseFixingDofs(sd.n, sd.nkernel, sd.R, sd.Ruser ? NULL : sd.coords, sd.dirichletdofs, impl.nfixingcandidates, sd.fixing));
+  PetscCall(FETIChooseFixingDofs(sd.n, sd.nkernel, sd.R, sd.coords, sd.dirichletdofs, impl.nfixingcandidates, sd.fixing));
   PetscCall(BuildCorrection(sd, isD));
 
   /* d = mean diagonal entry over the free dofs */
