@@ -57,9 +57,35 @@ typedef enum {
 } FEMDirichletMode;
 PETSC_EXTERN const char *const FEMDirichletModes[];
 
-/* A user face predicate: tagged = PETSC_TRUE when the boundary triangle with this centroid and outward unit normal belongs to the tag */
+/*S
+  FEMFacePredicate - A user test on boundary triangles that defines a boundary tag (`FEMTagFaces()`).
+
+  Calling Sequence:
+$ PetscErrorCode predicate(const PetscReal centroid[3], const PetscReal normal[3], PetscBool *tagged, void *ctx)
++ centroid - the triangle's centroid
+. normal   - its outward unit normal
+. tagged   - set to PETSC_TRUE when the triangle belongs to the tag
+- ctx      - the user context
+
+  Level: intermediate
+
+.seealso: `FEMTagFaces()`
+S*/
 typedef PetscErrorCode (*FEMFacePredicate)(const PetscReal centroid[3], const PetscReal normal[3], PetscBool *tagged, void *ctx);
-/* A vector field of position (volume force density, or surface traction) */
+
+/*S
+  FEMVectorField - A vector field of position: a volume force density (`FEMSetBodyForce()`) or a surface traction (`FEMSetTractionField()`).
+
+  Calling Sequence:
+$ PetscErrorCode field(const PetscReal x[3], PetscReal value[3], void *ctx)
++ x     - the point
+. value - the vector at x
+- ctx   - the user context
+
+  Level: intermediate
+
+.seealso: `FEMSetBodyForce()`, `FEMSetTractionField()`
+S*/
 typedef PetscErrorCode (*FEMVectorField)(const PetscReal x[3], PetscReal value[3], void *ctx);
 
 PETSC_EXTERN PetscClassId  FEM_CLASSID;

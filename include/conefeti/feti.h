@@ -37,7 +37,7 @@ $ FETI_ROW_CONTACT_TANGENTIAL  - a tangential direction of a friction pair
 
   Level: beginner
 
-.seealso: `FETISetConstraints()`, `FETIGetRowKinds()`
+.seealso: `FETISetConstraints()`, `FETIGetConstraints()`
 E*/
 typedef enum {
   FETI_ROW_GLUING,
