@@ -649,17 +649,28 @@ PetscErrorCode FETIGetSizes(FETI feti, PetscInt *nprimal, PetscInt *ndual, Petsc
 @*/
 PetscErrorCode FETIGetSubdomainKernel(FETI feti, PetscInt s, Mat *R)
 {
-  PetscScalar *a;
+  Mat      Rd;
+  PetscInt cstart;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   PetscCall(CheckLocal(feti, s));
   const FETISubdomain &sd = feti->impl->sub[s];
+  /* the kernels live in the block-diagonal global R: copy this subdomain's block */
+  PetscCall(MatGetOwnershipRangeColumn(feti->impl->R, &cstart, NULL));
+  PetscCall(MatGetDiagonalBlock(feti->impl->R, &Rd));
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, sd.n, sd.nkernel, NULL, R));
-  PetscCall(MatDenseGetArrayWrite(*R, &a));
-  for (size_t i = 0; i < sd.R.size(); i++) a[i] = sd.R[i];
-  PetscCall(MatDenseRestoreArrayWrite(*R, &a));
+  for (PetscInt i = 0; i < sd.n; i++) {
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscInt           ncols;
+    PetscCall(MatGetRow(Rd, sd.localoffset + i, &ncols, &cols, &vals));
+    for (PetscInt k = 0; k < ncols; k++) PetscCall(MatSetValue(*R, i, cols[k] - (sd.coarseoffset - cstart), vals[k], INSERT_VALUES));
+    PetscCall(MatRestoreRow(Rd, sd.localoffset + i, &ncols, &cols, &vals));
+  }
+  PetscCall(MatAssemblyBegin(*R, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*R, MAT_FINAL_ASSEMBLY));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

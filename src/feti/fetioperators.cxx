@@ -416,6 +416,7 @@ PetscErrorCode FETISetUp(FETI feti)
     }
     PetscCall(MatAssemblyBegin(impl.R, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(impl.R, MAT_FINAL_ASSEMBLY));
+    for (FETISubdomain &sd : impl.sub) PetscCallCXX(std::vector<PetscScalar>().swap(sd.R)); /* R holds the kernels now */
   }
   PetscCall(MatMatMult(impl.B, impl.R, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &impl.Gt));
   PetscCall(MatCreateVecs(impl.Gt, &impl.wc1, NULL));

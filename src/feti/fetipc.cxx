@@ -43,10 +43,15 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
   }
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
   PetscCall(PetscSNPrintf(pcprefix, sizeof(pcprefix), "%sfeti_dirichlet_", prefix ? prefix : ""));
+  char solver[64];
+  PetscCall(PetscStrncpy(solver, impl.subsolver, sizeof(solver)));
+  PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, pcprefix, "-pc_factor_mat_solver_type", solver, sizeof(solver), NULL));
   const PetscScalar *mask;
   PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
   for (FETISubdomain &sd : impl.sub) {
-    if (sd.Kbb && (!dirichlet || sd.kspii)) continue;
+    PetscInt ninterior = 0;
+    if (sd.interior) PetscCall(ISGetLocalSize(sd.interior, &ninterior));
+    if (sd.Kbb && (!dirichlet || sd.Fii || !ninterior)) continue; /* built already */
     std::vector<PetscInt> b, i;
     std::vector<char>     isD(sd.n, 0);
     Mat                   KV;
@@ -72,29 +77,33 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
     PetscCall(VecDestroy(&sd.yb));
     PetscCall(MatCreateVecs(sd.Kbb, &sd.xb, &sd.yb));
     if (dirichlet && !i.empty()) {
-      Mat Kii;
-      PC  pc;
+      Mat           Kii;
+      IS            rperm, cperm;
+      MatFactorInfo info;
       PetscCall(MatCreateSubMatrix(KV, sd.boundary, sd.interior, MAT_INITIAL_MATRIX, &sd.Kbi));
-      PetscCall(MatCreateSubMatrix(KV, sd.interior, sd.boundary, MAT_INITIAL_MATRIX, &sd.Kib));
       PetscCall(MatCreateSubMatrix(KV, sd.interior, sd.interior, MAT_INITIAL_MATRIX, &Kii));
       PetscCall(MatSetOption(Kii, MAT_SPD, PETSC_TRUE));
-      PetscCall(KSPCreate(PETSC_COMM_SELF, &sd.kspii));
-      PetscCall(KSPSetErrorIfNotConverged(sd.kspii, PETSC_TRUE));
-      PetscCall(KSPSetOperators(sd.kspii, Kii, Kii));
-      PetscCall(KSPSetOptionsPrefix(sd.kspii, pcprefix));
-      PetscCall(KSPSetType(sd.kspii, KSPPREONLY));
-      PetscCall(KSPGetPC(sd.kspii, &pc));
-      PetscCall(PCSetType(pc, PCCHOLESKY));
-      PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
-      PetscCall(KSPSetFromOptions(sd.kspii));
+      /* factor directly and keep only the factor: K_ii itself is not needed afterwards */
+      PetscCall(MatGetFactor(Kii, solver, MAT_FACTOR_CHOLESKY, &sd.Fii));
+      PetscCheck(sd.Fii, PETSC_COMM_SELF, PETSC_ERR_SUP, "-feti_dirichlet_pc_factor_mat_solver_type %s cannot factor a SEQAIJ matrix by Cholesky", solver);
+      PetscCall(MatGetOrdering(Kii, MATORDERINGNATURAL, &rperm, &cperm)); /* CHOLMOD and MUMPS order by themselves */
+      PetscCall(MatFactorInfoInitialize(&info));
+      PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      PetscErrorCode ierr = MatCholeskyFactorSymbolic(sd.Fii, Kii, rperm, &info);
+      if (!ierr) ierr = MatCholeskyFactorNumeric(sd.Fii, Kii, &info);
+      PetscCall(PetscPopErrorHandler());
+      PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
       {
-        PetscBool failed;
-        PetscCall(FETIKSPSetUpFactorization(feti, sd.kspii, &failed));
-        PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+        MatFactorError err = MAT_FACTOR_NOERROR;
+        if (!ierr) PetscCall(MatFactorGetError(sd.Fii, &err));
+        PetscCheck(!ierr && err == MAT_FACTOR_NOERROR, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
                    "Dirichlet preconditioner: the interior block K_ii of a subdomain is singular (a part of the subdomain not connected to its interface?)");
       }
+      PetscCall(ISDestroy(&rperm));
+      PetscCall(ISDestroy(&cperm));
       PetscCall(MatDestroy(&Kii));
-      PetscCall(MatCreateVecs(sd.Kib, NULL, &sd.xi)); /* interior-sized */
+      PetscCall(MatCreateVecs(sd.Kbi, &sd.xi, NULL)); /* interior-sized */
       PetscCall(VecDuplicate(sd.xi, &sd.yi));
     }
     PetscCall(MatDestroy(&KV));
@@ -146,9 +155,9 @@ static PetscErrorCode PCApply_FETI(PC pc, Vec x, Vec y)
     for (PetscInt k = 0; k < nb; k++) xb[k] = in[sd.localoffset + b[k]];
     PetscCall(VecRestoreArray(sd.xb, &xb));
     PetscCall(MatMult(sd.Kbb, sd.xb, sd.yb));
-    if (data->dirichlet && sd.kspii) { /* S x_b = K_bb x_b - K_bi K_ii^-1 K_ib x_b */
-      PetscCall(MatMult(sd.Kib, sd.xb, sd.xi));
-      PetscCall(KSPSolve(sd.kspii, sd.xi, sd.yi));
+    if (data->dirichlet && sd.Fii) { /* S x_b = K_bb x_b - K_bi K_ii^-1 K_ib x_b */
+      PetscCall(MatMultTranspose(sd.Kbi, sd.xb, sd.xi));
+      PetscCall(MatSolve(sd.Fii, sd.xi, sd.yi));
       PetscCall(VecScale(sd.yi, -1.0));
       PetscCall(MatMultAdd(sd.Kbi, sd.yi, sd.yb, sd.yb));
     }

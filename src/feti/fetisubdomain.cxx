@@ -328,8 +328,7 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(ISDestroy(&sd.interior));
   PetscCall(MatDestroy(&sd.Kbb));
   PetscCall(MatDestroy(&sd.Kbi));
-  PetscCall(MatDestroy(&sd.Kib));
-  PetscCall(KSPDestroy(&sd.kspii));
+  PetscCall(MatDestroy(&sd.Fii));
   PetscCall(VecDestroy(&sd.xb));
   PetscCall(VecDestroy(&sd.yb));
   PetscCall(VecDestroy(&sd.xi));

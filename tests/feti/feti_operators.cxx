@@ -167,6 +167,22 @@ int main(int argc, char **argv)
   PetscCall(VecNorm(d1, NORM_2, &a));
   PetscCall(VecNorm(p1, NORM_2, &b));
   PetscCall(Report("gluing rows vanish on continuous fields", a / b, tol, &ok));
+  /* the kernel basis of a subdomain has orthonormal columns: R_s'R_s = I */
+  {
+    Mat       Rs, RtR;
+    PetscInt  k;
+    PetscReal e;
+    PetscCall(FETIGetSubdomainKernel(feti, 0, &Rs));
+    PetscCall(MatGetSize(Rs, NULL, &k));
+    if (k) {
+      PetscCall(MatTransposeMatMult(Rs, Rs, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &RtR));
+      PetscCall(MatShift(RtR, -1.0));
+      PetscCall(MatNorm(RtR, NORM_FROBENIUS, &e));
+      PetscCall(Report("R_s' R_s = I (first local subdomain)", e, tol, &ok));
+      PetscCall(MatDestroy(&RtR));
+    }
+    PetscCall(MatDestroy(&Rs));
+  }
   /* BB' = I */
   PetscCall(MatMatTransposeMult(B, B, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &BBt));
   PetscCall(MatShift(BBt, -1.0));

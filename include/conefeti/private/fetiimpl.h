@@ -33,8 +33,8 @@ struct FETISubdomain {
 
   /* preconditioner data (boundary = dofs touched by B) */
   IS  boundary = nullptr, interior = nullptr;
-  Mat Kbb = nullptr, Kbi = nullptr, Kib = nullptr;
-  KSP kspii = nullptr;
+  Mat Kbb = nullptr, Kbi = nullptr; /* K_ib = K_bi' is applied as a transpose product */
+  Mat Fii = nullptr;                /* Cholesky factor of K_ii (K_ii itself is not kept) */
   Vec xb = nullptr, yb = nullptr, xi = nullptr, yi = nullptr;
 };
 
