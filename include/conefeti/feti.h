@@ -1,4 +1,95 @@
-/* Layer feti: FETI operators (F, G, projector, generalized inverse) as MATSHELLs from subdomain data. */
+/* Layer feti: FETI operators (F, G, projector, generalized inverse) as MATSHELLs from subdomain data.
+
+   The FETI object knows nothing about meshes. Its input, per subdomain s owned by this rank:
+     K_s  sequential stiffness matrix (SEQAIJ or SEQSBAIJ, block size 3, dofs interleaved x,y,z per node),
+     f_s  sequential load vector,
+     node coordinates (for the 6 rigid-body modes) or a user kernel basis R_s,
+     optionally the dofs where u = 0 is kept in the primal (FETI with Dirichlet kept in the primal);
+   and globally
+     B    MPIAIJ constraint matrix: rows are the multipliers, columns the global primal vector
+          (the concatenation of all subdomains' dofs, each rank owning its own subdomains' dofs),
+     c    right-hand side of B u = c (zero for gluing and Dirichlet, the gap for contact),
+     a kind per row of B (FETIRowKind).
+   Dual problem (docs/feti.md): min 1/2 l'F l - l'h  s.t.  G l = e, with F = B K+ B', h = B K+ f - c,
+   G = R'B', e = R'f; primal recovery u = K+(f - B'l) + R alpha. */
 #pragma once
 
 #include <petscksp.h>
+
+/*S
+  FETI - A FETI (finite element tearing and interconnecting) dual problem built from subdomain data:
+  the operators F = B K+ B', G = R'B', the orthogonal projector P = I - G'(GG')^-1 G, K+, the
+  right-hand sides h and e, and primal recovery.
+
+  Level: beginner
+
+.seealso: `FETICreate()`, `FETISetSubdomains()`, `FETISetConstraints()`, `FETISetUp()`, `FETISolveLinear()`
+S*/
+typedef struct _p_FETI *FETI;
+
+/*E
+  FETIRowKind - What a row of the constraint matrix B expresses.
+
+$ FETI_ROW_GLUING              - continuity between copies of a node in different subdomains (B u = 0)
+$ FETI_ROW_DIRICHLET           - a zero displacement component imposed by a multiplier (Total FETI)
+$ FETI_ROW_CONTACT_NORMAL      - non-penetration N u <= gap (multiplier >= 0)
+$ FETI_ROW_CONTACT_TANGENTIAL  - a tangential direction of a friction pair
+
+  Level: beginner
+
+.seealso: `FETISetConstraints()`, `FETIGetConstraints()`
+E*/
+typedef enum {
+  FETI_ROW_GLUING,
+  FETI_ROW_DIRICHLET,
+  FETI_ROW_CONTACT_NORMAL,
+  FETI_ROW_CONTACT_TANGENTIAL
+} FETIRowKind;
+PETSC_EXTERN const char *const FETIRowKinds[];
+
+PETSC_EXTERN PetscClassId  FETI_CLASSID;
+PETSC_EXTERN PetscLogEvent FETI_SetUp, FETI_Assembly, FETI_Factorization, FETI_MultF, FETI_CoarseSolve, FETI_ApplyKplus, FETI_PrimalRecovery, FETI_Preconditioner;
+
+/* Preconditioner types for the projected CG on P F P, applied as P M^-1 P (-feti_pc_type) */
+#define PCFETILUMPED    "lumped"
+#define PCFETIDIRICHLET "dirichlet"
+
+PETSC_EXTERN PetscErrorCode FETICreate(MPI_Comm, FETI *);
+PETSC_EXTERN PetscErrorCode FETIDestroy(FETI *);
+PETSC_EXTERN PetscErrorCode FETISetSubdomains(FETI, PetscInt, const Mat[], const Vec[]);
+PETSC_EXTERN PetscErrorCode FETISetSubdomainCoordinates(FETI, PetscInt, Vec);
+PETSC_EXTERN PetscErrorCode FETISetSubdomainKernel(FETI, PetscInt, Mat);
+PETSC_EXTERN PetscErrorCode FETISetSubdomainDirichletDofs(FETI, PetscInt, IS);
+PETSC_EXTERN PetscErrorCode FETISetConstraints(FETI, Mat, Vec, const FETIRowKind[]);
+PETSC_EXTERN PetscErrorCode FETISetOptionsPrefix(FETI, const char[]);
+PETSC_EXTERN PetscErrorCode FETIAppendOptionsPrefix(FETI, const char[]);
+PETSC_EXTERN PetscErrorCode FETISetFromOptions(FETI);
+PETSC_EXTERN PetscErrorCode FETISetUp(FETI);
+PETSC_EXTERN PetscErrorCode FETIView(FETI, PetscViewer);
+PETSC_EXTERN PetscErrorCode FETIViewFromOptions(FETI, PetscObject, const char[]);
+
+PETSC_EXTERN PetscErrorCode FETIGetNumSubdomains(FETI, PetscInt *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode FETIGetSubdomainOffset(FETI, PetscInt, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode FETIGetSizes(FETI, PetscInt *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode FETIGetSubdomainKernel(FETI, PetscInt, Mat *);
+PETSC_EXTERN PetscErrorCode FETIGetSubdomainFixingDofs(FETI, PetscInt, IS *);
+
+PETSC_EXTERN PetscErrorCode FETIGetOperators(FETI, Mat *, Mat *, Mat *, Mat *);
+PETSC_EXTERN PetscErrorCode FETIGetGeneralizedInverse(FETI, Mat *);
+PETSC_EXTERN PetscErrorCode FETIGetKernel(FETI, Mat *);
+PETSC_EXTERN PetscErrorCode FETIGetGt(FETI, Mat *);
+PETSC_EXTERN PetscErrorCode FETIGetRHS(FETI, Vec *, Vec *);
+PETSC_EXTERN PetscErrorCode FETIGetParticularSolution(FETI, Vec *);
+PETSC_EXTERN PetscErrorCode FETIGetConstraints(FETI, Mat *, Vec *, const FETIRowKind **);
+PETSC_EXTERN PetscErrorCode FETIGetLoad(FETI, Vec *);
+PETSC_EXTERN PetscErrorCode FETICreateVecs(FETI, Vec *, Vec *, Vec *);
+PETSC_EXTERN PetscErrorCode FETIApplyK(FETI, Vec, Vec);
+PETSC_EXTERN PetscErrorCode FETIApplyCoarseInverse(FETI, Vec, Vec);
+
+PETSC_EXTERN PetscErrorCode FETIComputeAlpha(FETI, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode FETIRecoverPrimal(FETI, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode FETIGetKSP(FETI, KSP *);
+PETSC_EXTERN PetscErrorCode FETISolveLinear(FETI, Vec, Vec);
+
+PETSC_EXTERN PetscErrorCode FETIWrite(FETI, PetscViewer);
+PETSC_EXTERN PetscErrorCode FETILoad(FETI, PetscViewer);

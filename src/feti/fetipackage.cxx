@@ -1,15 +1,35 @@
-/* FETI layer package: registers the feti layer's classes and log events. */
+/* FETI layer package: registers the FETI class, its log events and the FETI preconditioners. */
 #include <conefeti/private/package.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/private/fetiimpl.h>
+
+PetscClassId  FETI_CLASSID;
+PetscLogEvent FETI_SetUp, FETI_Assembly, FETI_Factorization, FETI_MultF, FETI_CoarseSolve, FETI_ApplyKplus, FETI_PrimalRecovery, FETI_Preconditioner;
+
+static PetscBool feti_package_initialized = PETSC_FALSE;
 
 PetscErrorCode ConeFETIFETIInitializePackage(void)
 {
   PetscFunctionBegin;
+  if (feti_package_initialized) PetscFunctionReturn(PETSC_SUCCESS);
+  feti_package_initialized = PETSC_TRUE;
+  PetscCall(KSPInitializePackage());
+  PetscCall(PetscClassIdRegister("FETI", &FETI_CLASSID));
+  PetscCall(PetscLogEventRegister("FETISetUp", FETI_CLASSID, &FETI_SetUp));
+  PetscCall(PetscLogEventRegister("FETIAssembly", FETI_CLASSID, &FETI_Assembly));
+  PetscCall(PetscLogEventRegister("FETIFactor", FETI_CLASSID, &FETI_Factorization));
+  PetscCall(PetscLogEventRegister("FETI_MultF", FETI_CLASSID, &FETI_MultF));
+  PetscCall(PetscLogEventRegister("FETIApplyKplus", FETI_CLASSID, &FETI_ApplyKplus));
+  PetscCall(PetscLogEventRegister("FETICoarseSolve", FETI_CLASSID, &FETI_CoarseSolve));
+  PetscCall(PetscLogEventRegister("FETIPrimalRecov", FETI_CLASSID, &FETI_PrimalRecovery));
+  PetscCall(PetscLogEventRegister("FETIPCApply", FETI_CLASSID, &FETI_Preconditioner));
+  PetscCall(PCRegister(PCFETILUMPED, PCCreate_FETILumped));
+  PetscCall(PCRegister(PCFETIDIRICHLET, PCCreate_FETIDirichlet));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode ConeFETIFETIFinalizePackage(void)
 {
   PetscFunctionBegin;
+  feti_package_initialized = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,0 +1,139 @@
+/* Private structures of the fem layer, shared between the files of src/fem. */
+#pragma once
+
+#include <petsc/private/petscimpl.h>
+#include <conefeti/sys.h>
+#include <conefeti/fem.h>
+#include <conefeti/private/compat.h>
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+/* The six box faces in the order of the built-in tags x0, x1, y0, y1, z0, z1 */
+PETSC_INTERN const char *const FEMBoxFaceNames[6];
+
+/* A boundary triangle of a box: one face of exactly one tetrahedron */
+struct FEMBoundaryTriangle {
+  std::array<PetscInt, 3>  v;       /* body node ids */
+  PetscInt                 element; /* body element id of the tetrahedron it bounds */
+  PetscInt                 face;    /* box face 0..5 (x0, x1, y0, y1, z0, z1) */
+  PetscReal                area;
+  std::array<PetscReal, 3> normal; /* outward unit normal */
+};
+
+struct FEMTaggedNodes {
+  std::vector<PetscInt>  nodes;   /* sorted body node ids */
+  std::vector<PetscReal> areas;   /* lumped nodal area: sum over the tagged triangles of area/3 */
+  std::vector<PetscReal> normals; /* 3 per node: area-weighted average outward unit normal */
+};
+
+struct FEMUserTag {
+  std::string      name;
+  FEMFacePredicate predicate;
+  void            *ctx;
+};
+
+struct FEMDirichletSpec {
+  std::string name;
+  unsigned    components; /* bit c set: component c is fixed */
+};
+
+struct FEMTractionSpec {
+  std::string              name;
+  FEMVectorField           field; /* NULL: constant */
+  void                    *ctx;
+  std::array<PetscReal, 3> value;
+};
+
+struct FEMBody {
+  std::array<PetscReal, 3>      lower{}, upper{};
+  std::array<PetscInt, 3>       cells{};
+  PetscReal                     E = 0, nu = 0;
+  PetscBool                     materialset   = PETSC_FALSE;
+  FEMDecompositionType          decomposition = FEM_DECOMPOSITION_STRUCTURED;
+  std::array<PetscInt, 3>       parts{1, 1, 1};
+  PetscBool                     decompositionset = PETSC_FALSE;
+  std::vector<FEMUserTag>       usertags;
+  std::vector<FEMDirichletSpec> dirichlet;
+  std::vector<FEMTractionSpec>  tractions;
+  FEMVectorField                bodyforce    = nullptr;
+  void                         *bodyforcectx = nullptr;
+
+  /* Built by FEMSetUp() on every rank */
+  PetscInt                                     nnodes = 0, nelements = 0, nodeoffset = 0;
+  PetscInt                                     firstsub = 0, nsub = 0;
+  std::vector<PetscReal>                       coords; /* 3 per node */
+  std::vector<FEMBoundaryTriangle>             boundary;
+  std::map<std::string, std::vector<PetscInt>> tags; /* tag -> indices into boundary */
+  std::map<std::string, FEMTaggedNodes>        taggednodes;
+  std::vector<PetscInt>                        part;          /* element -> subdomain index within the body */
+  std::vector<unsigned char>                   dirichletmask; /* node -> fixed component bits */
+  std::vector<unsigned char>                   onboundary;    /* node -> 1 when on the box boundary */
+};
+
+/* One subdomain owned by this rank */
+struct FEMSubdomain {
+  PetscInt              id = 0, body = 0;
+  std::vector<PetscInt> elements; /* body element ids */
+  std::vector<PetscInt> nodes;    /* sorted body node ids; local node l has primal dofs primaloffset + 3 l + c */
+  std::vector<PetscInt> conn;     /* 4 local node indices per element */
+  PetscInt              primaloffset = 0;
+};
+
+/* The copies of a node that lies on a body boundary or a subdomain interface (replicated on all ranks) */
+struct FEMNodeCopies {
+  std::vector<PetscInt> subdomains; /* increasing */
+  std::vector<PetscInt> dofs;       /* primal dof of the x component of each copy */
+};
+
+struct FEMAppendedRow {
+  FETIRowKind              kind;
+  std::vector<PetscInt>    body, node, comp;
+  std::vector<PetscScalar> coef;
+  PetscScalar              rhs;
+};
+
+struct FEM_Impl {
+  std::vector<FEMBody>                                   bodies;
+  FEMDirichletMode                                       dirichletmode = FEM_DIRICHLET_MULTIPLIERS;
+  PetscBool                                              sbaij         = PETSC_FALSE; /* AIJ: what CHOLMOD (the default) factors */
+  PetscBool                                              setupcalled   = PETSC_FALSE;
+  PetscInt                                               nsubdomains = 0, firstlocal = 0, nlocal = 0;
+  std::vector<PetscInt>                                  subprimaloffset; /* nsubdomains + 1 */
+  std::vector<FEMSubdomain>                              local;
+  std::map<std::pair<PetscInt, PetscInt>, FEMNodeCopies> copies; /* (body, node) -> copies */
+  std::vector<FEMAppendedRow>                            appended;
+  std::vector<PetscInt>                                  appendedrows; /* multiplier index of each appended row, set by FEMCreateFETI() */
+  PetscInt                                               nglobalnodes        = 0;
+  VecScatter                                             primaltoglobal      = nullptr;
+  Vec                                                    inversemultiplicity = nullptr;
+};
+
+struct _FEMOps {
+  PetscErrorCode (*dummy)(void);
+};
+
+struct _p_FEM {
+  PETSCHEADER(struct _FEMOps);
+  FEM_Impl *impl;
+};
+
+/* Mesh of a box (femmesh.cxx) */
+PETSC_INTERN void           FEMBoxElementNodes(const FEMBody &, PetscInt, PetscInt[4]);
+PETSC_INTERN void           FEMBoxNodeIJK(const FEMBody &, PetscInt, PetscInt[3]);
+PETSC_INTERN PetscErrorCode FEMBoxBuildMesh(FEMBody &);
+PETSC_INTERN PetscErrorCode FEMBoxBuildTags(FEMBody &);
+PETSC_INTERN PetscErrorCode FEMBoxNodeSubdomains(const FEMBody &, PetscInt, std::vector<PetscInt> &);
+
+/* Elasticity (femelasticity.cxx) */
+PETSC_INTERN PetscErrorCode FEMElementLoad(const PetscReal[12], FEMVectorField, void *, PetscReal[12]);
+PETSC_INTERN PetscErrorCode FEMTriangleLoad(const PetscReal[9], PetscReal, FEMVectorField, void *, const PetscReal[3], PetscReal[9]);
+
+/* Decomposition (femdecompose.cxx) */
+PETSC_INTERN PetscErrorCode FEMDecomposeBody(MPI_Comm, FEMBody &);
+PETSC_INTERN PetscErrorCode FEMBuildLocalSubdomains(FEM);
+
+/* Subdomain assembly (femassemble.cxx) */
+PETSC_INTERN PetscErrorCode FEMAssembleSubdomain(FEM, const FEMSubdomain &, Mat *, Vec *);

@@ -1,0 +1,106 @@
+/* Private structures of the feti layer, shared between the files of src/feti. */
+#pragma once
+
+#include <petsc/private/petscimpl.h>
+#include <conefeti/sys.h>
+#include <conefeti/feti.h>
+#include <conefeti/private/compat.h>
+
+#include <vector>
+
+/* One subdomain owned by this rank */
+struct FETISubdomain {
+  /* input */
+  Mat K         = nullptr; /* user's K_s; released after setup when nobody else holds it */
+  Vec f         = nullptr;
+  Vec coords    = nullptr;
+  Mat Ruser     = nullptr;
+  IS  dirichlet = nullptr; /* dofs kept at zero in the primal */
+
+  /* setup */
+  PetscInt                 n = 0, offset = 0, localoffset = 0; /* dofs, first global primal dof, first dof in the rank's local array */
+  PetscInt                 nkernel = 0, coarseoffset = 0;      /* kernel dimension, first global coarse index */
+  std::vector<PetscScalar> R;                                  /* n x nkernel orthonormal kernel basis, column-major */
+  std::vector<PetscInt>    fixing;                             /* dofs removed to regularize (sorted) */
+  std::vector<PetscInt>    dirichletdofs;                      /* sorted */
+  std::vector<PetscInt>    removed;                            /* fixing and Dirichlet dofs, sorted */
+  Mat                      Kreg       = nullptr;               /* K with removed rows/columns replaced by identity*diag */
+  Mat                      correction = nullptr;               /* K_V - Kreg restricted to rows/cols of removed dofs (SeqAIJ) */
+  PetscScalar              regdiag    = 1.0;                   /* the diagonal put at removed dofs */
+  KSP                      ksp        = nullptr;               /* KSPPREONLY + PCCHOLESKY on Kreg, prefix feti_sub_ */
+  Vec                      x = nullptr, y = nullptr;           /* work vectors of length n (own storage) */
+  Vec                      xa = nullptr, ya = nullptr;         /* vectors of length n without storage (VecPlaceArray) */
+
+  /* preconditioner data (boundary = dofs touched by B) */
+  IS  boundary = nullptr, interior = nullptr;
+  Mat Kbb = nullptr, Kbi = nullptr; /* K_ib = K_bi' is applied as a transpose product */
+  Mat Fii = nullptr;                /* Cholesky factor of K_ii (K_ii itself is not kept) */
+  Vec xb = nullptr, yb = nullptr, xi = nullptr, yi = nullptr;
+};
+
+struct FETI_Impl {
+  std::vector<FETISubdomain> sub;
+  Mat                        B = nullptr;
+  Vec                        c = nullptr;
+  std::vector<FETIRowKind>   kinds; /* local rows of B */
+
+  PetscBool setupcalled = PETSC_FALSE;
+  PetscInt  nglobalsub = 0, firstsub = 0;
+  PetscInt  nprimal = 0, nlocalprimal = 0, ncoarse = 0, nlocalcoarse = 0;
+
+  /* options */
+  PetscReal kerneltol         = 1e-8;       /* -feti_kernel_tol */
+  PetscReal checktol          = 1e-6;       /* -feti_check_tol */
+  PetscBool check             = PETSC_TRUE; /* -feti_check */
+  PetscInt  nfixingcandidates = 8;          /* -feti_fixing_nodes */
+  char      subsolver[64]     = "";
+
+  /* global objects */
+  Vec f      = nullptr; /* primal load */
+  Mat R      = nullptr; /* primal x coarse, block diagonal kernel basis (MPIAIJ) */
+  Mat Gt     = nullptr; /* B R, dual x coarse (MPIAIJ) */
+  Mat GGt    = nullptr; /* coarse matrix */
+  KSP coarse = nullptr; /* prefix feti_coarse_ */
+  Mat F = nullptr, G = nullptr, P = nullptr, Q = nullptr, Kplus = nullptr, PFP = nullptr;
+  Vec h = nullptr, e = nullptr, lambdatilde = nullptr;
+  KSP ksp          = nullptr; /* prefix feti_ for FETISolveLinear() */
+  Vec boundarymask = nullptr; /* primal: 1 at dofs touched by B */
+
+  /* work vectors */
+  Vec wp1 = nullptr, wp2 = nullptr, wd1 = nullptr, wd2 = nullptr, wc1 = nullptr, wc2 = nullptr;
+  Vec rhs = nullptr, residual = nullptr, alpha = nullptr; /* FETISolveLinear(), FETIComputeAlpha(), FETIRecoverPrimal() */
+};
+
+struct _FETIOps {
+  PetscErrorCode (*dummy)(void);
+};
+
+struct _p_FETI {
+  PETSCHEADER(struct _FETIOps);
+  FETI_Impl *impl;
+};
+
+/* fetikernel.cxx */
+PETSC_INTERN PetscErrorCode FETIRigidBodyModes(Vec, PetscInt, std::vector<PetscScalar> &);
+PETSC_INTERN PetscErrorCode FETIOrthonormalizeColumns(PetscInt, PetscInt *, std::vector<PetscScalar> &, PetscReal);
+PETSC_INTERN PetscErrorCode FETIKernelVanishingOn(PetscInt, PetscInt *, std::vector<PetscScalar> &, const std::vector<PetscInt> &, PetscReal);
+PETSC_INTERN PetscErrorCode FETIChooseFixingDofs(PetscInt, PetscInt, const std::vector<PetscScalar> &, Vec, const std::vector<PetscInt> &, PetscInt, std::vector<PetscInt> &);
+
+/* fetisubdomain.cxx */
+PETSC_INTERN PetscErrorCode FETISubdomainSetUp(FETI, FETISubdomain &, PetscInt);
+PETSC_INTERN PetscErrorCode FETISubdomainApplyK(FETISubdomain &, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETISubdomainDestroy(FETISubdomain &);
+
+/* fetioperators.cxx */
+PETSC_INTERN PetscErrorCode FETISetUpOperators(FETI);
+PETSC_INTERN PetscErrorCode FETIApplyKplus(FETI, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETIApplyP(FETI, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETICreateCoarseKSP(FETI, Mat, KSP *, PetscBool *);
+PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscBool *);
+
+/* fetipc.cxx */
+PETSC_INTERN PetscErrorCode FETISetUpPreconditionerData(FETI, PetscBool);
+PETSC_INTERN PetscErrorCode PCCreate_FETILumped(PC);
+PETSC_INTERN PetscErrorCode PCCreate_FETIDirichlet(PC);
+PETSC_INTERN PetscErrorCode FETIFromMat(Mat, FETI *);

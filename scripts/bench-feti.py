@@ -1,0 +1,138 @@
+#!/usr/bin/python3
+"""FETI benchmark: prints the Markdown tables of docs/feti-benchmark.md.
+
+usage: scripts/bench-feti.py [--build build] [--ranks 2] [--quick] [--parts factor,scaling,compare]
+
+  factor   sparse Cholesky of one subdomain (petsc / cholmod / mumps) on 1e3 - 1e5 dofs: factorization
+           time, time of one K+ application (two triangular solves), peak memory; 1 rank
+  scaling  weak scaling of FETI at fixed H/h on the clamped cube (tutorials/feti/ex2_elasticity.cxx):
+           setup time, time per F product, CG iterations, peak RSS per primal unknown, up to > 1M unknowns
+  compare  FETI against CG + GAMG (rigid-body near-null space) and a direct MUMPS Cholesky on the same
+           mesh, and the time ratios
+
+Every number is the RESULT line of one run of feti_ex2_elasticity (best of --repeat runs for times)."""
+import argparse
+import os
+import re
+import subprocess
+import sys
+
+ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1",
+           OMPI_MCA_btl_vader_single_copy_mechanism="none", OMPI_MCA_btl="self,vader", OMPI_MCA_pml="ob1", PETSC_OPTIONS="")
+
+
+def run(exe, ranks, args, repeat=1, timeout=3600):
+    """Run the driver; return the RESULT dictionary with the best times of `repeat` runs, or None on failure."""
+    best = None
+    for _ in range(repeat):
+        cmd = ["mpiexec", "-n", str(ranks), exe] + args
+        try:
+            out = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=timeout).stdout
+        except subprocess.TimeoutExpired:
+            return None
+        m = re.search(r"^RESULT (.*)$", out, re.M)
+        if not m:
+            sys.stderr.write("failed: %s\n%s\n" % (" ".join(cmd), out[-2000:]))
+            return None
+        r = {k: (float(v) if re.match(r"^-?[0-9.e+-]+$", v) else v) for k, v in (kv.split("=") for kv in m.group(1).split())}
+        if best is None:
+            best = r
+        else:
+            for k in ("setup", "solve", "Fproduct", "factor", "Kplus"):
+                best[k] = min(best[k], r[k])
+    return best
+
+
+def factor_table(exe, repeat):
+    print("### Sparse Cholesky of one subdomain (1 rank)\n")
+    print("One clamped cube of m^3 cells as a single floating subdomain (Total FETI); factorization of the regularized")
+    print("K_s (symbolic + numeric), one K+ application, peak RSS of the whole run.\n")
+    print("| dofs | solver | factorization [s] | K+ application [ms] | peak RSS [MB] |")
+    print("|---:|---|---:|---:|---:|")
+    for m in (6, 14, 22, 31):
+        for solver in ("cholmod", "mumps", "petsc"):
+            if solver == "petsc" and m > 22:
+                print("| %d | petsc | not run: natural ordering only (bandwidth fill), estimated > 10 min | | |" % (3 * (m + 1) ** 3))
+                continue
+            r = run(exe, 1, ["-cells", str(m), "-fem_subdomains", "1,1,1", "-feti_pc_type", "none", "-feti_ksp_max_it", "5",
+                             "-feti_sub_pc_factor_mat_solver_type", solver], repeat)
+            if r is None:
+                print("| %d | %s | failed | | |" % (3 * (m + 1) ** 3, solver))
+                continue
+            print("| %d | %s | %.3f | %.2f | %.0f |" % (r["primal"], solver, r["factor"], 1e3 * r["Kplus"], r["rss"] / 2**20))
+    print()
+
+
+def scaling_table(exe, ranks, repeat, quick):
+    print("### Weak scaling at fixed H/h (%d ranks)\n" % ranks)
+    print("Clamped cube of n^3 cells cut into p^3 cubic subdomains of H/h = n/p cells per side; Total FETI, CHOLMOD,")
+    print("CG to relative residual 1e-8 (unpreconditioned, i.e. the projected gradient). Setup = mesh, assembly, kernels,")
+    print("factorizations, coarse problem (the Dirichlet preconditioner's factorizations are in the solve).\n")
+    print("| H/h | preconditioner | subdomains | primal unknowns | dual | coarse | CG iterations | setup [s] | solve [s] | F product [ms] | K+ [ms] | peak RSS [MB] | RSS / primal unknown [B] |")
+    print("|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    configs = [(8, 2, "dirichlet"), (8, 3, "dirichlet"), (8, 4, "dirichlet"), (8, 6, "dirichlet"), (8, 8, "dirichlet"), (8, 4, "lumped"), (8, 8, "lumped"),
+               (12, 2, "dirichlet"), (12, 3, "dirichlet"), (12, 4, "dirichlet"), (12, 6, "dirichlet"), (12, 6, "lumped")]
+    if quick:
+        configs = [(8, 2, "dirichlet"), (8, 3, "dirichlet"), (8, 3, "lumped"), (12, 2, "dirichlet")]
+    for m, p, pc in configs:
+        r = run(exe, ranks, ["-cells", str(m * p), "-fem_subdomains", "%d,%d,%d" % (p, p, p), "-feti_pc_type", pc], repeat)
+        if r is None:
+            print("| %d | %s | %d | failed | | | | | | | | | |" % (m, pc, p ** 3))
+            continue
+        print("| %d | %s | %d | %d | %d | %d | %d | %.2f | %.2f | %.2f | %.2f | %.0f | %.0f |" % (m, pc, r["subdomains"], r["primal"], r["dual"], r["coarse"], r["iterations"], r["setup"], r["solve"],
+                                                                                      1e3 * r["Fproduct"], 1e3 * r["Kplus"], r["rss"] / 2**20, r["rss"] / r["primal"]))
+    print()
+
+
+def compare_table(exe, ranks, repeat, quick):
+    print("### FETI against single-domain PETSc solvers on the same mesh (%d ranks)\n" % ranks)
+    print("Same cube and loads; GAMG: CG + GAMG with the rigid-body near-null space to 1e-8; Cholesky: MUMPS. Total = setup + solve;")
+    print("ratio = other solver's total / FETI's total (> 1: FETI faster).\n")
+    print("| cells | unknowns | solver | iterations | setup [s] | solve [s] | total [s] | ratio | peak RSS [MB] |")
+    print("|---:|---:|---|---:|---:|---:|---:|---:|---:|")
+    sizes = [(24, 3), (48, 6), (72, 6)] if not quick else [(24, 3)]
+    for n, p in sizes:
+        feti = run(exe, ranks, ["-cells", str(n), "-fem_subdomains", "%d,%d,%d" % (p, p, p)], repeat)
+        rows = [("feti (%d subdomains)" % (p ** 3), feti)]
+        # the global matrix is assembled by the ranks' subdomains, so the same decomposition distributes it
+        decomposition = ["-fem_subdomains", "%d,%d,%d" % (p, p, p)]
+        rows.append(("gamg", run(exe, ranks, ["-cells", str(n), "-solver", "gamg"] + decomposition, repeat)))
+        if n <= 48:
+            rows.append(("cholesky", run(exe, ranks, ["-cells", str(n), "-solver", "cholesky"] + decomposition, 1)))
+        ftotal = feti["setup"] + feti["solve"] if feti else None
+        for name, r in rows:
+            if r is None:
+                print("| %d | | %s | failed | | | | | |" % (n, name))
+                continue
+            total = r["setup"] + r["solve"]
+            print("| %d | %d | %s | %d | %.2f | %.2f | %.2f | %s | %.0f |" % (n, r["unknowns"], name, r["iterations"], r["setup"], r["solve"], total,
+                                                                          "%.2f" % (total / ftotal) if ftotal else "", r["rss"] / 2**20))
+        if n > 48:
+            print("| %d | %d | cholesky | not run: MUMPS fill on 1M 3D unknowns exceeds the time budget of this script | | | | | |" % (n, 3 * (n + 1) ** 3))
+    print()
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--build", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build"))
+    ap.add_argument("--ranks", type=int, default=2)
+    ap.add_argument("--repeat", type=int, default=2)
+    ap.add_argument("--quick", action="store_true", help="small sizes only (a smoke test of the script)")
+    ap.add_argument("--parts", default="factor,scaling,compare")
+    a = ap.parse_args()
+    exe = os.path.join(a.build, "tutorials", "feti", "feti_ex2_elasticity")
+    if not os.path.exists(exe):
+        sys.exit("no %s: build first (scripts/build.sh)" % exe)
+    cpu = subprocess.run(["sh", "-c", "grep -m1 'model name' /proc/cpuinfo | cut -d: -f2"], capture_output=True, text=True).stdout.strip()
+    print("Machine: %s, %d cores; command: scripts/bench-feti.py %s\n" % (cpu, os.cpu_count(), " ".join(sys.argv[1:])))
+    parts = a.parts.split(",")
+    if "factor" in parts:
+        factor_table(exe, a.repeat)
+    if "scaling" in parts:
+        scaling_table(exe, a.ranks, a.repeat, a.quick)
+    if "compare" in parts:
+        compare_table(exe, a.ranks, a.repeat, a.quick)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,995 @@
+/* The FEM object: bodies (boxes), materials, loads, boundary tags, decomposition; setup and queries. */
+#include <conefeti/private/femimpl.h>
+
+#include <algorithm>
+#include <cstring>
+
+const char *const FEMDecompositionTypes[] = {"structured", "metis", "FEMDecompositionType", "FEM_DECOMPOSITION_", NULL};
+const char *const FEMDirichletModes[]     = {"multipliers", "primal", "FEMDirichletMode", "FEM_DIRICHLET_", NULL};
+
+static PetscErrorCode FEMDestroy_Private(FEM fem)
+{
+  PetscFunctionBegin;
+  if (fem->impl) {
+    PetscCall(VecScatterDestroy(&fem->impl->primaltoglobal));
+    PetscCall(VecDestroy(&fem->impl->inversemultiplicity));
+  }
+  PetscCallCXX(delete fem->impl);
+  fem->impl = nullptr;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMCreate - Create an empty finite-element model.
+
+  Collective
+
+  Input Parameter:
+. comm - MPI communicator; subdomains are spread over its ranks
+
+  Output Parameter:
+. fem - the model
+
+  Level: beginner
+
+.seealso: `FEMAddBox()`, `FEMSetUp()`, `FEMCreateFETI()`, `FEMDestroy()`
+@*/
+PetscErrorCode FEMCreate(MPI_Comm comm, FEM *fem)
+{
+  FEM f;
+
+  PetscFunctionBegin;
+  PetscValidPointer(fem, 2);
+  PetscCall(ConeFETIInitializePackage());
+  PetscCall(PetscHeaderCreate(f, FEM_CLASSID, "FEM", "Finite-element model of elastic bodies", "FEM", comm, FEMDestroy, FEMView));
+  PetscCallCXX(f->impl = new FEM_Impl());
+  *fem = f;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMDestroy - Destroy a model.
+
+  Collective
+
+  Input Parameter:
+. fem - the model
+
+  Level: beginner
+
+.seealso: `FEMCreate()`
+@*/
+PetscErrorCode FEMDestroy(FEM *fem)
+{
+  PetscFunctionBegin;
+  if (!fem || !*fem) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscValidHeaderSpecific(*fem, FEM_CLASSID, 1);
+  if (--((PetscObject)(*fem))->refct > 0) {
+    *fem = NULL;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(FEMDestroy_Private(*fem));
+  PetscCall(PetscHeaderDestroy(fem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CheckBody(FEM fem, PetscInt body)
+{
+  PetscFunctionBegin;
+  PetscCheck(body >= 0 && body < (PetscInt)fem->impl->bodies.size(), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Body %" PetscInt_FMT " does not exist (the model has %d bodies)",
+             body, (int)fem->impl->bodies.size());
+  PetscCheck(!fem->impl->setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "The model is set up already; change bodies before FEMSetUp()");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMAddBox - Add a body: the box [lower, upper] meshed by cells[0] x cells[1] x cells[2] hexahedra, each split into 6 tetrahedra.
+
+  Logically Collective
+
+  Input Parameters:
++ fem   - the model
+. lower - lower corner
+. upper - upper corner (upper[d] > lower[d])
+- cells - number of hexahedra along x, y, z (>= 1)
+
+  Output Parameter:
+. body - the index of the new body (may be NULL)
+
+  Notes:
+  The six faces carry the tags x0, x1, y0, y1, z0, z1 (x = lower[0], x = upper[0], ...).
+  The default material is steel (E = 2.12e11, nu = 0.277) and the default decomposition one subdomain.
+
+  Level: beginner
+
+.seealso: `FEMSetMaterial()`, `FEMTagFaces()`, `FEMSetDirichlet()`, `FEMSetDecomposition()`
+@*/
+PetscErrorCode FEMAddBox(FEM fem, const PetscReal lower[3], const PetscReal upper[3], const PetscInt cells[3], PetscInt *body)
+{
+  FEMBody b;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(!fem->impl->setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Add bodies before FEMSetUp()");
+  for (PetscInt d = 0; d < 3; d++) {
+    PetscCheck(upper[d] > lower[d], PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Box side %" PetscInt_FMT ": upper %g must exceed lower %g", d, (double)upper[d], (double)lower[d]);
+    PetscCheck(cells[d] >= 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Box needs at least one cell along axis %" PetscInt_FMT ", got %" PetscInt_FMT, d, cells[d]);
+    b.lower[d] = lower[d];
+    b.upper[d] = upper[d];
+    b.cells[d] = cells[d];
+  }
+  b.E  = 2.12e11;
+  b.nu = 0.277;
+  PetscCallCXX(fem->impl->bodies.push_back(b));
+  if (body) *body = (PetscInt)fem->impl->bodies.size() - 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetMaterial - Set the isotropic material of a body.
+
+  Logically Collective
+
+  Input Parameters:
++ fem  - the model
+. body - the body
+. E    - Young's modulus (> 0)
+- nu   - Poisson's ratio (-1 < nu < 1/2)
+
+  Options Database Keys:
++ -fem_E <E>   - Young's modulus of all bodies
+- -fem_nu <nu> - Poisson's ratio of all bodies
+
+  Level: beginner
+
+.seealso: `FEMAddBox()`
+@*/
+PetscErrorCode FEMSetMaterial(FEM fem, PetscInt body, PetscReal E, PetscReal nu)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscCheck(E > 0, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Young's modulus E = %g must be positive", (double)E);
+  PetscCheck(nu > -1 && nu < 0.5, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Poisson's ratio nu = %g must lie in (-1, 0.5)", (double)nu);
+  fem->impl->bodies[body].E           = E;
+  fem->impl->bodies[body].nu          = nu;
+  fem->impl->bodies[body].materialset = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMTagFaces - Define a boundary tag of a body by a predicate on its boundary triangles.
+
+  Logically Collective
+
+  Input Parameters:
++ fem       - the model
+. body      - the body
+. tag       - the tag name (a built-in name x0 ... z1 is replaced)
+. predicate - called with the centroid and the outward unit normal of each boundary triangle; sets tagged
+- ctx       - context for the predicate
+
+  Notes:
+  The predicate is evaluated in `FEMSetUp()` on every rank and must give the same answer everywhere.
+
+  Level: intermediate
+
+.seealso: `FEMSetDirichlet()`, `FEMSetTraction()`, `FEMGetTaggedNodes()`
+@*/
+PetscErrorCode FEMTagFaces(FEM fem, PetscInt body, const char tag[], FEMFacePredicate predicate, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscValidCharPointer(tag, 3);
+  PetscCheck(predicate, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_NULL, "FEMTagFaces(): tag \"%s\" needs a predicate", tag);
+  PetscCallCXX(fem->impl->bodies[body].usertags.push_back({tag, predicate, ctx}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetDirichlet - Fix displacement components (u = 0) on the tagged faces of a body.
+
+  Logically Collective
+
+  Input Parameters:
++ fem        - the model
+. body       - the body
+. tag        - a boundary tag (x0, x1, y0, y1, z0, z1, or one from `FEMTagFaces()`)
+- components - which components are fixed (NULL: all three); e.g. {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE} is a symmetry plane x = const
+
+  Level: beginner
+
+.seealso: `FEMSetDirichletMode()`, `FEMTagFaces()`
+@*/
+PetscErrorCode FEMSetDirichlet(FEM fem, PetscInt body, const char tag[], const PetscBool components[3])
+{
+  unsigned mask = 7;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscValidCharPointer(tag, 3);
+  if (components) mask = (components[0] ? 1u : 0u) | (components[1] ? 2u : 0u) | (components[2] ? 4u : 0u);
+  PetscCallCXX(fem->impl->bodies[body].dirichlet.push_back({tag, mask}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetTraction - Apply a constant surface traction (force per unit area) on the tagged faces of a body.
+
+  Logically Collective
+
+  Input Parameters:
++ fem   - the model
+. body  - the body
+. tag   - a boundary tag
+- value - the traction vector
+
+  Level: beginner
+
+.seealso: `FEMSetTractionField()`, `FEMSetBodyForce()`
+@*/
+PetscErrorCode FEMSetTraction(FEM fem, PetscInt body, const char tag[], const PetscReal value[3])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscCallCXX(fem->impl->bodies[body].tractions.push_back({tag, nullptr, nullptr, {value[0], value[1], value[2]}}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetTractionField - Apply a surface traction given as a function of position on the tagged faces of a body.
+
+  Logically Collective
+
+  Input Parameters:
++ fem   - the model
+. body  - the body
+. tag   - a boundary tag
+. field - the traction (force per unit area) at a point
+- ctx   - its context
+
+  Notes:
+  Integrated by the edge-midpoint rule, exact for tractions linear in position.
+
+  Level: intermediate
+
+.seealso: `FEMSetTraction()`
+@*/
+PetscErrorCode FEMSetTractionField(FEM fem, PetscInt body, const char tag[], FEMVectorField field, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscCallCXX(fem->impl->bodies[body].tractions.push_back({tag, field, ctx, {0, 0, 0}}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetBodyForce - Apply a volume force density on a body.
+
+  Logically Collective
+
+  Input Parameters:
++ fem   - the model
+. body  - the body
+. field - force per unit volume at a point
+- ctx   - its context
+
+  Notes:
+  Integrated by the 4-point rule (exact for quadratic integrands). Without this call the body carries no volume force.
+
+  Level: beginner
+
+.seealso: `FEMSetTraction()`
+@*/
+PetscErrorCode FEMSetBodyForce(FEM fem, PetscInt body, FEMVectorField field, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  fem->impl->bodies[body].bodyforce    = field;
+  fem->impl->bodies[body].bodyforcectx = ctx;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetDecomposition - Choose how a body is cut into subdomains.
+
+  Logically Collective
+
+  Input Parameters:
++ fem   - the model
+. body  - the body
+. type  - `FEM_DECOMPOSITION_STRUCTURED` or `FEM_DECOMPOSITION_METIS`
+- parts - structured: subdomains along x, y, z; METIS: parts[0] is the number of subdomains
+
+  Options Database Keys:
++ -fem_decomposition <structured,metis> - the type, for every body without an explicit call
+- -fem_subdomains <px,py,pz or n>         - the counts, idem
+
+  Notes:
+  METIS asks for contiguous parts; a part that is still not face-connected becomes several subdomains.
+
+  Level: beginner
+
+.seealso: `FEMSetUp()`, `FEMGetNumSubdomains()`
+@*/
+PetscErrorCode FEMSetDecomposition(FEM fem, PetscInt body, FEMDecompositionType type, const PetscInt parts[3])
+{
+  FEMBody *b;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  b                = &fem->impl->bodies[body];
+  b->decomposition = type;
+  b->parts         = {parts[0], type == FEM_DECOMPOSITION_METIS ? 1 : parts[1], type == FEM_DECOMPOSITION_METIS ? 1 : parts[2]};
+          for (PetscInt d = 0; d < 3; d++) PetscCheck(b->parts[d] >= 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Subdomain count %" PetscInt_FMT " must be positive", b->parts[d]);
+  b->decompositionset = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetDirichletMode - Choose how Dirichlet conditions enter the FETI problem.
+
+  Logically Collective
+
+  Input Parameters:
++ fem  - the model
+- mode - `FEM_DIRICHLET_MULTIPLIERS` (Total FETI, the default) or `FEM_DIRICHLET_PRIMAL`
+
+  Options Database Key:
+. -fem_dirichlet <multipliers,primal> - the mode
+
+  Level: beginner
+
+.seealso: `FEMCreateFETI()`, `FEMDirichletMode`
+@*/
+PetscErrorCode FEMSetDirichletMode(FEM fem, FEMDirichletMode mode)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  fem->impl->dirichletmode = mode;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetDirichletMode - How Dirichlet conditions enter the FETI problem.
+
+  Not Collective
+
+  Input Parameter:
+. fem - the model
+
+  Output Parameter:
+. mode - the mode
+
+  Level: beginner
+
+.seealso: `FEMSetDirichletMode()`
+@*/
+PetscErrorCode FEMGetDirichletMode(FEM fem, FEMDirichletMode *mode)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  *mode = fem->impl->dirichletmode;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetOptionsPrefix - Set the prefix of the model's options (-<prefix>fem_...).
+
+  Logically Collective
+
+  Input Parameters:
++ fem    - the model
+- prefix - the prefix
+
+  Level: intermediate
+
+.seealso: `FEMSetFromOptions()`
+@*/
+PetscErrorCode FEMSetOptionsPrefix(FEM fem, const char prefix[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)fem, prefix));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetFromOptions - Read the model's options.
+
+  Collective
+
+  Input Parameter:
+. fem - the model
+
+  Options Database Keys:
++ -fem_decomposition <structured,metis> - decomposition of every body without `FEMSetDecomposition()`
+. -fem_subdomains <px,py,pz or n>         - subdomain counts (structured: per axis; METIS: total per body)
+. -fem_dirichlet <multipliers,primal>     - Total FETI (Dirichlet by multipliers) or Dirichlet kept in the primal
+. -fem_matrix_type <aij,sbaij>            - storage of the subdomain stiffness matrices (SBAIJ halves it, suits MUMPS; CHOLMOD needs AIJ)
+. -fem_E <E>                              - Young's modulus of every body without `FEMSetMaterial()`
+. -fem_nu <nu>                            - Poisson's ratio of every body without `FEMSetMaterial()`
+- -fem_view                               - view the model after `FEMSetUp()`
+
+  Level: beginner
+
+.seealso: `FEMSetDecomposition()`, `FEMSetDirichletMode()`
+@*/
+PetscErrorCode FEMSetFromOptions(FEM fem)
+{
+  FEM_Impl            &impl     = *fem->impl;
+  FEMDecompositionType type     = FEM_DECOMPOSITION_STRUCTURED;
+  PetscInt             parts[3] = {1, 1, 1}, nparts = 3;
+  PetscBool            settype, setparts, setE, setnu;
+  PetscReal            E = 2.12e11, nu = 0.277;
+  char                 mattype[16];
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(PetscStrncpy(mattype, impl.sbaij ? "sbaij" : "aij", sizeof(mattype)));
+  PetscObjectOptionsBegin((PetscObject)fem);
+  PetscCall(PetscOptionsEnum("-fem_decomposition", "Decomposition of the bodies into subdomains", "FEMSetDecomposition", FEMDecompositionTypes, (PetscEnum)type, (PetscEnum *)&type, &settype));
+  PetscCall(PetscOptionsIntArray("-fem_subdomains", "Subdomains per body: px,py,pz (structured) or n (metis)", "FEMSetDecomposition", parts, &nparts, &setparts));
+  PetscCall(PetscOptionsEnum("-fem_dirichlet", "Dirichlet conditions by multipliers (Total FETI) or kept in the primal", "FEMSetDirichletMode", FEMDirichletModes, (PetscEnum)impl.dirichletmode,
+                             (PetscEnum *)&impl.dirichletmode, NULL));
+  PetscCall(PetscOptionsString("-fem_matrix_type", "Subdomain stiffness storage: sbaij or aij", "FEMCreateFETI", mattype, mattype, sizeof(mattype), NULL));
+  PetscCall(PetscOptionsReal("-fem_E", "Young's modulus of bodies without FEMSetMaterial()", "FEMSetMaterial", E, &E, &setE));
+  PetscCall(PetscOptionsReal("-fem_nu", "Poisson's ratio of bodies without FEMSetMaterial()", "FEMSetMaterial", nu, &nu, &setnu));
+  PetscCall(PetscOptionsName("-fem_view", "View the model after setup", "FEMView", NULL));
+  PetscOptionsEnd();
+  PetscCheck(!strcmp(mattype, "sbaij") || !strcmp(mattype, "aij"), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_matrix_type %s: use sbaij or aij", mattype);
+  impl.sbaij = strcmp(mattype, "sbaij") ? PETSC_FALSE : PETSC_TRUE;
+  if (setparts && type == FEM_DECOMPOSITION_STRUCTURED)
+    PetscCheck(nparts == 3, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_subdomains needs px,py,pz for the structured decomposition, got %" PetscInt_FMT " values", nparts);
+  if (setparts && type == FEM_DECOMPOSITION_METIS)
+    PetscCheck(nparts == 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_subdomains needs one count n for the METIS decomposition, got %" PetscInt_FMT " values", nparts);
+  for (FEMBody &b : impl.bodies) {
+    if (!b.decompositionset && (settype || setparts)) {
+      b.decomposition = type;
+      b.parts         = {parts[0], type == FEM_DECOMPOSITION_METIS ? 1 : parts[1], type == FEM_DECOMPOSITION_METIS ? 1 : parts[2]};
+              for (PetscInt d = 0; d < 3; d++)
+        PetscCheck(b.parts[d] >= 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_subdomains: count %" PetscInt_FMT " must be positive", b.parts[d]);
+    }
+    if (!b.materialset) {
+      PetscCheck(!setE || E > 0, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_E %g must be positive", (double)E);
+      PetscCheck(!setnu || (nu > -1 && nu < 0.5), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_nu %g must lie in (-1, 0.5)", (double)nu);
+      if (setE) b.E = E;
+      if (setnu) b.nu = nu;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetUp - Mesh the bodies, evaluate tags, decompose into subdomains and spread them over the ranks.
+
+  Collective
+
+  Input Parameter:
+. fem - the model
+
+  Notes:
+  Every rank holds the node coordinates, boundary triangles and element-to-subdomain map of every body
+  (4 bytes per element); element connectivity is implicit in the structured boxes. Each rank builds
+  the nodes and elements of its own subdomains only. There must be at least as many subdomains as ranks.
+
+  Level: beginner
+
+.seealso: `FEMCreateFETI()`, `FEMAssembleGlobal()`
+@*/
+PetscErrorCode FEMSetUp(FEM fem)
+{
+  FEM_Impl &impl = *fem->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  if (impl.setupcalled) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(!impl.bodies.empty(), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONGSTATE, "The model has no body: call FEMAddBox() before FEMSetUp()");
+  PetscCall(PetscLogEventBegin(FEM_SetUp, fem, 0, 0, 0));
+  impl.nglobalnodes = 0;
+  for (FEMBody &b : impl.bodies) {
+    b.nodeoffset = impl.nglobalnodes;
+    PetscCall(FEMBoxBuildMesh(b));
+    PetscCall(FEMBoxBuildTags(b));
+    impl.nglobalnodes += b.nnodes;
+  }
+  PetscCall(PetscLogEventBegin(FEM_Decompose, fem, 0, 0, 0));
+  for (FEMBody &b : impl.bodies) PetscCall(FEMDecomposeBody(PetscObjectComm((PetscObject)fem), b));
+  PetscCall(FEMBuildLocalSubdomains(fem));
+  PetscCall(PetscLogEventEnd(FEM_Decompose, fem, 0, 0, 0));
+  impl.setupcalled = PETSC_TRUE;
+  PetscCall(PetscLogEventEnd(FEM_SetUp, fem, 0, 0, 0));
+  PetscCall(PetscObjectViewFromOptions((PetscObject)fem, NULL, "-fem_view"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMView - Print the bodies, their decomposition and the subdomain sizes.
+
+  Collective
+
+  Input Parameters:
++ fem    - the model
+- viewer - an ASCII viewer (NULL: stdout)
+
+  Options Database Key:
+. -fem_view - view after `FEMSetUp()`
+
+  Level: beginner
+
+.seealso: `FEMSetUp()`
+@*/
+PetscErrorCode FEMView(FEM fem, PetscViewer viewer)
+{
+  FEM_Impl &impl = *fem->impl;
+  PetscBool ascii;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)fem), &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)fem, viewer));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%d bodies, Dirichlet conditions %s\n", (int)impl.bodies.size(),
+                                   impl.dirichletmode == FEM_DIRICHLET_PRIMAL ? "kept in the primal" : "by multipliers (Total FETI)"));
+  for (size_t i = 0; i < impl.bodies.size(); i++) {
+    const FEMBody &b = impl.bodies[i];
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "body %d: box [%g,%g]x[%g,%g]x[%g,%g], %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT " cells, E %g, nu %g, %s decomposition %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT,
+        (int)i, (double)b.lower[0], (double)b.upper[0], (double)b.lower[1], (double)b.upper[1], (double)b.lower[2], (double)b.upper[2], b.cells[0], b.cells[1], b.cells[2], (double)b.E, (double)b.nu,
+        FEMDecompositionTypes[b.decomposition], b.parts[0], b.parts[1], b.parts[2]));
+    if (impl.setupcalled) PetscCall(PetscViewerASCIIPrintf(viewer, " -> %" PetscInt_FMT " subdomains, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra", b.nsub, b.nnodes, b.nelements));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+  }
+  if (impl.setupcalled)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%" PetscInt_FMT " subdomains, %" PetscInt_FMT " primal dofs (%" PetscInt_FMT " undecomposed)\n", impl.nsubdomains, impl.subprimaloffset.back(),
+                                     3 * impl.nglobalnodes));
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetNumBodies - Number of bodies.
+
+  Not Collective
+
+  Input Parameter:
+. fem - the model
+
+  Output Parameter:
+. n - the number of bodies
+
+  Level: beginner
+
+.seealso: `FEMAddBox()`
+@*/
+PetscErrorCode FEMGetNumBodies(FEM fem, PetscInt *n)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  *n = (PetscInt)fem->impl->bodies.size();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CheckSetUpBody(FEM fem, PetscInt body)
+{
+  PetscFunctionBegin;
+  PetscCheck(fem->impl->setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  PetscCheck(body >= 0 && body < (PetscInt)fem->impl->bodies.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Body %" PetscInt_FMT " does not exist (the model has %d bodies)", body,
+             (int)fem->impl->bodies.size());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetBodyNodes - The node coordinates of a body (the same on every rank).
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model, set up
+- body - the body
+
+  Output Parameters:
++ n      - number of nodes
+- coords - 3 n coordinates, node-major (do not free)
+
+  Level: intermediate
+
+.seealso: `FEMGetTaggedNodes()`, `FEMGetBodyNodeOffset()`
+@*/
+PetscErrorCode FEMGetBodyNodes(FEM fem, PetscInt body, PetscInt *n, const PetscReal **coords)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckSetUpBody(fem, body));
+  if (n) *n = fem->impl->bodies[body].nnodes;
+  if (coords) *coords = fem->impl->bodies[body].coords.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetBodyNodeOffset - The global index of a body's first node in the undecomposed numbering of `FEMAssembleGlobal()`.
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model, set up
+- body - the body
+
+  Output Parameter:
+. offset - global node index of body node 0 (its dofs start at 3 offset)
+
+  Level: intermediate
+
+.seealso: `FEMAssembleGlobal()`
+@*/
+PetscErrorCode FEMGetBodyNodeOffset(FEM fem, PetscInt body, PetscInt *offset)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckSetUpBody(fem, body));
+  *offset = fem->impl->bodies[body].nodeoffset;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetTaggedNodes - The nodes of a boundary tag with their lumped areas and outward normals (the same on every rank).
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model, set up
+. body - the body
+- tag  - the tag (x0 ... z1 or one from `FEMTagFaces()`)
+
+  Output Parameters:
++ n       - number of nodes
+. nodes   - sorted body node ids (do not free)
+. areas   - lumped nodal areas: each tagged triangle gives a third of its area to each vertex (do not free)
+- normals - 3 per node: the area-weighted mean outward unit normal of the tagged triangles at the node (do not free)
+
+  Notes:
+  A multiplier is a nodal force; the contact stress at a node is the multiplier divided by its area.
+  At a node on the rim of the tag only the tagged triangles count.
+
+  Level: intermediate
+
+.seealso: `FEMTagFaces()`, `FEMGetNodeCopies()`, `FEMAddConstraintRows()`
+@*/
+PetscErrorCode FEMGetTaggedNodes(FEM fem, PetscInt body, const char tag[], PetscInt *n, const PetscInt **nodes, const PetscReal **areas, const PetscReal **normals)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckSetUpBody(fem, body));
+  auto it = fem->impl->bodies[body].taggednodes.find(tag);
+  PetscCheck(it != fem->impl->bodies[body].taggednodes.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Body %" PetscInt_FMT " has no boundary tag \"%s\"", body, tag);
+  if (n) *n = (PetscInt)it->second.nodes.size();
+  if (nodes) *nodes = it->second.nodes.data();
+  if (areas) *areas = it->second.areas.data();
+  if (normals) *normals = it->second.normals.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetNodeCopies - The copies of a body node in the subdomains: which subdomains hold it and where its dofs are in the FETI primal vector.
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model, set up
+. body - the body
+- node - a body node on the body's boundary or on a subdomain interface
+
+  Output Parameters:
++ ncopies    - number of subdomains holding the node
+. subdomains - their global ids, increasing (do not free)
+- dofs       - for each copy, the primal index of its x dof (y, z follow); minus the subdomain's offset (`FETIGetSubdomainOffset()`) it is the local dof in K_s (do not free)
+
+  Notes:
+  Available on every rank for boundary and interface nodes (the places where contact rows live).
+
+  Level: intermediate
+
+.seealso: `FEMAddConstraintRows()`, `FEMGetTaggedNodes()`
+@*/
+PetscErrorCode FEMGetNodeCopies(FEM fem, PetscInt body, PetscInt node, PetscInt *ncopies, const PetscInt **subdomains, const PetscInt **dofs)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckSetUpBody(fem, body));
+  auto it = fem->impl->copies.find({body, node});
+  PetscCheck(it != fem->impl->copies.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+             "Node %" PetscInt_FMT " of body %" PetscInt_FMT " is neither on the body's boundary nor on a subdomain interface", node, body);
+  if (ncopies) *ncopies = (PetscInt)it->second.subdomains.size();
+  if (subdomains) *subdomains = it->second.subdomains.data();
+  if (dofs) *dofs = it->second.dofs.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetNumSubdomains - Subdomain counts.
+
+  Not Collective
+
+  Input Parameter:
+. fem - the model, set up
+
+  Output Parameters:
++ nglobal - total number of subdomains
+. nlocal  - number on this rank
+- first   - global id of this rank's first subdomain (they are contiguous)
+
+  Level: intermediate
+
+.seealso: `FEMGetSubdomainMesh()`
+@*/
+PetscErrorCode FEMGetNumSubdomains(FEM fem, PetscInt *nglobal, PetscInt *nlocal, PetscInt *first)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(fem->impl->setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  if (nglobal) *nglobal = fem->impl->nsubdomains;
+  if (nlocal) *nlocal = fem->impl->nlocal;
+  if (first) *first = fem->impl->firstlocal;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetSubdomainMesh - The mesh of one of this rank's subdomains, for output.
+
+  Not Collective
+
+  Input Parameters:
++ fem - the model, set up
+- s   - local subdomain index, 0 <= s < nlocal
+
+  Output Parameters:
++ body      - the body it belongs to
+. nnodes    - number of nodes; local node l has primal dofs offset + 3 l + c
+. nodes     - body node ids of the local nodes, increasing (do not free)
+. nelements - number of tetrahedra
+- conn      - 4 local node indices per tetrahedron, positively oriented (do not free)
+
+  Level: intermediate
+
+.seealso: `FEMGetNumSubdomains()`, `FEMGetBodyNodes()`
+@*/
+PetscErrorCode FEMGetSubdomainMesh(FEM fem, PetscInt s, PetscInt *body, PetscInt *nnodes, const PetscInt **nodes, PetscInt *nelements, const PetscInt **conn)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(fem->impl->setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  PetscCheck(s >= 0 && s < fem->impl->nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Local subdomain %" PetscInt_FMT " does not exist (this rank has %" PetscInt_FMT ")", s, fem->impl->nlocal);
+  const FEMSubdomain &sd = fem->impl->local[s];
+  if (body) *body = sd.body;
+  if (nnodes) *nnodes = (PetscInt)sd.nodes.size();
+  if (nodes) *nodes = sd.nodes.data();
+  if (nelements) *nelements = (PetscInt)sd.elements.size();
+  if (conn) *conn = sd.conn.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMAddConstraintRows - Append constraint rows (e.g. contact) to the B the model will build, in body-node terms.
+
+  Collective (the same rows on every rank)
+
+  Input Parameters:
++ fem    - the model, set up
+. nrows  - number of rows
+. kinds  - kind of each row (typically `FETI_ROW_CONTACT_NORMAL` or `FETI_ROW_CONTACT_TANGENTIAL`)
+. rowptr - nrows + 1 offsets: row r has the terms rowptr[r] <= t < rowptr[r+1]
+. body   - per term: the body
+. node   - per term: the body node (on the body's boundary)
+. comp   - per term: the displacement component 0, 1, 2
+. coef   - per term: the coefficient
+- rhs    - per row: the right-hand side c (the gap for a contact row)
+
+  Notes:
+  Row r reads sum_t coef[t] u(body[t], node[t])[comp[t]] (<= or =) rhs[r]. A node held by several
+  subdomains is addressed through its copy in the lowest subdomain (the copies are glued).
+  The rows are placed with the rank owning the lowest subdomain they touch, after that subdomain's
+  gluing and Dirichlet rows and in the order given; consecutive rows of the same call stay consecutive
+  there (so a normal and its two tangential rows form one block on one rank). `FEMGetAppendedRows()`
+  tells where each row ended up. Call before `FEMCreateFETI()`.
+
+  Level: intermediate
+
+.seealso: `FEMGetAppendedRows()`, `FEMGetNodeCopies()`, `FEMCreateFETI()`
+@*/
+PetscErrorCode FEMAddConstraintRows(FEM fem, PetscInt nrows, const FETIRowKind kinds[], const PetscInt rowptr[], const PetscInt body[], const PetscInt node[], const PetscInt comp[],
+                                    const PetscScalar coef[], const PetscScalar rhs[])
+{
+  FEM_Impl &impl = *fem->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() before FEMAddConstraintRows()");
+  for (PetscInt r = 0; r < nrows; r++) {
+    FEMAppendedRow row;
+    PetscCheck(rowptr[r + 1] > rowptr[r], PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Appended row %" PetscInt_FMT " has no term", r);
+    row.kind = kinds[r];
+    row.rhs  = rhs ? rhs[r] : 0.0;
+    for (PetscInt t = rowptr[r]; t < rowptr[r + 1]; t++) {
+      PetscCall(CheckSetUpBody(fem, body[t]));
+      PetscCheck(comp[t] >= 0 && comp[t] < 3, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Appended row %" PetscInt_FMT ": component %" PetscInt_FMT " must be 0, 1 or 2", r, comp[t]);
+      PetscCheck(impl.copies.count({body[t], node[t]}), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                 "Appended row %" PetscInt_FMT ": node %" PetscInt_FMT " of body %" PetscInt_FMT " is not on the body's boundary", r, node[t], body[t]);
+      PetscCallCXX(row.body.push_back(body[t]));
+      PetscCallCXX(row.node.push_back(node[t]));
+      PetscCallCXX(row.comp.push_back(comp[t]));
+      PetscCallCXX(row.coef.push_back(coef[t]));
+    }
+    PetscCallCXX(impl.appended.push_back(row));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetAppendedRows - Where the rows given to `FEMAddConstraintRows()` are in B (the multiplier indices).
+
+  Not Collective
+
+  Input Parameter:
+. fem - the model, after `FEMCreateFETI()`
+
+  Output Parameters:
++ n    - number of appended rows (all calls together)
+- rows - global row of B (multiplier index) of each, in the order appended (do not free)
+
+  Level: intermediate
+
+.seealso: `FEMAddConstraintRows()`
+@*/
+PetscErrorCode FEMGetAppendedRows(FEM fem, PetscInt *n, const PetscInt **rows)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(fem->impl->appendedrows.size() == fem->impl->appended.size(), PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMCreateFETI() before FEMGetAppendedRows()");
+  if (n) *n = (PetscInt)fem->impl->appendedrows.size();
+  if (rows) *rows = fem->impl->appendedrows.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The scatter from primal copies to global dofs and the inverse multiplicity, built on first use */
+static PetscErrorCode PrimalGlobalScatter(FEM fem, Vec uprimal, Vec uglobal)
+{
+  FEM_Impl &impl = *fem->impl;
+
+  PetscFunctionBegin;
+  if (impl.primaltoglobal) PetscFunctionReturn(PETSC_SUCCESS);
+  std::vector<PetscInt> from, to;
+  IS                    isfrom, isto;
+  Vec                   ones;
+  for (const FEMSubdomain &sd : impl.local) {
+    const PetscInt offset = impl.bodies[sd.body].nodeoffset;
+    for (size_t l = 0; l < sd.nodes.size(); l++)
+      for (PetscInt c = 0; c < 3; c++) {
+        PetscCallCXX(from.push_back(sd.primaloffset + 3 * (PetscInt)l + c));
+        PetscCallCXX(to.push_back(3 * (offset + sd.nodes[l]) + c));
+      }
+  }
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)from.size(), from.data(), PETSC_COPY_VALUES, &isfrom));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)to.size(), to.data(), PETSC_COPY_VALUES, &isto));
+  PetscCall(VecScatterCreate(uprimal, isfrom, uglobal, isto, &impl.primaltoglobal));
+  PetscCall(ISDestroy(&isfrom));
+  PetscCall(ISDestroy(&isto));
+  PetscCall(VecDuplicate(uglobal, &impl.inversemultiplicity));
+  PetscCall(VecDuplicate(uprimal, &ones));
+  PetscCall(VecSet(ones, 1.0));
+  PetscCall(VecSet(impl.inversemultiplicity, 0.0));
+  PetscCall(VecScatterBegin(impl.primaltoglobal, ones, impl.inversemultiplicity, ADD_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(impl.primaltoglobal, ones, impl.inversemultiplicity, ADD_VALUES, SCATTER_FORWARD));
+  PetscCall(VecReciprocal(impl.inversemultiplicity));
+  PetscCall(VecDestroy(&ones));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMPrimalToGlobal - Map a FETI primal vector (subdomain copies) to the undecomposed global vector, averaging the copies of each node.
+
+  Collective
+
+  Input Parameters:
++ fem     - the model, set up
+- uprimal - primal vector (layout of the FETI's primal vectors)
+
+  Output Parameter:
+. uglobal - vector in the layout of `FEMAssembleGlobal()`
+
+  Level: intermediate
+
+.seealso: `FEMGlobalToPrimal()`, `FEMAssembleGlobal()`, `FETIRecoverPrimal()`
+@*/
+PetscErrorCode FEMPrimalToGlobal(FEM fem, Vec uprimal, Vec uglobal)
+{
+  FEM_Impl &impl = *fem->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscValidHeaderSpecific(uprimal, VEC_CLASSID, 2);
+  PetscValidHeaderSpecific(uglobal, VEC_CLASSID, 3);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  PetscCall(PrimalGlobalScatter(fem, uprimal, uglobal));
+  PetscCall(VecSet(uglobal, 0.0));
+  PetscCall(VecScatterBegin(impl.primaltoglobal, uprimal, uglobal, ADD_VALUES, SCATTER_FORWARD));
+  PetscCall(VecScatterEnd(impl.primaltoglobal, uprimal, uglobal, ADD_VALUES, SCATTER_FORWARD));
+  PetscCall(VecPointwiseMult(uglobal, uglobal, impl.inversemultiplicity));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGlobalToPrimal - Copy an undecomposed global vector to every subdomain copy of each node (a continuous field in FETI primal form).
+
+  Collective
+
+  Input Parameters:
++ fem     - the model, set up
+- uglobal - vector in the layout of `FEMAssembleGlobal()`
+
+  Output Parameter:
+. uprimal - primal vector (layout of the FETI's primal vectors)
+
+  Level: intermediate
+
+.seealso: `FEMPrimalToGlobal()`
+@*/
+PetscErrorCode FEMGlobalToPrimal(FEM fem, Vec uglobal, Vec uprimal)
+{
+  FEM_Impl &impl = *fem->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscValidHeaderSpecific(uglobal, VEC_CLASSID, 2);
+  PetscValidHeaderSpecific(uprimal, VEC_CLASSID, 3);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  PetscCall(PrimalGlobalScatter(fem, uprimal, uglobal));
+  PetscCall(VecScatterBegin(impl.primaltoglobal, uglobal, uprimal, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(impl.primaltoglobal, uglobal, uprimal, INSERT_VALUES, SCATTER_REVERSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetGlobalDirichletDofs - The Dirichlet dofs in the undecomposed numbering of `FEMAssembleGlobal()`, owned by this rank.
+
+  Collective
+
+  Input Parameter:
+. fem - the model, set up
+
+  Output Parameter:
+. is - global dof indices (destroy it)
+
+  Level: intermediate
+
+.seealso: `FEMAssembleGlobal()`, `FEMSetDirichlet()`
+@*/
+PetscErrorCode FEMGetGlobalDirichletDofs(FEM fem, IS *is)
+{
+  FEM_Impl             &impl        = *fem->impl;
+  PetscInt              nlocalnodes = PETSC_DECIDE, nglobal = impl.nglobalnodes, last;
+  std::vector<PetscInt> dofs;
+  MPI_Comm              comm = PetscObjectComm((PetscObject)fem);
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  PetscCall(PetscSplitOwnership(comm, &nlocalnodes, &nglobal));
+  PetscCallMPI(MPI_Scan(&nlocalnodes, &last, 1, MPIU_INT, MPI_SUM, comm));
+  const PetscInt first = last - nlocalnodes;
+  for (const FEMBody &b : impl.bodies) {
+    const PetscInt lo = std::max(first, b.nodeoffset), hi = std::min(last, b.nodeoffset + b.nnodes);
+    for (PetscInt g = lo; g < hi; g++)
+      for (PetscInt c = 0; c < 3; c++)
+        if (b.dirichletmask[g - b.nodeoffset] & (1u << c)) PetscCallCXX(dofs.push_back(3 * g + c));
+  }
+  PetscCall(ISCreateGeneral(comm, (PetscInt)dofs.size(), dofs.data(), PETSC_COPY_VALUES, is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

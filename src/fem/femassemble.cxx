@@ -1,0 +1,266 @@
+/* Assembly of subdomain stiffness matrices and loads, and of the undecomposed global system
+   (for comparison with direct and multigrid solvers). */
+#include <conefeti/private/femimpl.h>
+
+#include <algorithm>
+
+static void ElementCoordinates(const FEMBody &b, const PetscInt v[4], PetscReal X[12])
+{
+  for (PetscInt a = 0; a < 4; a++)
+    for (PetscInt d = 0; d < 3; d++) X[3 * a + d] = b.coords[3 * v[a] + d];
+}
+
+/* Loads of one element (volume force) and of the boundary triangles it owns with a traction, in element dof order */
+static PetscErrorCode ElementRHS(const FEMBody &b, PetscInt e, const PetscInt v[4], const std::vector<std::vector<PetscInt>> &tractiontris, PetscReal fe[12], PetscBool *nonzero)
+{
+  PetscReal X[12];
+
+  PetscFunctionBegin;
+  *nonzero = PETSC_FALSE;
+  for (PetscInt i = 0; i < 12; i++) fe[i] = 0;
+  ElementCoordinates(b, v, X);
+  if (b.bodyforce) {
+    PetscCall(FEMElementLoad(X, b.bodyforce, b.bodyforcectx, fe));
+    *nonzero = PETSC_TRUE;
+  }
+  for (size_t ts = 0; ts < b.tractions.size(); ts++) {
+    const FEMTractionSpec &spec = b.tractions[ts];
+    for (PetscInt t : tractiontris[ts]) {
+      const FEMBoundaryTriangle &tri = b.boundary[t];
+      if (tri.element != e) continue;
+      PetscReal Xt[9], ft[9];
+      for (PetscInt a = 0; a < 3; a++)
+        for (PetscInt d = 0; d < 3; d++) Xt[3 * a + d] = b.coords[3 * tri.v[a] + d];
+      PetscCall(FEMTriangleLoad(Xt, tri.area, spec.field, spec.ctx, spec.value.data(), ft));
+      for (PetscInt a = 0; a < 3; a++) {
+        const PetscInt loc = (PetscInt)(std::find(v, v + 4, tri.v[a]) - v);
+        for (PetscInt d = 0; d < 3; d++) fe[3 * loc + d] += ft[3 * a + d];
+      }
+      *nonzero = PETSC_TRUE;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Boundary triangles with tractions, grouped by the element that owns them, per traction spec */
+static PetscErrorCode TractionTriangles(const FEMBody &b, std::vector<std::vector<PetscInt>> &tris, std::vector<PetscInt> &elements)
+{
+  PetscFunctionBegin;
+  tris.assign(b.tractions.size(), {});
+  elements.clear();
+  for (size_t ts = 0; ts < b.tractions.size(); ts++) {
+    tris[ts] = b.tags.at(b.tractions[ts].name);
+    for (PetscInt t : tris[ts]) PetscCallCXX(elements.push_back(b.boundary[t].element));
+  }
+  std::sort(elements.begin(), elements.end());
+  elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* K_s (SEQSBAIJ or SEQAIJ, block size 3) and f_s of one subdomain, without any boundary condition */
+PetscErrorCode FEMAssembleSubdomain(FEM fem, const FEMSubdomain &sd, Mat *K, Vec *f)
+{
+  const FEMBody                     &b  = fem->impl->bodies[sd.body];
+  const PetscInt                     nn = (PetscInt)sd.nodes.size();
+  std::vector<std::vector<PetscInt>> adj(nn), tractiontris;
+  std::vector<PetscInt>              nnz(nn), tractionelements;
+  PetscScalar                       *fa;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(FEM_Assembly, fem, 0, 0, 0));
+  /* block adjacency: the upper triangle for SBAIJ, all for AIJ */
+  for (size_t e = 0; e < sd.elements.size(); e++)
+    for (PetscInt a = 0; a < 4; a++)
+      for (PetscInt c = 0; c < 4; c++) {
+        const PetscInt r = sd.conn[4 * e + a], col = sd.conn[4 * e + c];
+        if (!fem->impl->sbaij || col >= r) PetscCallCXX(adj[r].push_back(col));
+      }
+  for (PetscInt r = 0; r < nn; r++) {
+    std::sort(adj[r].begin(), adj[r].end());
+    nnz[r] = (PetscInt)(std::unique(adj[r].begin(), adj[r].end()) - adj[r].begin());
+  }
+  PetscCallCXX(adj.clear());
+  PetscCall(MatCreate(PETSC_COMM_SELF, K));
+  PetscCall(MatSetSizes(*K, 3 * nn, 3 * nn, 3 * nn, 3 * nn));
+  PetscCall(MatSetBlockSize(*K, 3));
+  PetscCall(MatSetType(*K, fem->impl->sbaij ? MATSEQSBAIJ : MATSEQAIJ));
+  PetscCall(MatXAIJSetPreallocation(*K, 3, nnz.data(), NULL, fem->impl->sbaij ? nnz.data() : NULL, NULL));
+  if (fem->impl->sbaij) PetscCall(MatSetOption(*K, MAT_IGNORE_LOWER_TRIANGULAR, PETSC_TRUE));
+  PetscCall(MatSetOption(*K, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(*K, MAT_SPD, PETSC_FALSE));
+
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * nn, f));
+  PetscCall(VecSetBlockSize(*f, 3));
+  PetscCall(TractionTriangles(b, tractiontris, tractionelements));
+  PetscCall(VecGetArray(*f, &fa));
+  for (size_t e = 0; e < sd.elements.size(); e++) {
+    PetscInt  v[4], loc[4];
+    PetscReal X[12], Ke[144], fe[12];
+    PetscBool loaded;
+    FEMBoxElementNodes(b, sd.elements[e], v);
+    ElementCoordinates(b, v, X);
+    PetscCall(FEMElementStiffness(X, b.E, b.nu, Ke, NULL));
+    for (PetscInt a = 0; a < 4; a++) loc[a] = sd.conn[4 * e + a];
+    PetscCall(MatSetValuesBlocked(*K, 4, loc, 4, loc, Ke, ADD_VALUES));
+    if (!b.bodyforce && !std::binary_search(tractionelements.begin(), tractionelements.end(), sd.elements[e])) continue;
+    PetscCall(ElementRHS(b, sd.elements[e], v, tractiontris, fe, &loaded));
+    for (PetscInt a = 0; a < 4; a++)
+      for (PetscInt d = 0; d < 3; d++) fa[3 * loc[a] + d] += fe[3 * a + d];
+  }
+  PetscCall(VecRestoreArray(*f, &fa));
+  PetscCall(MatAssemblyBegin(*K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*K, MAT_FINAL_ASSEMBLY));
+  PetscCall(PetscLogEventEnd(FEM_Assembly, fem, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Neighbours of a node in the Kuhn mesh: along the axes, the positive face diagonals and the main diagonal, both ways */
+static const PetscInt KuhnNeighbour[15][3] = {{0, 0, 0},   {1, 0, 0}, {-1, 0, 0},  {0, 1, 0}, {0, -1, 0},  {0, 0, 1}, {0, 0, -1},  {1, 1, 0},
+                                              {-1, -1, 0}, {1, 0, 1}, {-1, 0, -1}, {0, 1, 1}, {0, -1, -1}, {1, 1, 1}, {-1, -1, -1}};
+
+/*@C
+  FEMAssembleGlobal - Assemble the undecomposed global stiffness matrix and load vector of all bodies,
+  with the Dirichlet conditions imposed by identity rows and columns.
+
+  Collective
+
+  Input Parameter:
+. fem - the model, set up
+
+  Output Parameters:
++ K - MPIAIJ matrix of size 3 x (number of nodes of all bodies), block size 3, marked symmetric positive definite
+- f - the load vector (zero at Dirichlet dofs)
+
+  Notes:
+  Global dof 3 (first node of body b + body node) + component, bodies concatenated (see `FEMGetBodyNodeOffset()`).
+  This is the system the FETI solution must reproduce; it serves for tests and for comparisons with
+  single-domain solvers (CG + GAMG with `FEMCreateGlobalCoordinates()` for the near-null space, or Cholesky).
+  The identity rows carry the mean diagonal entry so that they do not spoil the conditioning.
+  Bodies are not connected to each other: each must have enough Dirichlet conditions to be fixed.
+
+  Level: intermediate
+
+.seealso: `FEMPrimalToGlobal()`, `FEMCreateGlobalCoordinates()`, `FEMCreateFETI()`
+@*/
+PetscErrorCode FEMAssembleGlobal(FEM fem, Mat *K, Vec *f)
+{
+  FEM_Impl             &impl        = *fem->impl;
+  PetscInt              nlocalnodes = PETSC_DECIDE, nglobal = impl.nglobalnodes, first, last;
+  std::vector<PetscInt> dnnz, onnz, zero;
+  MPI_Comm              comm = PetscObjectComm((PetscObject)fem);
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FEMSetUp() before FEMAssembleGlobal()");
+  PetscCall(PetscLogEventBegin(FEM_Assembly, fem, 0, 0, 0));
+  PetscCall(PetscSplitOwnership(comm, &nlocalnodes, &nglobal));
+  PetscCallMPI(MPI_Scan(&nlocalnodes, &last, 1, MPIU_INT, MPI_SUM, comm));
+  first = last - nlocalnodes;
+  PetscCallCXX(dnnz.assign(nlocalnodes, 0));
+  PetscCallCXX(onnz.assign(nlocalnodes, 0));
+  for (const FEMBody &b : impl.bodies) {
+    const PetscInt lo = std::max(first, b.nodeoffset), hi = std::min(last, b.nodeoffset + b.nnodes);
+    for (PetscInt g = lo; g < hi; g++) {
+      PetscInt ijk[3];
+      FEMBoxNodeIJK(b, g - b.nodeoffset, ijk);
+      for (const auto &o : KuhnNeighbour) {
+        const PetscInt i = ijk[0] + o[0], j = ijk[1] + o[1], k = ijk[2] + o[2];
+        if (i < 0 || j < 0 || k < 0 || i > b.cells[0] || j > b.cells[1] || k > b.cells[2]) continue;
+        const PetscInt col = b.nodeoffset + i + (b.cells[0] + 1) * (j + (b.cells[1] + 1) * k);
+        if (col >= first && col < last) dnnz[g - first]++;
+        else onnz[g - first]++;
+      }
+    }
+  }
+  PetscCall(MatCreate(comm, K));
+  PetscCall(MatSetSizes(*K, 3 * nlocalnodes, 3 * nlocalnodes, 3 * nglobal, 3 * nglobal));
+  PetscCall(MatSetBlockSize(*K, 3));
+  PetscCall(MatSetType(*K, MATAIJ));
+  PetscCall(MatXAIJSetPreallocation(*K, 3, dnnz.data(), onnz.data(), NULL, NULL));
+  PetscCall(MatCreateVecs(*K, NULL, f));
+
+  for (const FEMSubdomain &sd : impl.local) {
+    const FEMBody                     &b = impl.bodies[sd.body];
+    std::vector<std::vector<PetscInt>> tractiontris;
+    std::vector<PetscInt>              tractionelements;
+    PetscCall(TractionTriangles(b, tractiontris, tractionelements));
+    for (PetscInt e : sd.elements) {
+      PetscInt  v[4], rows[4];
+      PetscReal X[12], Ke[144], fe[12];
+      PetscBool loaded;
+      FEMBoxElementNodes(b, e, v);
+      ElementCoordinates(b, v, X);
+      PetscCall(FEMElementStiffness(X, b.E, b.nu, Ke, NULL));
+      for (PetscInt a = 0; a < 4; a++) rows[a] = b.nodeoffset + v[a];
+      PetscCall(MatSetValuesBlocked(*K, 4, rows, 4, rows, Ke, ADD_VALUES));
+      if (!b.bodyforce && !std::binary_search(tractionelements.begin(), tractionelements.end(), e)) continue;
+      PetscCall(ElementRHS(b, e, v, tractiontris, fe, &loaded));
+      PetscCall(VecSetValuesBlocked(*f, 4, rows, fe, ADD_VALUES));
+    }
+  }
+  PetscCall(MatAssemblyBegin(*K, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*K, MAT_FINAL_ASSEMBLY));
+  PetscCall(VecAssemblyBegin(*f));
+  PetscCall(VecAssemblyEnd(*f));
+
+  /* Dirichlet: identity rows and columns scaled by the mean diagonal entry */
+  Vec       diag;
+  PetscReal sum;
+  PetscCall(MatCreateVecs(*K, &diag, NULL));
+  PetscCall(MatGetDiagonal(*K, diag));
+  PetscCall(VecSum(diag, &sum));
+  PetscCall(VecDestroy(&diag));
+  for (const FEMBody &b : impl.bodies) {
+    const PetscInt lo = std::max(first, b.nodeoffset), hi = std::min(last, b.nodeoffset + b.nnodes);
+    for (PetscInt g = lo; g < hi; g++)
+      for (PetscInt c = 0; c < 3; c++)
+        if (b.dirichletmask[g - b.nodeoffset] & (1u << c)) PetscCallCXX(zero.push_back(3 * g + c));
+  }
+  PetscCall(MatZeroRowsColumns(*K, (PetscInt)zero.size(), zero.data(), sum / (3 * nglobal), NULL, NULL));
+  PetscCall(VecSetValues(*f, (PetscInt)zero.size(), zero.data(), std::vector<PetscScalar>(zero.size(), 0.0).data(), INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(*f));
+  PetscCall(VecAssemblyEnd(*f));
+  PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
+  PetscCall(PetscLogEventEnd(FEM_Assembly, fem, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMCreateGlobalCoordinates - The node coordinates in the layout of `FEMAssembleGlobal()`'s vectors.
+
+  Collective
+
+  Input Parameter:
+. fem - the model, set up
+
+  Output Parameter:
+. coords - vector with 3 entries (x, y, z) per node, block size 3
+
+  Notes:
+  Pass it to `MatNullSpaceCreateRigidBody()` to give GAMG the rigid-body near-null space.
+
+  Level: intermediate
+
+.seealso: `FEMAssembleGlobal()`
+@*/
+PetscErrorCode FEMCreateGlobalCoordinates(FEM fem, Vec *coords)
+{
+  FEM_Impl    &impl = *fem->impl;
+  PetscInt     lo, hi, nlocalnodes = PETSC_DECIDE, nglobal = impl.nglobalnodes;
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() before FEMCreateGlobalCoordinates()");
+  PetscCall(PetscSplitOwnership(PetscObjectComm((PetscObject)fem), &nlocalnodes, &nglobal)); /* the layout of FEMAssembleGlobal() */
+  PetscCall(VecCreate(PetscObjectComm((PetscObject)fem), coords));
+  PetscCall(VecSetSizes(*coords, 3 * nlocalnodes, 3 * nglobal));
+  PetscCall(VecSetBlockSize(*coords, 3));
+  PetscCall(VecSetFromOptions(*coords));
+  PetscCall(VecGetOwnershipRange(*coords, &lo, &hi));
+  PetscCall(VecGetArray(*coords, &a));
+  for (const FEMBody &b : impl.bodies)
+    for (PetscInt d = std::max(lo, 3 * b.nodeoffset); d < std::min(hi, 3 * (b.nodeoffset + b.nnodes)); d++) a[d - lo] = b.coords[d - 3 * b.nodeoffset];
+  PetscCall(VecRestoreArray(*coords, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

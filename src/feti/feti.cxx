@@ -1,0 +1,701 @@
+/* The FETI object: creation, input, options, viewing, queries. */
+#include <conefeti/private/fetiimpl.h>
+
+#include <algorithm>
+
+const char *const FETIRowKinds[] = {"gluing", "dirichlet", "contact_normal", "contact_tangential", "FETIRowKind", "FETI_ROW_", NULL};
+
+static PetscErrorCode FETIReset(FETI feti)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  for (FETISubdomain &sd : impl.sub) PetscCall(FETISubdomainDestroy(sd));
+  impl.sub.clear();
+  PetscCall(MatDestroy(&impl.B));
+  PetscCall(VecDestroy(&impl.c));
+  PetscCall(VecDestroy(&impl.f));
+  PetscCall(MatDestroy(&impl.R));
+  PetscCall(MatDestroy(&impl.Gt));
+  PetscCall(MatDestroy(&impl.GGt));
+  PetscCall(KSPDestroy(&impl.coarse));
+  PetscCall(MatDestroy(&impl.F));
+  PetscCall(MatDestroy(&impl.G));
+  PetscCall(MatDestroy(&impl.P));
+  PetscCall(MatDestroy(&impl.Q));
+  PetscCall(MatDestroy(&impl.Kplus));
+  PetscCall(MatDestroy(&impl.PFP));
+  PetscCall(VecDestroy(&impl.h));
+  PetscCall(VecDestroy(&impl.e));
+  PetscCall(VecDestroy(&impl.lambdatilde));
+  PetscCall(VecDestroy(&impl.boundarymask));
+  PetscCall(VecDestroy(&impl.wp1));
+  PetscCall(VecDestroy(&impl.wp2));
+  PetscCall(VecDestroy(&impl.wd1));
+  PetscCall(VecDestroy(&impl.wd2));
+  PetscCall(VecDestroy(&impl.wc1));
+  PetscCall(VecDestroy(&impl.wc2));
+  PetscCall(VecDestroy(&impl.rhs));
+  PetscCall(VecDestroy(&impl.residual));
+  PetscCall(VecDestroy(&impl.alpha));
+  impl.setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETICreate - Create an empty FETI problem.
+
+  Collective
+
+  Input Parameter:
+. comm - MPI communicator; every rank must own at least one subdomain
+
+  Output Parameter:
+. feti - the FETI problem
+
+  Notes:
+  Typical use:
+.vb
+  FETICreate(comm, &feti);
+  FETISetSubdomains(feti, nlocal, K, f);          // per local subdomain: K_s, f_s
+  FETISetSubdomainCoordinates(feti, s, coords);   // or FETISetSubdomainKernel()
+  FETISetConstraints(feti, B, c, kinds);
+  FETISetFromOptions(feti);
+  FETISetUp(feti);
+  FETISolveLinear(feti, lambda, u);               // or hand FETIGetOperators() to a QP solver
+.ve
+
+  Level: beginner
+
+.seealso: `FETISetSubdomains()`, `FETISetConstraints()`, `FETISetUp()`, `FETIDestroy()`, `FEMCreateFETI()`
+@*/
+PetscErrorCode FETICreate(MPI_Comm comm, FETI *feti)
+{
+  FETI f;
+
+  PetscFunctionBegin;
+  PetscValidPointer(feti, 2);
+  PetscCall(ConeFETIInitializePackage());
+  PetscCall(PetscHeaderCreate(f, FETI_CLASSID, "FETI", "FETI dual problem", "FETI", comm, FETIDestroy, FETIView));
+  PetscCallCXX(f->impl = new FETI_Impl());
+  PetscCall(PetscStrncpy(f->impl->subsolver, MATSOLVERCHOLMOD, sizeof(f->impl->subsolver)));
+  *feti = f;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIDestroy - Destroy a FETI problem.
+
+  Collective
+
+  Input Parameter:
+. feti - the FETI problem
+
+  Level: beginner
+
+.seealso: `FETICreate()`
+@*/
+PetscErrorCode FETIDestroy(FETI *feti)
+{
+  PetscFunctionBegin;
+  if (!feti || !*feti) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscValidHeaderSpecific(*feti, FETI_CLASSID, 1);
+  if (--((PetscObject)(*feti))->refct > 0) {
+    *feti = NULL;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(FETIReset(*feti));
+  PetscCall(KSPDestroy(&(*feti)->impl->ksp));
+  PetscCallCXX(delete (*feti)->impl);
+  PetscCall(PetscHeaderDestroy(feti));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetSubdomains - Give the subdomains owned by this rank: stiffness matrices and loads.
+
+  Collective
+
+  Input Parameters:
++ feti   - the FETI problem
+. nlocal - number of subdomains on this rank (>= 1)
+. K      - nlocal sequential matrices (SEQAIJ or SEQSBAIJ), square, block size 3, dofs interleaved x, y, z per node, without Dirichlet conditions
+- f      - nlocal sequential load vectors of matching size (NULL entries or a NULL array: zero load)
+
+  Notes:
+  Subdomains are numbered globally rank by rank; the primal vector is their concatenation in that
+  order, so this rank's subdomains occupy a contiguous range of it (the column layout of B).
+  The FETI object keeps a reference to each K_s. If the caller destroys its own reference before
+  `FETISetUp()`, K_s is regularized in place and no copy is made; otherwise a copy is regularized.
+  Do not change K_s after this call.
+
+  Level: beginner
+
+.seealso: `FETISetSubdomainCoordinates()`, `FETISetSubdomainKernel()`, `FETISetSubdomainDirichletDofs()`, `FETISetConstraints()`
+@*/
+PetscErrorCode FETISetSubdomains(FETI feti, PetscInt nlocal, const Mat K[], const Vec f[])
+{
+  FETI_Impl  &impl = *feti->impl;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
+  PetscMPIInt rank;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCheck(nlocal >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "FETISetSubdomains(): negative subdomain count %" PetscInt_FMT, nlocal);
+  PetscCall(FETIReset(feti));
+  PetscCallCXX(impl.sub.resize(nlocal));
+  for (PetscInt s = 0; s < nlocal; s++) {
+    FETISubdomain &sd = impl.sub[s];
+    PetscInt       m, n, bs;
+    PetscBool      ok;
+    MPI_Comm       kcomm;
+    PetscValidHeaderSpecific(K[s], MAT_CLASSID, 3);
+    PetscCall(PetscObjectGetComm((PetscObject)K[s], &kcomm));
+    PetscCallMPI(MPI_Comm_size(kcomm, &m));
+    PetscCheck(m == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FETISetSubdomains(): K[%" PetscInt_FMT "] on rank %d must be sequential (PETSC_COMM_SELF)", s, rank);
+    PetscCall(MatGetSize(K[s], &m, &n));
+    PetscCheck(m == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomains(): K[%" PetscInt_FMT "] on rank %d is %" PetscInt_FMT " x %" PetscInt_FMT ", not square", s, rank, m, n);
+    PetscCall(MatGetBlockSize(K[s], &bs));
+    PetscCheck(bs == 3, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+               "FETISetSubdomains(): K[%" PetscInt_FMT "] on rank %d has block size %" PetscInt_FMT "; 3D elasticity needs block size 3 (MatSetBlockSize(K, 3), dofs x,y,z per node)", s, rank, bs);
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)K[s], &ok, MATSEQAIJ, MATSEQSBAIJ, MATSEQBAIJ, ""));
+    PetscCheck(ok, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FETISetSubdomains(): K[%" PetscInt_FMT "] on rank %d has type %s; use MATSEQAIJ or MATSEQSBAIJ", s, rank, ((PetscObject)K[s])->type_name);
+    PetscCall(PetscObjectReference((PetscObject)K[s]));
+    sd.K = K[s];
+    sd.n = m;
+    if (f && f[s]) {
+      PetscInt nf;
+      PetscCall(VecGetSize(f[s], &nf));
+      PetscCheck(nf == m, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomains(): f[%" PetscInt_FMT "] on rank %d has %" PetscInt_FMT " entries but K has %" PetscInt_FMT " rows", s, rank, nf, m);
+      PetscCall(PetscObjectReference((PetscObject)f[s]));
+      sd.f = f[s];
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CheckLocal(FETI feti, PetscInt s)
+{
+  PetscFunctionBegin;
+  PetscCheck(s >= 0 && s < (PetscInt)feti->impl->sub.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+             "Local subdomain %" PetscInt_FMT " does not exist (this rank has %d; call FETISetSubdomains() first)", s, (int)feti->impl->sub.size());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetSubdomainCoordinates - Give the node coordinates of a subdomain, from which its six rigid-body modes are computed.
+
+  Not Collective
+
+  Input Parameters:
++ feti   - the FETI problem
+. s      - local subdomain index
+- coords - sequential vector, 3 entries (x, y, z) per node in the node order of K_s
+
+  Notes:
+  The coordinates also place the fixing nodes of the generalized inverse far apart.
+
+  Level: beginner
+
+.seealso: `FETISetSubdomainKernel()`, `FETISetSubdomains()`
+@*/
+PetscErrorCode FETISetSubdomainCoordinates(FETI feti, PetscInt s, Vec coords)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckLocal(feti, s));
+  PetscCall(PetscObjectReference((PetscObject)coords));
+  PetscCall(VecDestroy(&feti->impl->sub[s].coords));
+  feti->impl->sub[s].coords = coords;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetSubdomainKernel - Give a basis of the null space of K_s instead of coordinates.
+
+  Not Collective
+
+  Input Parameters:
++ feti - the FETI problem
+. s    - local subdomain index
+- R    - sequential matrix n_s x k (any type convertible to MATSEQDENSE); k = 0 means K_s is nonsingular
+
+  Notes:
+  The columns are orthonormalized. With Dirichlet dofs kept in the primal, only the combinations
+  vanishing on them are kept. The basis is checked against K_s (-feti_check).
+
+  Level: intermediate
+
+.seealso: `FETISetSubdomainCoordinates()`, `FETIGetSubdomainKernel()`
+@*/
+PetscErrorCode FETISetSubdomainKernel(FETI feti, PetscInt s, Mat R)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckLocal(feti, s));
+  PetscCall(PetscObjectReference((PetscObject)R));
+  PetscCall(MatDestroy(&feti->impl->sub[s].Ruser));
+  feti->impl->sub[s].Ruser = R;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetSubdomainDirichletDofs - Keep u = 0 on some dofs of a subdomain in the primal space (FETI with Dirichlet conditions kept in the primal).
+
+  Not Collective
+
+  Input Parameters:
++ feti - the FETI problem
+. s    - local subdomain index
+- is   - local dof indices (0 <= i < n_s) where u = 0
+
+  Notes:
+  These dofs are removed from the subdomain space: K+ and R vanish there, K_s needs no modification,
+  B's entries in these columns are ignored, and no gluing rows are needed at these dofs.
+  The kernel of K_s becomes the rigid modes vanishing on them: none for a subdomain clamped on a face,
+  one rotation for a subdomain touching them along an edge, three for a single node; it is computed,
+  not assumed.
+
+  Level: beginner
+
+.seealso: `FETISetSubdomains()`, `FEMSetDirichletMode()`
+@*/
+PetscErrorCode FETISetSubdomainDirichletDofs(FETI feti, PetscInt s, IS is)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckLocal(feti, s));
+  PetscCall(PetscObjectReference((PetscObject)is));
+  PetscCall(ISDestroy(&feti->impl->sub[s].dirichlet));
+  feti->impl->sub[s].dirichlet = is;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetConstraints - Give the constraint matrix B, the right-hand side c of B u = c, and the kind of each row.
+
+  Collective
+
+  Input Parameters:
++ feti  - the FETI problem
+. B     - parallel AIJ matrix; rows are the multipliers (any row distribution), columns the primal vector
+          with the column layout of the subdomains (local columns = this rank's subdomain dofs)
+. c     - vector with B's row layout (NULL: zero)
+- kinds - the kind of each locally owned row of B
+
+  Notes:
+  Rows of kind gluing and Dirichlet are equalities. Orthonormal rows (as `FEMCreateFETI()` makes)
+  give the best conditioned F.
+
+  Level: beginner
+
+.seealso: `FETIRowKind`, `FETISetSubdomains()`, `FETIGetConstraints()`
+@*/
+PetscErrorCode FETISetConstraints(FETI feti, Mat B, Vec c, const FETIRowKind kinds[])
+{
+  FETI_Impl &impl = *feti->impl;
+  PetscInt   m;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidHeaderSpecific(B, MAT_CLASSID, 2);
+  PetscCall(MatGetLocalSize(B, &m, NULL));
+  PetscCheck(m == 0 || kinds, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "FETISetConstraints(): give the kind of each of the %" PetscInt_FMT " local rows of B", m);
+  PetscCall(PetscObjectReference((PetscObject)B));
+  PetscCall(MatDestroy(&impl.B));
+  impl.B = B;
+  PetscCall(VecDestroy(&impl.c));
+  if (c) {
+    PetscInt mc;
+    PetscCall(VecGetLocalSize(c, &mc));
+    PetscCheck(mc == m, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetConstraints(): c has %" PetscInt_FMT " local entries but B has %" PetscInt_FMT " local rows", mc, m);
+    PetscCall(PetscObjectReference((PetscObject)c));
+    impl.c = c;
+  }
+  PetscCallCXX(impl.kinds.assign(kinds, kinds + m));
+  for (PetscInt r = 0; r < m; r++)
+    PetscCheck(kinds[r] >= FETI_ROW_GLUING && kinds[r] <= FETI_ROW_CONTACT_TANGENTIAL, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "FETISetConstraints(): local row %" PetscInt_FMT " has an unknown kind %d", r, (int)kinds[r]);
+  impl.setupcalled = PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetOptionsPrefix - Set the prefix of the FETI options (-<prefix>feti_...), of its KSP (-<prefix>feti_ksp_...),
+  subdomain solvers (-<prefix>feti_sub_...) and coarse solver (-<prefix>feti_coarse_...).
+
+  Logically Collective
+
+  Input Parameters:
++ feti   - the FETI problem
+- prefix - the prefix
+
+  Level: intermediate
+
+.seealso: `FETISetFromOptions()`
+@*/
+PetscErrorCode FETISetOptionsPrefix(FETI feti, const char prefix[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)feti, prefix));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIAppendOptionsPrefix - Append to the prefix of the FETI options.
+
+  Logically Collective
+
+  Input Parameters:
++ feti   - the FETI problem
+- prefix - the text to append
+
+  Level: intermediate
+
+.seealso: `FETISetOptionsPrefix()`
+@*/
+PetscErrorCode FETIAppendOptionsPrefix(FETI feti, const char prefix[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(PetscObjectAppendOptionsPrefix((PetscObject)feti, prefix));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The KSP of FETISolveLinear(): projected CG on P F P with a FETI preconditioner applied as P M^-1 P */
+static PetscErrorCode FETICreateKSP(FETI feti)
+{
+  FETI_Impl  &impl = *feti->impl;
+  const char *prefix;
+  char        kspprefix[256];
+  PC          pc;
+
+  PetscFunctionBegin;
+  if (impl.ksp) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(KSPCreate(PetscObjectComm((PetscObject)feti), &impl.ksp));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
+  PetscCall(PetscSNPrintf(kspprefix, sizeof(kspprefix), "%sfeti_", prefix ? prefix : ""));
+  PetscCall(KSPSetOptionsPrefix(impl.ksp, kspprefix));
+  PetscCall(KSPSetType(impl.ksp, KSPCG));
+  PetscCall(KSPSetNormType(impl.ksp, KSP_NORM_UNPRECONDITIONED));
+  PetscCall(KSPSetTolerances(impl.ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000));
+  PetscCall(KSPGetPC(impl.ksp, &pc));
+  PetscCall(PCSetType(pc, PCFETIDIRICHLET));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetFromOptions - Read the FETI options.
+
+  Collective
+
+  Input Parameter:
+. feti - the FETI problem
+
+  Options Database Keys:
++ -feti_kernel_tol <1e-8>      - a rigid mode counts as vanishing on the Dirichlet dofs when its RMS there is below this times its RMS overall
+. -feti_check <true>           - check K_s R_s = 0 and K_s K_s+ K_s = K_s at setup (one solve per subdomain)
+. -feti_check_tol <1e-6>       - relative tolerance of these checks
+. -feti_fixing_nodes <8>       - well-separated candidate nodes among which the fixing dofs are pivoted
+. -feti_view                   - view the problem after setup
+. -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of `FETISolveLinear()` (default CG, rtol 1e-8, unpreconditioned norm)
+. -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
+. -feti_sub_pc_factor_mat_solver_type <cholmod,mumps,petsc> - the sparse Cholesky of the subdomains
+- -feti_coarse_ksp_type, -feti_coarse_pc_type ... - the coarse solver of G G' (default: direct, redundant on every rank)
+
+  Level: beginner
+
+.seealso: `FETISetUp()`, `FETISolveLinear()`
+@*/
+PetscErrorCode FETISetFromOptions(FETI feti)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscObjectOptionsBegin((PetscObject)feti);
+  PetscCall(PetscOptionsReal("-feti_kernel_tol", "Relative RMS below which a rigid mode vanishes on the Dirichlet dofs", "FETISetSubdomainDirichletDofs", impl.kerneltol, &impl.kerneltol, NULL));
+  PetscCall(PetscOptionsBool("-feti_check", "Check K R = 0 and K K+ K = K at setup", "FETISetUp", impl.check, &impl.check, NULL));
+  PetscCall(PetscOptionsReal("-feti_check_tol", "Relative tolerance of the setup checks", "FETISetUp", impl.checktol, &impl.checktol, NULL));
+  PetscCall(PetscOptionsInt("-feti_fixing_nodes", "Candidate nodes for the fixing dofs of K+", "FETISetUp", impl.nfixingcandidates, &impl.nfixingcandidates, NULL));
+  PetscCall(PetscOptionsName("-feti_view", "View the FETI problem after setup", "FETIView", NULL));
+  PetscOptionsEnd();
+  PetscCheck(impl.kerneltol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_kernel_tol %g must be positive", (double)impl.kerneltol);
+  PetscCheck(impl.checktol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_check_tol %g must be positive", (double)impl.checktol);
+  PetscCheck(impl.nfixingcandidates >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_fixing_nodes %" PetscInt_FMT " must be non-negative", impl.nfixingcandidates);
+  PetscCall(FETICreateKSP(feti));
+  PetscCall(KSPSetFromOptions(impl.ksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetKSP - The KSP that `FETISolveLinear()` uses (prefix feti_).
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem
+
+  Output Parameter:
+. ksp - the KSP (do not destroy)
+
+  Level: intermediate
+
+.seealso: `FETISolveLinear()`
+@*/
+PetscErrorCode FETIGetKSP(FETI feti, KSP *ksp)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(FETICreateKSP(feti));
+  *ksp = feti->impl->ksp;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIView - Print the sizes of the FETI problem: subdomains, primal, dual and coarse dimensions, kernel dimensions, solvers.
+
+  Collective
+
+  Input Parameters:
++ feti   - the FETI problem
+- viewer - an ASCII viewer (NULL: stdout)
+
+  Options Database Key:
+. -feti_view - view after `FETISetUp()`
+
+  Level: beginner
+
+.seealso: `FETISetUp()`
+@*/
+PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
+{
+  FETI_Impl &impl = *feti->impl;
+  PetscBool  ascii;
+  MPI_Comm   comm = PetscObjectComm((PetscObject)feti);
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(comm, &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)feti, viewer));
+  PetscCall(PetscViewerASCIIPushTab(viewer));
+  if (!impl.setupcalled) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "not set up\n"));
+  } else {
+    PetscInt nd, counts[4] = {0, 0, 0, 0}, kmin = PETSC_MAX_INT, kmax = 0, nmin = PETSC_MAX_INT, nmax = 0, removed = 0;
+    for (FETIRowKind k : impl.kinds) counts[k]++;
+    for (const FETISubdomain &sd : impl.sub) {
+      kmin = std::min(kmin, sd.nkernel);
+      kmax = std::max(kmax, sd.nkernel);
+      nmin = std::min(nmin, sd.n);
+      nmax = std::max(nmax, sd.n);
+      removed += (PetscInt)sd.fixing.size();
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 4, MPIU_INT, MPI_SUM, comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &kmin, 1, MPIU_INT, MPI_MIN, comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nmin, 1, MPIU_INT, MPI_MIN, comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &kmax, 1, MPIU_INT, MPI_MAX, comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nmax, 1, MPIU_INT, MPI_MAX, comm));
+    PetscCall(MatGetSize(impl.B, &nd, NULL));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "subdomains: %" PetscInt_FMT " (dofs per subdomain %" PetscInt_FMT "..%" PetscInt_FMT ", kernel dimension %" PetscInt_FMT "..%" PetscInt_FMT ")\n",
+                                     impl.nglobalsub, nmin, nmax, kmin, kmax));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "primal dimension %" PetscInt_FMT ", dual dimension %" PetscInt_FMT ", coarse dimension %" PetscInt_FMT "\n", impl.nprimal, nd, impl.ncoarse));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "rows: %" PetscInt_FMT " gluing, %" PetscInt_FMT " dirichlet, %" PetscInt_FMT " contact normal, %" PetscInt_FMT " contact tangential\n", counts[0],
+                                     counts[1], counts[2], counts[3]));
+    if (!impl.sub.empty()) {
+      PC            pc;
+      MatSolverType type;
+      PetscCall(KSPGetPC(impl.sub[0].ksp, &pc));
+      PetscCall(PCFactorGetMatSolverType(pc, &type));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "generalized inverse: Cholesky (%s) with fixing dofs; first local subdomain: %" PetscInt_FMT " fixing dofs\n", type ? type : "petsc",
+                                       (PetscInt)impl.sub[0].fixing.size()));
+    }
+    if (impl.coarse) {
+      PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solver (G G'):\n"));
+      PetscCall(PetscViewerASCIIPushTab(viewer));
+      PetscCall(KSPView(impl.coarse, viewer));
+      PetscCall(PetscViewerASCIIPopTab(viewer));
+    }
+  }
+  PetscCall(PetscViewerASCIIPopTab(viewer));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIViewFromOptions - View the FETI problem if an option asks for it.
+
+  Collective
+
+  Input Parameters:
++ feti - the FETI problem
+. obj  - optional object whose prefix is used
+- name - the option name, e.g. "-feti_view"
+
+  Level: intermediate
+
+.seealso: `FETIView()`
+@*/
+PetscErrorCode FETIViewFromOptions(FETI feti, PetscObject obj, const char name[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(PetscObjectViewFromOptions((PetscObject)feti, obj, name));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetNumSubdomains - Subdomain counts.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameters:
++ nglobal - total number of subdomains
+. nlocal  - number on this rank
+- first   - global index of this rank's first subdomain
+
+  Level: intermediate
+
+.seealso: `FETIGetSubdomainOffset()`
+@*/
+PetscErrorCode FETIGetNumSubdomains(FETI feti, PetscInt *nglobal, PetscInt *nlocal, PetscInt *first)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  if (nglobal) *nglobal = feti->impl->nglobalsub;
+  if (nlocal) *nlocal = (PetscInt)feti->impl->sub.size();
+  if (first) *first = feti->impl->firstsub;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetSubdomainOffset - Where a local subdomain's dofs and rigid modes are in the global primal and coarse vectors.
+
+  Not Collective
+
+  Input Parameters:
++ feti - the FETI problem, set up
+- s    - local subdomain index
+
+  Output Parameters:
++ primal - global index of its first primal dof
+- coarse - global index of its first kernel column (its modes are coarse + 0 .. k-1)
+
+  Level: intermediate
+
+.seealso: `FETIGetNumSubdomains()`, `FETIGetSubdomainKernel()`
+@*/
+PetscErrorCode FETIGetSubdomainOffset(FETI feti, PetscInt s, PetscInt *primal, PetscInt *coarse)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscCall(CheckLocal(feti, s));
+  if (primal) *primal = feti->impl->sub[s].offset;
+  if (coarse) *coarse = feti->impl->sub[s].coarseoffset;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetSizes - Global dimensions of the FETI problem.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameters:
++ nprimal - primal dimension (sum of subdomain dofs)
+. ndual   - number of multipliers (rows of B)
+- ncoarse - coarse dimension (total kernel dimension; rows of G)
+
+  Level: beginner
+
+.seealso: `FETICreateVecs()`
+@*/
+PetscErrorCode FETIGetSizes(FETI feti, PetscInt *nprimal, PetscInt *ndual, PetscInt *ncoarse)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  if (nprimal) *nprimal = feti->impl->nprimal;
+  if (ndual) PetscCall(MatGetSize(feti->impl->B, ndual, NULL));
+  if (ncoarse) *ncoarse = feti->impl->ncoarse;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetSubdomainKernel - The kernel basis used for a local subdomain (orthonormal columns).
+
+  Not Collective
+
+  Input Parameters:
++ feti - the FETI problem, set up
+- s    - local subdomain index
+
+  Output Parameter:
+. R - new sequential dense matrix n_s x k (destroy it)
+
+  Level: intermediate
+
+.seealso: `FETISetSubdomainKernel()`, `FETIGetKernel()`
+@*/
+PetscErrorCode FETIGetSubdomainKernel(FETI feti, PetscInt s, Mat *R)
+{
+  Mat      Rd;
+  PetscInt cstart;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscCall(CheckLocal(feti, s));
+  const FETISubdomain &sd = feti->impl->sub[s];
+  /* the kernels live in the block-diagonal global R: copy this subdomain's block */
+  PetscCall(MatGetOwnershipRangeColumn(feti->impl->R, &cstart, NULL));
+  PetscCall(MatGetDiagonalBlock(feti->impl->R, &Rd));
+  PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, sd.n, sd.nkernel, NULL, R));
+  for (PetscInt i = 0; i < sd.n; i++) {
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscInt           ncols;
+    PetscCall(MatGetRow(Rd, sd.localoffset + i, &ncols, &cols, &vals));
+    for (PetscInt k = 0; k < ncols; k++) PetscCall(MatSetValue(*R, i, cols[k] - (sd.coarseoffset - cstart), vals[k], INSERT_VALUES));
+    PetscCall(MatRestoreRow(Rd, sd.localoffset + i, &ncols, &cols, &vals));
+  }
+  PetscCall(MatAssemblyBegin(*R, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*R, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetSubdomainFixingDofs - The dofs removed to make the regularized K_s nonsingular.
+
+  Not Collective
+
+  Input Parameters:
++ feti - the FETI problem, set up
+- s    - local subdomain index
+
+  Output Parameter:
+. is - new index set of local dofs (destroy it)
+
+  Level: developer
+
+.seealso: `FETIGetGeneralizedInverse()`
+@*/
+PetscErrorCode FETIGetSubdomainFixingDofs(FETI feti, PetscInt s, IS *is)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscCall(CheckLocal(feti, s));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)feti->impl->sub[s].fixing.size(), feti->impl->sub[s].fixing.data(), PETSC_COPY_VALUES, is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,702 @@
+/* FETISetUp() and the FETI operators as MATSHELLs:
+     K+  primal -> primal  block diagonal generalized inverse
+     F   dual -> dual      B K+ B' (one B' product, one solve per subdomain, one B product; never formed)
+     G   dual -> coarse    R'B' (stored as its transpose Gt = B R, sparse)
+     P   dual -> dual      I - Gt (G Gt)^-1 G, the orthogonal projector onto Ker G
+     Q   dual -> dual      I - P
+   The coarse matrix G G' is assembled and factorized once. */
+#include <conefeti/private/fetiimpl.h>
+
+#include <algorithm>
+
+static PetscErrorCode ShellGetFETI(Mat A, FETI *feti)
+{
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(A, feti));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIFromMat - internal: the FETI object behind one of its shell operators (used by the FETI preconditioners)
+@*/
+PetscErrorCode FETIFromMat(Mat A, FETI *feti)
+{
+  PetscErrorCode (*f)(Mat, FETI *) = NULL;
+
+  PetscFunctionBegin;
+  *feti = NULL;
+  PetscCall(PetscObjectQueryFunction((PetscObject)A, "FETIShellGetFETI_C", &f));
+  if (f) PetscCall(f(A, feti));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = K+ x on the global primal vectors, subdomain by subdomain */
+PetscErrorCode FETIApplyKplus(FETI feti, Vec x, Vec y)
+{
+  FETI_Impl         &impl = *feti->impl;
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(FETI_ApplyKplus, feti, 0, 0, 0));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (FETISubdomain &sd : impl.sub) {
+    PetscCall(VecPlaceArray(sd.xa, xa + sd.localoffset));
+    PetscCall(VecPlaceArray(sd.ya, ya + sd.localoffset));
+    PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya));
+    PetscCall(VecResetArray(sd.xa));
+    PetscCall(VecResetArray(sd.ya));
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(PetscLogEventEnd(FETI_ApplyKplus, feti, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIApplyK - Multiply a primal vector by the block-diagonal stiffness matrix K (on the primal space: Dirichlet dofs kept in the primal are zero in and out).
+
+  Collective
+
+  Input Parameters:
++ feti - the FETI problem, set up
+- x    - primal vector
+
+  Output Parameter:
+. y - K x
+
+  Notes:
+  For equilibrium residuals K u - f + B' lambda after primal recovery.
+
+  Level: intermediate
+
+.seealso: `FETIRecoverPrimal()`, `FETIGetLoad()`
+@*/
+PetscErrorCode FETIApplyK(FETI feti, Vec x, Vec y)
+{
+  FETI_Impl         &impl = *feti->impl;
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (FETISubdomain &sd : impl.sub) {
+    PetscCall(VecPlaceArray(sd.xa, xa + sd.localoffset));
+    PetscCall(VecPlaceArray(sd.ya, ya + sd.localoffset));
+    PetscCall(FETISubdomainApplyK(sd, sd.xa, sd.ya));
+    PetscCall(VecResetArray(sd.xa));
+    PetscCall(VecResetArray(sd.ya));
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIApplyCoarseInverse - Solve the coarse problem (G G') y = x.
+
+  Collective
+
+  Input Parameters:
++ feti - the FETI problem, set up
+- x    - coarse vector
+
+  Output Parameter:
+. y - (G G')^-1 x
+
+  Level: developer
+
+.seealso: `FETIGetOperators()`
+@*/
+PetscErrorCode FETIApplyCoarseInverse(FETI feti, Vec x, Vec y)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  if (!impl.ncoarse) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(FETI_CoarseSolve, feti, 0, 0, 0));
+  PetscCall(KSPSolve(impl.coarse, x, y));
+  PetscCall(PetscLogEventEnd(FETI_CoarseSolve, feti, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = Q x = Gt (G Gt)^-1 G x */
+static PetscErrorCode ApplyQ(FETI feti, Vec x, Vec y)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  if (!impl.ncoarse) {
+    PetscCall(VecSet(y, 0.0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(MatMultTranspose(impl.Gt, x, impl.wc1));
+  PetscCall(FETIApplyCoarseInverse(feti, impl.wc1, impl.wc2));
+  PetscCall(MatMult(impl.Gt, impl.wc2, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = P x = x - Q x (y may be x) */
+PetscErrorCode FETIApplyP(FETI feti, Vec x, Vec y)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  PetscCall(ApplyQ(feti, x, impl.wd2));
+  if (x == y) PetscCall(VecAXPY(y, -1.0, impl.wd2));
+  else PetscCall(VecWAXPY(y, -1.0, impl.wd2, x));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode MatMult_F(Mat A, Vec x, Vec y)
+{
+  FETI feti;
+
+  PetscFunctionBegin;
+  PetscCall(ShellGetFETI(A, &feti));
+  FETI_Impl &impl = *feti->impl;
+  PetscCall(PetscLogEventBegin(FETI_MultF, feti, 0, 0, 0));
+  PetscCall(MatMultTranspose(impl.B, x, impl.wp1));
+  PetscCall(FETIApplyKplus(feti, impl.wp1, impl.wp2));
+  PetscCall(MatMult(impl.B, impl.wp2, y));
+  PetscCall(PetscLogEventEnd(FETI_MultF, feti, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode MatMult_P(Mat A, Vec x, Vec y)
+{
+  FETI feti;
+
+  PetscFunctionBegin;
+  PetscCall(ShellGetFETI(A, &feti));
+  PetscCall(FETIApplyP(feti, x, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode MatMult_Q(Mat A, Vec x, Vec y)
+{
+  FETI feti;
+
+  PetscFunctionBegin;
+  PetscCall(ShellGetFETI(A, &feti));
+  PetscCall(ApplyQ(feti, x, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode MatMult_Kplus(Mat A, Vec x, Vec y)
+{
+  FETI feti;
+
+  PetscFunctionBegin;
+  PetscCall(ShellGetFETI(A, &feti));
+  PetscCall(FETIApplyKplus(feti, x, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = P F P x; x and y are distinct */
+static PetscErrorCode MatMult_PFP(Mat A, Vec x, Vec y)
+{
+  FETI feti;
+
+  PetscFunctionBegin;
+  PetscCall(ShellGetFETI(A, &feti));
+  FETI_Impl &impl = *feti->impl;
+  PetscCall(FETIApplyP(feti, x, impl.wd1));
+  PetscCall(MatMult(impl.F, impl.wd1, y));
+  PetscCall(FETIApplyP(feti, y, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CreateShell(FETI feti, PetscInt m, PetscInt n, PetscErrorCode (*mult)(Mat, Vec, Vec), const char *name, Mat *A)
+{
+  PetscFunctionBegin;
+  PetscCall(MatCreateShell(PetscObjectComm((PetscObject)feti), m, n, PETSC_DETERMINE, PETSC_DETERMINE, feti, A));
+  PetscCall(MatShellSetOperation(*A, MATOP_MULT, (void (*)(void))mult));
+  PetscCall(MatShellSetOperation(*A, MATOP_MULT_TRANSPOSE, (void (*)(void))mult)); /* all are symmetric */
+  PetscCall(MatSetOption(*A, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)*A, "FETIShellGetFETI_C", ShellGetFETI));
+  PetscCall(PetscObjectSetName((PetscObject)*A, name));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* KSPSetUp() of a direct solver, reporting a failed factorization (zero or negative pivot: a singular
+   matrix) through *failed instead of the factorization package's own error, so that the caller can
+   say what the singularity means */
+PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscBool *failed)
+{
+  PetscErrorCode ierr;
+  PC             pc;
+  PCFailedReason reason = PC_NOERROR;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = KSPSetUp(ksp);
+  PetscCall(PetscPopErrorHandler());
+  PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+  if (!ierr) {
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCGetFailedReason(pc, &reason));
+  }
+  *failed = (ierr || reason != PC_NOERROR) ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A direct solver for a coarse matrix (prefix feti_coarse_): Cholesky on one rank, otherwise every rank
+   factors the whole (small) matrix (one gather per solve, no parallel triangular solves) */
+PetscErrorCode FETICreateCoarseKSP(FETI feti, Mat A, KSP *ksp, PetscBool *failed)
+{
+  FETI_Impl  &impl = *feti->impl;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
+  PetscMPIInt size;
+  const char *prefix;
+  char        coarseprefix[256];
+  PC          pc;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(KSPCreate(comm, ksp));
+  PetscCall(KSPSetErrorIfNotConverged(*ksp, PETSC_TRUE));
+  PetscCall(KSPSetOperators(*ksp, A, A));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
+  PetscCall(PetscSNPrintf(coarseprefix, sizeof(coarseprefix), "%sfeti_coarse_", prefix ? prefix : ""));
+  PetscCall(KSPSetOptionsPrefix(*ksp, coarseprefix));
+  PetscCall(KSPSetType(*ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(*ksp, &pc));
+  if (size == 1) {
+    PetscCall(PCSetType(pc, PCCHOLESKY));
+    PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
+  } else {
+    KSP inner;
+    PC  innerpc;
+    PetscCall(PCSetType(pc, PCREDUNDANT));
+    PetscCall(PCRedundantGetKSP(pc, &inner));
+    PetscCall(KSPGetPC(inner, &innerpc));
+    PetscCall(PCSetType(innerpc, PCCHOLESKY));
+    PetscCall(PCFactorSetMatSolverType(innerpc, impl.subsolver));
+  }
+  PetscCall(KSPSetFromOptions(*ksp));
+  PetscCall(FETIKSPSetUpFactorization(feti, *ksp, failed));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode SetUpCoarse(FETI feti)
+{
+  FETI_Impl &impl = *feti->impl;
+  PetscBool  failed;
+
+  PetscFunctionBegin;
+  PetscCall(MatTransposeMatMult(impl.Gt, impl.Gt, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &impl.GGt));
+  PetscCall(MatSetOption(impl.GGt, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(impl.GGt, MAT_SPD, PETSC_TRUE));
+  PetscCall(FETICreateCoarseKSP(feti, impl.GGt, &impl.coarse, &failed));
+  PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
+             "The coarse matrix G G' is singular: the constraints do not fix every rigid-body mode (a body without Dirichlet condition?)");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetUp - Kernels, factorizations, the coarse problem, the operators and right-hand sides.
+
+  Collective
+
+  Input Parameter:
+. feti - the FETI problem with subdomains and constraints set
+
+  Notes:
+  Per subdomain: the kernel basis (rigid modes from coordinates, or the user's, restricted to those
+  vanishing on Dirichlet dofs kept in the primal), fixing dofs, the regularized matrix and its sparse
+  Cholesky factorization (prefix feti_sub_). Then Gt = B R, the coarse matrix G G' and its
+  factorization (prefix feti_coarse_), h = B K+ f - c, e = R' f and the particular solution
+  lambda~ = G'(G G')^-1 e. Everything is done once; products and solves allocate nothing.
+
+  Level: beginner
+
+.seealso: `FETISetFromOptions()`, `FETIGetOperators()`, `FETIGetRHS()`, `FETISolveLinear()`
+@*/
+PetscErrorCode FETISetUp(FETI feti)
+{
+  FETI_Impl  &impl = *feti->impl;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
+  PetscMPIInt size, rank;
+  PetscInt    nlocal = (PetscInt)impl.sub.size(), minlocal, ncols, nlocalcols, nd, mlocal, offset, coarseoffset;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  if (impl.setupcalled) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(MPIU_Allreduce(&nlocal, &minlocal, 1, MPIU_INT, MPI_MIN, comm));
+  PetscCheck(minlocal >= 1, comm, PETSC_ERR_ARG_WRONGSTATE, "Every rank needs at least one subdomain (FETISetSubdomains()); some rank has none: use more subdomains than the %d ranks", size);
+  PetscCheck(impl.B, comm, PETSC_ERR_ARG_WRONGSTATE, "Call FETISetConstraints() before FETISetUp()");
+  PetscCall(PetscLogEventBegin(FETI_SetUp, feti, 0, 0, 0));
+
+  /* primal layout: this rank's subdomains, contiguous */
+  impl.nlocalprimal = 0;
+  for (FETISubdomain &sd : impl.sub) {
+    sd.localoffset = impl.nlocalprimal;
+    impl.nlocalprimal += sd.n;
+  }
+  PetscCallMPI(MPI_Scan(&impl.nlocalprimal, &offset, 1, MPIU_INT, MPI_SUM, comm));
+  offset -= impl.nlocalprimal;
+  PetscCall(MPIU_Allreduce(&impl.nlocalprimal, &impl.nprimal, 1, MPIU_INT, MPI_SUM, comm));
+  for (FETISubdomain &sd : impl.sub) sd.offset = offset + sd.localoffset;
+  PetscCallMPI(MPI_Scan(&nlocal, &impl.firstsub, 1, MPIU_INT, MPI_SUM, comm));
+  impl.firstsub -= nlocal;
+  PetscCall(MPIU_Allreduce(&nlocal, &impl.nglobalsub, 1, MPIU_INT, MPI_SUM, comm));
+
+  PetscCall(MatGetSize(impl.B, &nd, &ncols));
+  PetscCall(MatGetLocalSize(impl.B, &mlocal, &nlocalcols));
+  PetscCheck(ncols == impl.nprimal, comm, PETSC_ERR_ARG_SIZ, "B has %" PetscInt_FMT " columns but the subdomains have %" PetscInt_FMT " dofs in total", ncols, impl.nprimal);
+  PetscCheck(nlocalcols == impl.nlocalprimal, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+             "B has %" PetscInt_FMT " local columns on rank %d but the rank's subdomains have %" PetscInt_FMT " dofs; create B with MatSetSizes(B, m, %" PetscInt_FMT ", M, N)", nlocalcols, rank,
+             impl.nlocalprimal, impl.nlocalprimal);
+
+  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUp(feti, impl.sub[s], impl.firstsub + s));
+
+  /* coarse layout */
+  impl.nlocalcoarse = 0;
+  for (FETISubdomain &sd : impl.sub) {
+    sd.coarseoffset = impl.nlocalcoarse;
+    impl.nlocalcoarse += sd.nkernel;
+  }
+  PetscCallMPI(MPI_Scan(&impl.nlocalcoarse, &coarseoffset, 1, MPIU_INT, MPI_SUM, comm));
+  coarseoffset -= impl.nlocalcoarse;
+  for (FETISubdomain &sd : impl.sub) sd.coarseoffset += coarseoffset;
+  PetscCall(MPIU_Allreduce(&impl.nlocalcoarse, &impl.ncoarse, 1, MPIU_INT, MPI_SUM, comm));
+
+  PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
+  /* global load; the subdomain loads are not needed any more */
+  PetscCall(MatCreateVecs(impl.B, &impl.wp1, &impl.wd1));
+  PetscCall(VecDuplicate(impl.wp1, &impl.f));
+  PetscCall(VecDuplicate(impl.wp1, &impl.wp2));
+  PetscCall(VecDuplicate(impl.wd1, &impl.wd2));
+  {
+    PetscScalar *fa;
+    PetscCall(VecGetArray(impl.f, &fa));
+    for (FETISubdomain &sd : impl.sub) {
+      const PetscScalar *a;
+      if (!sd.f) {
+        for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = 0;
+        continue;
+      }
+      PetscCall(VecGetArrayRead(sd.f, &a));
+      for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = a[i];
+      PetscCall(VecRestoreArrayRead(sd.f, &a));
+      for (PetscInt d : sd.dirichletdofs) fa[sd.localoffset + d] = 0; /* no work on fixed dofs */
+      PetscCall(VecDestroy(&sd.f));
+    }
+    PetscCall(VecRestoreArray(impl.f, &fa));
+  }
+  /* R: block diagonal, primal x coarse */
+  {
+    std::vector<PetscInt> nnz(impl.nlocalprimal), cols;
+    for (FETISubdomain &sd : impl.sub)
+      for (PetscInt i = 0; i < sd.n; i++) nnz[sd.localoffset + i] = sd.nkernel;
+    PetscCall(MatCreate(comm, &impl.R));
+    PetscCall(MatSetSizes(impl.R, impl.nlocalprimal, impl.nlocalcoarse, impl.nprimal, impl.ncoarse));
+    PetscCall(MatSetType(impl.R, MATAIJ));
+    PetscCall(MatSeqAIJSetPreallocation(impl.R, 0, nnz.data()));
+    PetscCall(MatMPIAIJSetPreallocation(impl.R, 0, nnz.data(), 0, NULL));
+    for (FETISubdomain &sd : impl.sub) {
+      std::vector<PetscScalar> row(sd.nkernel);
+      PetscCallCXX(cols.resize(sd.nkernel));
+      for (PetscInt j = 0; j < sd.nkernel; j++) cols[j] = sd.coarseoffset + j;
+      for (PetscInt i = 0; i < sd.n; i++) {
+        const PetscInt grow = sd.offset + i;
+        for (PetscInt j = 0; j < sd.nkernel; j++) row[j] = sd.R[(size_t)j * sd.n + i];
+        PetscCall(MatSetValues(impl.R, 1, &grow, sd.nkernel, cols.data(), row.data(), INSERT_VALUES));
+      }
+    }
+    PetscCall(MatAssemblyBegin(impl.R, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(impl.R, MAT_FINAL_ASSEMBLY));
+    for (FETISubdomain &sd : impl.sub) PetscCallCXX(std::vector<PetscScalar>().swap(sd.R)); /* R holds the kernels now */
+  }
+  PetscCall(MatMatMult(impl.B, impl.R, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &impl.Gt));
+  PetscCall(MatCreateVecs(impl.Gt, &impl.wc1, NULL));
+  PetscCall(VecDuplicate(impl.wc1, &impl.wc2));
+  PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
+  if (impl.ncoarse) PetscCall(SetUpCoarse(feti));
+
+  PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_F, "F", &impl.F));
+  PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_P, "P", &impl.P));
+  PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_Q, "Q", &impl.Q));
+  PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_PFP, "PFP", &impl.PFP));
+  PetscCall(CreateShell(feti, impl.nlocalprimal, impl.nlocalprimal, MatMult_Kplus, "Kplus", &impl.Kplus));
+  PetscCall(MatCreateTranspose(impl.Gt, &impl.G));
+  PetscCall(PetscObjectSetName((PetscObject)impl.G, "G"));
+  impl.setupcalled = PETSC_TRUE;
+
+  /* h = B K+ f - c, e = R' f, lambda~ = Gt (G Gt)^-1 e */
+  PetscCall(VecDuplicate(impl.wd1, &impl.h));
+  PetscCall(VecDuplicate(impl.wd1, &impl.lambdatilde));
+  PetscCall(VecDuplicate(impl.wc1, &impl.e));
+  PetscCall(VecDuplicate(impl.wc1, &impl.alpha));
+  PetscCall(VecDuplicate(impl.wd1, &impl.rhs));
+  PetscCall(VecDuplicate(impl.wd1, &impl.residual));
+  PetscCall(FETIApplyKplus(feti, impl.f, impl.wp1));
+  PetscCall(MatMult(impl.B, impl.wp1, impl.h));
+  if (impl.c) PetscCall(VecAXPY(impl.h, -1.0, impl.c));
+  PetscCall(MatMultTranspose(impl.R, impl.f, impl.e));
+  if (impl.ncoarse) {
+    PetscCall(FETIApplyCoarseInverse(feti, impl.e, impl.wc2));
+    PetscCall(MatMult(impl.Gt, impl.wc2, impl.lambdatilde));
+  } else PetscCall(VecSet(impl.lambdatilde, 0.0));
+  PetscCall(PetscLogEventEnd(FETI_SetUp, feti, 0, 0, 0));
+  PetscCall(PetscObjectViewFromOptions((PetscObject)feti, NULL, "-feti_view"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CheckSetUp(FETI feti)
+{
+  PetscFunctionBegin;
+  PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetOperators - The dual operators as matrices (shells; never formed).
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameters:
++ F - B K+ B' (dual x dual)
+. G - R'B' (coarse x dual; the transpose of `FETIGetGt()`'s sparse matrix)
+. P - I - G'(G G')^-1 G, orthogonal projector onto Ker G
+- Q - I - P
+
+  Notes:
+  Any output may be NULL. The matrices belong to the FETI object: do not destroy them.
+  F, P, Q are symmetric and support `MatMult()` and `MatMultTranspose()`.
+
+  Level: beginner
+
+.seealso: `FETIGetRHS()`, `FETIGetParticularSolution()`, `FETIGetGeneralizedInverse()`
+@*/
+PetscErrorCode FETIGetOperators(FETI feti, Mat *F, Mat *G, Mat *P, Mat *Q)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckSetUp(feti));
+  if (F) *F = feti->impl->F;
+  if (G) *G = feti->impl->G;
+  if (P) *P = feti->impl->P;
+  if (Q) *Q = feti->impl->Q;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetGeneralizedInverse - The block-diagonal generalized inverse K+ as a shell matrix (K K+ K = K).
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameter:
+. Kplus - primal x primal shell (do not destroy)
+
+  Level: intermediate
+
+.seealso: `FETIApplyK()`, `FETIGetOperators()`
+@*/
+PetscErrorCode FETIGetGeneralizedInverse(FETI feti, Mat *Kplus)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckSetUp(feti));
+  *Kplus = feti->impl->Kplus;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetKernel - The block-diagonal kernel basis R (primal x coarse, orthonormal columns per subdomain).
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameter:
+. R - the matrix (do not destroy)
+
+  Level: intermediate
+
+.seealso: `FETIGetGt()`, `FETIGetSubdomainKernel()`
+@*/
+PetscErrorCode FETIGetKernel(FETI feti, Mat *R)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckSetUp(feti));
+  *R = feti->impl->R;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetGt - The sparse matrix G' = B R (dual x coarse).
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameter:
+. Gt - the matrix (do not destroy)
+
+  Level: intermediate
+
+.seealso: `FETIGetOperators()`, `FETIGetKernel()`
+@*/
+PetscErrorCode FETIGetGt(FETI feti, Mat *Gt)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckSetUp(feti));
+  *Gt = feti->impl->Gt;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetRHS - The right-hand sides of the dual problem: h = B K+ f - c and e = R' f.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameters:
++ h - dual vector (do not destroy or change)
+- e - coarse vector (do not destroy or change)
+
+  Notes:
+  The dual problem is min 1/2 l'F l - l'h subject to G l = e (and the contact constraints).
+
+  Level: beginner
+
+.seealso: `FETIGetOperators()`, `FETIGetParticularSolution()`
+@*/
+PetscErrorCode FETIGetRHS(FETI feti, Vec *h, Vec *e)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckSetUp(feti));
+  if (h) *h = feti->impl->h;
+  if (e) *e = feti->impl->e;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetParticularSolution - lambda~ = G'(G G')^-1 e, the least-norm solution of G lambda = e.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameter:
+. lambdatilde - dual vector (do not destroy or change)
+
+  Notes:
+  lambda = lambda~ + mu with G mu = 0 homogenizes the equality constraint.
+
+  Level: intermediate
+
+.seealso: `FETIGetRHS()`
+@*/
+PetscErrorCode FETIGetParticularSolution(FETI feti, Vec *lambdatilde)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckSetUp(feti));
+  *lambdatilde = feti->impl->lambdatilde;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetConstraints - The constraint matrix, right-hand side and row kinds.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem
+
+  Output Parameters:
++ B     - the constraint matrix (do not destroy)
+. c     - the right-hand side (NULL when zero; do not destroy)
+- kinds - kind of each local row (do not free)
+
+  Level: intermediate
+
+.seealso: `FETISetConstraints()`
+@*/
+PetscErrorCode FETIGetConstraints(FETI feti, Mat *B, Vec *c, const FETIRowKind **kinds)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  if (B) *B = feti->impl->B;
+  if (c) *c = feti->impl->c;
+  if (kinds) *kinds = feti->impl->kinds.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIGetLoad - The global primal load vector f (zero at Dirichlet dofs kept in the primal).
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameter:
+. f - primal vector (do not destroy or change)
+
+  Level: intermediate
+
+.seealso: `FETIApplyK()`
+@*/
+PetscErrorCode FETIGetLoad(FETI feti, Vec *f)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckSetUp(feti));
+  *f = feti->impl->f;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETICreateVecs - Create vectors in the primal, dual and coarse layouts.
+
+  Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameters:
++ primal - primal vector (may be NULL)
+. dual   - dual vector, the layout of B's rows (may be NULL)
+- coarse - coarse vector (may be NULL)
+
+  Level: beginner
+
+.seealso: `FETIGetSizes()`
+@*/
+PetscErrorCode FETICreateVecs(FETI feti, Vec *primal, Vec *dual, Vec *coarse)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckSetUp(feti));
+  if (primal) PetscCall(VecDuplicate(feti->impl->wp1, primal));
+  if (dual) PetscCall(VecDuplicate(feti->impl->wd1, dual));
+  if (coarse) PetscCall(VecDuplicate(feti->impl->wc1, coarse));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

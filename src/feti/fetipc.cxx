@@ -1,0 +1,266 @@
+/* FETI preconditioners for the projected CG on P F P, applied as P M^-1 P:
+     lumped     M^-1 = B K_bb B'                            (b: the dofs B touches)
+     dirichlet  M^-1 = B S_bb B',  S_bb = K_bb - K_bi K_ii^-1 K_ib   (Schur complement on b)
+   With orthonormal B rows (Helmert gluing, identity Dirichlet rows) no further scaling is needed for
+   bodies of one material. They are PC types ("lumped", "dirichlet") so that -feti_pc_type selects
+   them; they find their FETI object through the P F P shell they precondition. */
+#include <conefeti/private/fetiimpl.h>
+#include <petsc/private/pcimpl.h>
+
+#include <algorithm>
+
+struct PC_FETI {
+  PetscBool dirichlet;
+  FETI      feti; /* not referenced: the FETI object owns the KSP that owns this PC */
+  Vec       wd, wp1, wp2;
+};
+
+/* Boundary dofs (touched by B, not Dirichlet in the primal) and interior dofs of each subdomain, and
+   the blocks of K_V on them; for the Dirichlet preconditioner also the factored K_ii. Built once. */
+PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
+{
+  FETI_Impl  &impl = *feti->impl;
+  const char *prefix;
+  char        pcprefix[256];
+
+  PetscFunctionBegin;
+  if (!impl.boundarymask) {
+    PetscInt rstart, rend;
+    PetscCall(VecDuplicate(impl.wp1, &impl.boundarymask));
+    PetscCall(VecSet(impl.boundarymask, 0.0));
+    PetscCall(MatGetOwnershipRange(impl.B, &rstart, &rend));
+    for (PetscInt r = rstart; r < rend; r++) {
+      const PetscInt    *cols;
+      const PetscScalar *vals;
+      PetscInt           ncols;
+      PetscCall(MatGetRow(impl.B, r, &ncols, &cols, &vals));
+      for (PetscInt j = 0; j < ncols; j++)
+        if (vals[j] != 0.0) PetscCall(VecSetValue(impl.boundarymask, cols[j], 1.0, INSERT_VALUES));
+      PetscCall(MatRestoreRow(impl.B, r, &ncols, &cols, &vals));
+    }
+    PetscCall(VecAssemblyBegin(impl.boundarymask));
+    PetscCall(VecAssemblyEnd(impl.boundarymask));
+  }
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
+  PetscCall(PetscSNPrintf(pcprefix, sizeof(pcprefix), "%sfeti_dirichlet_", prefix ? prefix : ""));
+  char solver[64];
+  PetscCall(PetscStrncpy(solver, impl.subsolver, sizeof(solver)));
+  PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, pcprefix, "-pc_factor_mat_solver_type", solver, sizeof(solver), NULL));
+  const PetscScalar *mask;
+  PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
+  for (FETISubdomain &sd : impl.sub) {
+    PetscInt ninterior = 0;
+    if (sd.interior) PetscCall(ISGetLocalSize(sd.interior, &ninterior));
+    if (sd.Kbb && (!dirichlet || sd.Fii || !ninterior)) continue; /* built already */
+    std::vector<PetscInt> b, i;
+    std::vector<char>     isD(sd.n, 0);
+    Mat                   KV;
+    for (PetscInt d : sd.dirichletdofs) isD[d] = 1;
+    for (PetscInt k = 0; k < sd.n; k++) {
+      if (isD[k]) continue;
+      if (mask[sd.localoffset + k] != 0.0) PetscCallCXX(b.push_back(k));
+      else PetscCallCXX(i.push_back(k));
+    }
+    PetscCall(ISDestroy(&sd.boundary));
+    PetscCall(ISDestroy(&sd.interior));
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)b.size(), b.data(), PETSC_COPY_VALUES, &sd.boundary));
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)i.size(), i.data(), PETSC_COPY_VALUES, &sd.interior));
+    /* K_V = Kreg + C - d I_removed, explicitly (transient, one subdomain at a time) */
+    PetscCall(MatConvert(sd.Kreg, MATSEQAIJ, MAT_INITIAL_MATRIX, &KV));
+    if (sd.correction) PetscCall(MatAXPY(KV, 1.0, sd.correction, DIFFERENT_NONZERO_PATTERN));
+    for (PetscInt r : sd.removed) PetscCall(MatSetValue(KV, r, r, -sd.regdiag, ADD_VALUES));
+    PetscCall(MatAssemblyBegin(KV, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(KV, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatDestroy(&sd.Kbb));
+    PetscCall(MatCreateSubMatrix(KV, sd.boundary, sd.boundary, MAT_INITIAL_MATRIX, &sd.Kbb));
+    PetscCall(VecDestroy(&sd.xb));
+    PetscCall(VecDestroy(&sd.yb));
+    PetscCall(MatCreateVecs(sd.Kbb, &sd.xb, &sd.yb));
+    if (dirichlet && !i.empty()) {
+      Mat           Kii;
+      IS            rperm, cperm;
+      MatFactorInfo info;
+      PetscCall(MatCreateSubMatrix(KV, sd.boundary, sd.interior, MAT_INITIAL_MATRIX, &sd.Kbi));
+      PetscCall(MatCreateSubMatrix(KV, sd.interior, sd.interior, MAT_INITIAL_MATRIX, &Kii));
+      PetscCall(MatSetOption(Kii, MAT_SPD, PETSC_TRUE));
+      /* factor directly and keep only the factor: K_ii itself is not needed afterwards */
+      PetscCall(MatGetFactor(Kii, solver, MAT_FACTOR_CHOLESKY, &sd.Fii));
+      PetscCheck(sd.Fii, PETSC_COMM_SELF, PETSC_ERR_SUP, "-feti_dirichlet_pc_factor_mat_solver_type %s cannot factor a SEQAIJ matrix by Cholesky", solver);
+      PetscCall(MatGetOrdering(Kii, MATORDERINGNATURAL, &rperm, &cperm)); /* CHOLMOD and MUMPS order by themselves */
+      PetscCall(MatFactorInfoInitialize(&info));
+      PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      PetscErrorCode ierr = MatCholeskyFactorSymbolic(sd.Fii, Kii, rperm, &info);
+      if (!ierr) ierr = MatCholeskyFactorNumeric(sd.Fii, Kii, &info);
+      PetscCall(PetscPopErrorHandler());
+      PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+      {
+        MatFactorError err = MAT_FACTOR_NOERROR;
+        if (!ierr) PetscCall(MatFactorGetError(sd.Fii, &err));
+        PetscCheck(!ierr && err == MAT_FACTOR_NOERROR, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+                   "Dirichlet preconditioner: the interior block K_ii of a subdomain is singular (a part of the subdomain not connected to its interface?)");
+      }
+      PetscCall(ISDestroy(&rperm));
+      PetscCall(ISDestroy(&cperm));
+      PetscCall(MatDestroy(&Kii));
+      PetscCall(MatCreateVecs(sd.Kbi, &sd.xi, NULL)); /* interior-sized */
+      PetscCall(VecDuplicate(sd.xi, &sd.yi));
+    }
+    PetscCall(MatDestroy(&KV));
+  }
+  PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode PCSetUp_FETI(PC pc)
+{
+  PC_FETI *data = (PC_FETI *)pc->data;
+
+  PetscFunctionBegin;
+  PetscCall(FETIFromMat(pc->pmat, &data->feti));
+  PetscCheck(data->feti, PetscObjectComm((PetscObject)pc), PETSC_ERR_ARG_WRONG, "PC %s preconditions only the P F P operator of a FETI problem (use it through FETIGetKSP() / -feti_pc_type)",
+             ((PetscObject)pc)->type_name);
+  PetscCall(PetscLogEventBegin(FETI_SetUp, data->feti, 0, 0, 0));
+  PetscCall(FETISetUpPreconditionerData(data->feti, data->dirichlet));
+  PetscCall(PetscLogEventEnd(FETI_SetUp, data->feti, 0, 0, 0));
+  if (!data->wd) {
+    PetscCall(FETICreateVecs(data->feti, &data->wp1, &data->wd, NULL));
+    PetscCall(VecDuplicate(data->wp1, &data->wp2));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode PCApply_FETI(PC pc, Vec x, Vec y)
+{
+  PC_FETI           *data = (PC_FETI *)pc->data;
+  FETI_Impl         &impl = *data->feti->impl;
+  const PetscScalar *in;
+  PetscScalar       *out;
+
+  PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(FETI_Preconditioner, data->feti, 0, 0, 0));
+  PetscCall(FETIApplyP(data->feti, x, data->wd));
+  PetscCall(MatMultTranspose(impl.B, data->wd, data->wp1));
+  PetscCall(VecSet(data->wp2, 0.0));
+  PetscCall(VecGetArrayRead(data->wp1, &in));
+  PetscCall(VecGetArray(data->wp2, &out));
+  for (FETISubdomain &sd : impl.sub) {
+    const PetscInt *b;
+    PetscInt        nb;
+    PetscScalar    *xb;
+    PetscCall(ISGetLocalSize(sd.boundary, &nb));
+    if (!nb) continue;
+    PetscCall(ISGetIndices(sd.boundary, &b));
+    PetscCall(VecGetArray(sd.xb, &xb));
+    for (PetscInt k = 0; k < nb; k++) xb[k] = in[sd.localoffset + b[k]];
+    PetscCall(VecRestoreArray(sd.xb, &xb));
+    PetscCall(MatMult(sd.Kbb, sd.xb, sd.yb));
+    if (data->dirichlet && sd.Fii) { /* S x_b = K_bb x_b - K_bi K_ii^-1 K_ib x_b */
+      PetscCall(MatMultTranspose(sd.Kbi, sd.xb, sd.xi));
+      PetscCall(MatSolve(sd.Fii, sd.xi, sd.yi));
+      PetscCall(VecScale(sd.yi, -1.0));
+      PetscCall(MatMultAdd(sd.Kbi, sd.yi, sd.yb, sd.yb));
+    }
+    const PetscScalar *yb;
+    PetscCall(VecGetArrayRead(sd.yb, &yb));
+    for (PetscInt k = 0; k < nb; k++) out[sd.localoffset + b[k]] = yb[k];
+    PetscCall(VecRestoreArrayRead(sd.yb, &yb));
+    PetscCall(ISRestoreIndices(sd.boundary, &b));
+  }
+  PetscCall(VecRestoreArray(data->wp2, &out));
+  PetscCall(VecRestoreArrayRead(data->wp1, &in));
+  PetscCall(MatMult(impl.B, data->wp2, y));
+  PetscCall(FETIApplyP(data->feti, y, y));
+  PetscCall(PetscLogEventEnd(FETI_Preconditioner, data->feti, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode PCReset_FETI(PC pc)
+{
+  PC_FETI *data = (PC_FETI *)pc->data;
+
+  PetscFunctionBegin;
+  PetscCall(VecDestroy(&data->wd));
+  PetscCall(VecDestroy(&data->wp1));
+  PetscCall(VecDestroy(&data->wp2));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode PCDestroy_FETI(PC pc)
+{
+  PetscFunctionBegin;
+  PetscCall(PCReset_FETI(pc));
+  PetscCall(PetscFree(pc->data));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode PCView_FETI(PC pc, PetscViewer viewer)
+{
+  PC_FETI  *data = (PC_FETI *)pc->data;
+  PetscBool ascii;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (ascii) PetscCall(PetscViewerASCIIPrintf(viewer, "FETI %s preconditioner, applied as P M^-1 P\n", data->dirichlet ? "Dirichlet (B S_bb B')" : "lumped (B K_bb B')"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode PCCreate_FETI(PC pc, PetscBool dirichlet)
+{
+  PC_FETI *data;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&data));
+  data->dirichlet  = dirichlet;
+  pc->data         = data;
+  pc->ops->setup   = PCSetUp_FETI;
+  pc->ops->apply   = PCApply_FETI;
+  pc->ops->reset   = PCReset_FETI;
+  pc->ops->destroy = PCDestroy_FETI;
+  pc->ops->view    = PCView_FETI;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*MC
+  PCFETILUMPED - "lumped": the FETI lumped preconditioner B K_bb B', applied as P M^-1 P.
+
+  Options Database Key:
+. -feti_pc_type lumped - select it for `FETISolveLinear()`
+
+  Notes:
+  Cheap (one sparse product with the boundary block per subdomain); weaker than `PCFETIDIRICHLET`.
+  Usable only on the P F P operator of a FETI problem.
+
+  Level: intermediate
+
+.seealso: `PCFETIDIRICHLET`, `FETISolveLinear()`, `FETIGetKSP()`
+M*/
+PetscErrorCode PCCreate_FETILumped(PC pc)
+{
+  PetscFunctionBegin;
+  PetscCall(PCCreate_FETI(pc, PETSC_FALSE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*MC
+  PCFETIDIRICHLET - "dirichlet": the FETI Dirichlet preconditioner B S_bb B' with the Schur complement of each
+  subdomain on the dofs B touches, applied as P M^-1 P.
+
+  Options Database Keys:
++ -feti_pc_type dirichlet                                  - select it (the default of `FETISolveLinear()`)
+- -feti_dirichlet_pc_factor_mat_solver_type <cholmod,...> - the factorization of the interior blocks K_ii
+
+  Notes:
+  Costs one more sparse Cholesky per subdomain (of the interior block) and one solve with it per
+  application; gives iteration counts that grow only like (1 + log(H/h))^2.
+
+  Level: intermediate
+
+.seealso: `PCFETILUMPED`, `FETISolveLinear()`, `FETIGetKSP()`
+M*/
+PetscErrorCode PCCreate_FETIDirichlet(PC pc)
+{
+  PetscFunctionBegin;
+  PetscCall(PCCreate_FETI(pc, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

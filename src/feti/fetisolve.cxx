@@ -1,0 +1,156 @@
+/* Primal recovery and the linear ("no contact") FETI solve.
+
+   With L(u, l) = 1/2 u'K u - u'f + l'(B u - c), stationarity gives K u = f - B'l, solvable iff
+   R'(f - B'l) = 0, i.e. G l = e; then u = K+(f - B'l) + R alpha. On every row where B u = c holds
+   with equality, B K+ f - F l + B R alpha = c, i.e.
+       G' alpha = F l - h      (G' = B R, h = B K+ f - c),
+   which determines alpha by least squares over those rows. */
+#include <conefeti/private/fetiimpl.h>
+
+/*@C
+  FETIComputeAlpha - The rigid-body amplitudes alpha of the primal solution, by least squares of G' alpha = F lambda - h over the rows where the constraint holds with equality.
+
+  Collective
+
+  Input Parameters:
++ feti   - the FETI problem, set up
+. lambda - the multipliers
+- mask   - dual vector: 1 on rows holding with equality (gluing, Dirichlet, contact in contact, stick), 0 elsewhere; NULL means all rows
+
+  Output Parameter:
+. alpha - coarse vector
+
+  Notes:
+  With all rows this uses the coarse factorization; with a mask it assembles and factors
+  G_A G_A' once per call (as small as G G'). The rows in the mask must determine alpha
+  (G_A of full row rank), otherwise this is an error. The augmented Lagrangian solvers carry
+  alpha as (minus) the multiplier of G lambda = e, which is cheaper when available.
+
+  Level: intermediate
+
+.seealso: `FETIRecoverPrimal()`, `FETIGetOperators()`
+@*/
+PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
+  PetscValidHeaderSpecific(alpha, VEC_CLASSID, 4);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  if (!impl.ncoarse) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MatMult(impl.F, lambda, impl.residual));
+  PetscCall(VecAXPY(impl.residual, -1.0, impl.h));
+  if (!mask) {
+    PetscCall(MatMultTranspose(impl.Gt, impl.residual, impl.wc1));
+    PetscCall(FETIApplyCoarseInverse(feti, impl.wc1, alpha));
+  } else {
+    Mat       GtA, M;
+    KSP       ksp;
+    PetscBool failed;
+    PetscCall(MatDuplicate(impl.Gt, MAT_COPY_VALUES, &GtA));
+    PetscCall(MatDiagonalScale(GtA, mask, NULL));
+    PetscCall(MatTransposeMatMult(GtA, GtA, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &M));
+    PetscCall(MatMultTranspose(GtA, impl.residual, impl.wc1));
+    PetscCall(MatSetOption(M, MAT_SPD, PETSC_TRUE));
+    PetscCall(FETICreateCoarseKSP(feti, M, &ksp, &failed));
+    PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_WRONG,
+               "FETIComputeAlpha(): the rows in the mask do not determine the rigid-body amplitudes (G_A G_A' is singular); include rows that fix every floating subdomain");
+    PetscCall(PetscLogEventBegin(FETI_CoarseSolve, feti, 0, 0, 0));
+    PetscCall(KSPSolve(ksp, impl.wc1, alpha));
+    PetscCall(PetscLogEventEnd(FETI_CoarseSolve, feti, 0, 0, 0));
+    PetscCall(KSPDestroy(&ksp));
+    PetscCall(MatDestroy(&M));
+    PetscCall(MatDestroy(&GtA));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIRecoverPrimal - The primal solution u = K+(f - B' lambda) + R alpha.
+
+  Collective
+
+  Input Parameters:
++ feti   - the FETI problem, set up
+. lambda - the multipliers
+- alpha  - the rigid-body amplitudes, or NULL to compute them by `FETIComputeAlpha()` over all rows
+           (right when every constraint holds with equality, as in the linear problem)
+
+  Output Parameter:
+. u - primal vector (subdomain copies concatenated)
+
+  Notes:
+  A wrong alpha moves subdomains by rigid motions while every dual residual looks fine: check the
+  primal (B u = c on equality rows, equilibrium K u = f - B' lambda with `FETIApplyK()`).
+
+  Level: beginner
+
+.seealso: `FETIComputeAlpha()`, `FETISolveLinear()`, `FETIApplyK()`
+@*/
+PetscErrorCode FETIRecoverPrimal(FETI feti, Vec lambda, Vec alpha, Vec u)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
+  PetscValidHeaderSpecific(u, VEC_CLASSID, 4);
+  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  if (!alpha) {
+    PetscCall(FETIComputeAlpha(feti, lambda, NULL, impl.alpha));
+    alpha = impl.alpha;
+  }
+  PetscCall(PetscLogEventBegin(FETI_PrimalRecovery, feti, 0, 0, 0));
+  PetscCall(MatMultTranspose(impl.B, lambda, impl.wp1));
+  PetscCall(VecAYPX(impl.wp1, -1.0, impl.f));
+  PetscCall(FETIApplyKplus(feti, impl.wp1, u));
+  if (impl.ncoarse) PetscCall(MatMultAdd(impl.R, alpha, u, u));
+  PetscCall(PetscLogEventEnd(FETI_PrimalRecovery, feti, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISolveLinear - Solve the FETI problem when every constraint is an equality (gluing and Dirichlet):
+  projected CG on P F P, then primal recovery.
+
+  Collective
+
+  Input Parameter:
+. feti - the FETI problem (set up here if needed)
+
+  Output Parameters:
++ lambda - the multipliers (dual vector)
+- u      - the primal solution (may be NULL)
+
+  Notes:
+  lambda = lambda~ + mu with mu in Ker G solving P F P mu = P(h - F lambda~) by the KSP of
+  `FETIGetKSP()` (prefix feti_: -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, -feti_pc_type
+  dirichlet|lumped|none). The iterates stay in Ker G because the preconditioner is applied as
+  P M^-1 P. Check `KSPGetConvergedReason()` on that KSP.
+
+  Level: beginner
+
+.seealso: `FETIGetKSP()`, `FETIRecoverPrimal()`, `FETISetFromOptions()`
+@*/
+PetscErrorCode FETISolveLinear(FETI feti, Vec lambda, Vec u)
+{
+  FETI_Impl &impl = *feti->impl;
+  KSP        ksp;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
+  PetscCall(FETISetUp(feti));
+  PetscCall(FETIGetKSP(feti, &ksp));
+  PetscCall(KSPSetOperators(ksp, impl.PFP, impl.PFP));
+  PetscCall(MatMult(impl.F, impl.lambdatilde, impl.rhs));
+  PetscCall(VecAYPX(impl.rhs, -1.0, impl.h));
+  PetscCall(FETIApplyP(feti, impl.rhs, impl.rhs));
+  PetscCall(VecSet(lambda, 0.0));
+  PetscCall(KSPSolve(ksp, impl.rhs, lambda));
+  PetscCall(VecAXPY(lambda, 1.0, impl.lambdatilde));
+  if (u) PetscCall(FETIRecoverPrimal(feti, lambda, NULL, u));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

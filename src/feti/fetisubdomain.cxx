@@ -1,0 +1,337 @@
+/* One subdomain: kernel, regularized matrix, factorization, and the products with K and K+.
+
+   Kreg is K with the rows and columns of the removed dofs (fixing dofs and Dirichlet dofs kept in the
+   primal) replaced by d*I, d the mean diagonal entry (so the scale of the pivots is unchanged).
+   Kreg is built in place when nobody but the FETI object holds K (FEMCreateFETI() hands its
+   matrices over this way), otherwise from a copy; either way only Kreg is kept. The products with
+   K on the primal space V (where Dirichlet dofs are zero) are recovered exactly as
+       K_V x = Kreg x + C x - d x_removed,
+   where C holds the entries of K_V in the rows and columns of the fixing dofs (a few columns). */
+#include <conefeti/private/fetiimpl.h>
+
+#include <algorithm>
+#include <cmath>
+
+/* y = K_V x for sequential vectors of length n */
+PetscErrorCode FETISubdomainApplyK(FETISubdomain &sd, Vec x, Vec y)
+{
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(sd.Kreg, x, y));
+  if (sd.correction) PetscCall(MatMultAdd(sd.correction, x, y, y));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt r : sd.removed) ya[r] -= sd.regdiag * xa[r];
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = K+ x = [K_NN^-1 0; 0 0] x */
+PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &sd, Vec x, Vec y)
+{
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecCopy(x, sd.x));
+  PetscCall(VecGetArray(sd.x, &a));
+  for (PetscInt r : sd.removed) a[r] = 0;
+  PetscCall(VecRestoreArray(sd.x, &a));
+  PetscCall(KSPSolve(sd.ksp, sd.x, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode KernelFromInput(FETI feti, FETISubdomain &sd, PetscInt s)
+{
+  PetscFunctionBegin;
+  if (sd.coords) {
+    PetscInt nc;
+    PetscCall(VecGetSize(sd.coords, &nc));
+    PetscCheck(nc == sd.n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "FETISetSubdomainCoordinates(): subdomain %" PetscInt_FMT ": %" PetscInt_FMT " coordinates for %" PetscInt_FMT " dofs (need 3 per node, interleaved like the dofs)", s, nc, sd.n);
+  }
+  if (sd.Ruser) {
+    Mat                dense;
+    const PetscScalar *a;
+    PetscInt           m, k, lda;
+    PetscCall(MatGetSize(sd.Ruser, &m, &k));
+    PetscCheck(m == sd.n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomainKernel(): subdomain %" PetscInt_FMT ": the kernel has %" PetscInt_FMT " rows but K_s has %" PetscInt_FMT, s, m, sd.n);
+    PetscCall(MatConvert(sd.Ruser, MATSEQDENSE, MAT_INITIAL_MATRIX, &dense));
+    PetscCall(MatDenseGetLDA(dense, &lda));
+    PetscCall(MatDenseGetArrayRead(dense, &a));
+    PetscCallCXX(sd.R.resize((size_t)m * k));
+    for (PetscInt j = 0; j < k; j++)
+      for (PetscInt i = 0; i < m; i++) sd.R[(size_t)j * m + i] = a[(size_t)j * lda + i];
+    PetscCall(MatDenseRestoreArrayRead(dense, &a));
+    PetscCall(MatDestroy(&dense));
+    sd.nkernel = k;
+  } else {
+    PetscInt nc;
+    PetscCheck(sd.coords, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONGSTATE, "Subdomain %" PetscInt_FMT ": give node coordinates (FETISetSubdomainCoordinates()) or a kernel basis (FETISetSubdomainKernel())",
+               s);
+    PetscCall(VecGetSize(sd.coords, &nc));
+    PetscCheck(nc == sd.n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "FETISetSubdomainCoordinates(): subdomain %" PetscInt_FMT ": %" PetscInt_FMT " coordinates for %" PetscInt_FMT " dofs (need 3 per node, interleaved like the dofs)", s, nc, sd.n);
+    PetscCall(FETIRigidBodyModes(sd.coords, sd.n, sd.R));
+    sd.nkernel = 6;
+  }
+  PetscCall(FETIOrthonormalizeColumns(sd.n, &sd.nkernel, sd.R, 1e-8));
+  PetscCall(FETIKernelVanishingOn(sd.n, &sd.nkernel, sd.R, sd.dirichletdofs, feti->impl->kerneltol));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* C: the entries of K_V in the rows and columns of the fixing dofs, from the columns K e_f */
+static PetscErrorCode BuildCorrection(FETISubdomain &sd, const std::vector<char> &isD)
+{
+  std::vector<std::vector<PetscInt>>    cols(sd.fixing.size());
+  std::vector<std::vector<PetscScalar>> vals(sd.fixing.size());
+  std::vector<PetscInt>                 nnz(sd.n, 0);
+  Vec                                   ef, kf;
+
+  PetscFunctionBegin;
+  if (sd.fixing.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &ef));
+  PetscCall(VecDuplicate(ef, &kf));
+  for (size_t q = 0; q < sd.fixing.size(); q++) {
+    const PetscScalar *a;
+    PetscCall(VecSet(ef, 0.0));
+    PetscCall(VecSetValue(ef, sd.fixing[q], 1.0, INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(ef));
+    PetscCall(VecAssemblyEnd(ef));
+    PetscCall(MatMult(sd.K, ef, kf));
+    PetscCall(VecGetArrayRead(kf, &a));
+    for (PetscInt i = 0; i < sd.n; i++)
+      if (a[i] != 0.0 && !isD[i]) {
+        PetscCallCXX(cols[q].push_back(i));
+        PetscCallCXX(vals[q].push_back(a[i]));
+      }
+    PetscCall(VecRestoreArrayRead(kf, &a));
+  }
+  PetscCall(VecDestroy(&ef));
+  PetscCall(VecDestroy(&kf));
+  for (size_t q = 0; q < sd.fixing.size(); q++) {
+    nnz[sd.fixing[q]] += (PetscInt)cols[q].size();
+    for (PetscInt i : cols[q]) nnz[i]++;
+  }
+  for (PetscInt i = 0; i < sd.n; i++) nnz[i] = std::min(nnz[i], sd.n);
+  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, sd.n, sd.n, 0, nnz.data(), &sd.correction));
+  for (size_t q = 0; q < sd.fixing.size(); q++) {
+    const PetscInt f = sd.fixing[q];
+    for (size_t t = 0; t < cols[q].size(); t++) {
+      PetscCall(MatSetValue(sd.correction, cols[q][t], f, vals[q][t], INSERT_VALUES));
+      PetscCall(MatSetValue(sd.correction, f, cols[q][t], vals[q][t], INSERT_VALUES));
+    }
+  }
+  PetscCall(MatAssemblyBegin(sd.correction, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(sd.correction, MAT_FINAL_ASSEMBLY));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* max over kernel columns of ||K_V r|| / ||K||_inf (the columns are orthonormal) */
+static PetscErrorCode KernelResidual(FETISubdomain &sd, const std::vector<char> &isD, PetscReal *res)
+{
+  Vec       r, kr;
+  PetscReal knorm;
+
+  PetscFunctionBegin;
+  *res = 0;
+  if (!sd.nkernel) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MatNorm(sd.K, NORM_INFINITY, &knorm));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &kr));
+  for (PetscInt j = 0; j < sd.nkernel; j++) {
+    PetscScalar *a;
+    PetscReal    norm;
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, sd.n, &sd.R[(size_t)j * sd.n], &r));
+    PetscCall(MatMult(sd.K, r, kr));
+    PetscCall(VecGetArray(kr, &a));
+    for (PetscInt i = 0; i < sd.n; i++)
+      if (isD[i]) a[i] = 0;
+    PetscCall(VecRestoreArray(kr, &a));
+    PetscCall(VecNorm(kr, NORM_2, &norm));
+    *res = std::max(*res, knorm > 0 ? norm / knorm : norm);
+    PetscCall(VecDestroy(&r));
+  }
+  PetscCall(VecDestroy(&kr));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* ||K+ K x - x|| / ||x|| for a random x vanishing at the removed dofs. In exact arithmetic it is 0;
+   in floating point it is about cond(K_NN) * eps, so it exposes a K_NN made (nearly) singular by a
+   zero-energy mode missing from the kernel basis, which K K+ K = K alone would not: there the huge
+   component K+ puts along the missing mode is annihilated again by K. */
+static PetscErrorCode RegularizationResidual(FETISubdomain &sd, PetscReal *res)
+{
+  Vec          x, kx, w;
+  PetscRandom  rnd;
+  PetscReal    norm, normx;
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &x));
+  PetscCall(VecDuplicate(x, &kx));
+  PetscCall(VecDuplicate(x, &w));
+  PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
+  PetscCall(PetscRandomSetSeed(rnd, 12345));
+  PetscCall(PetscRandomSeed(rnd));
+  PetscCall(VecSetRandom(x, rnd));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(VecGetArray(x, &a));
+  for (PetscInt r : sd.removed) a[r] = 0;
+  PetscCall(VecRestoreArray(x, &a));
+  PetscCall(FETISubdomainApplyK(sd, x, kx));
+  PetscCall(FETISubdomainApplyKplus(sd, kx, w));
+  PetscCall(VecAXPY(w, -1.0, x));
+  PetscCall(VecNorm(w, NORM_2, &norm));
+  PetscCall(VecNorm(x, NORM_2, &normx));
+  *res = normx > 0 ? norm / normx : norm;
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&kx));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
+{
+  FETI_Impl        &impl = *feti->impl;
+  std::vector<char> isD(sd.n, 0);
+  Vec               diag;
+  PetscReal         sum   = 0;
+  PetscInt          nfree = 0;
+  const char       *prefix;
+  char              subprefix[256];
+  PC                pc;
+
+  PetscFunctionBegin;
+  sd.dirichletdofs.clear();
+  if (sd.dirichlet) {
+    const PetscInt *idx;
+    PetscInt        nd;
+    PetscCall(ISGetLocalSize(sd.dirichlet, &nd));
+    PetscCall(ISGetIndices(sd.dirichlet, &idx));
+    for (PetscInt i = 0; i < nd; i++) {
+      PetscCheck(idx[i] >= 0 && idx[i] < sd.n, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                 "FETISetSubdomainDirichletDofs(): subdomain %" PetscInt_FMT ": dof %" PetscInt_FMT " is outside 0..%" PetscInt_FMT, s, idx[i], sd.n - 1);
+      PetscCallCXX(sd.dirichletdofs.push_back(idx[i]));
+    }
+    PetscCall(ISRestoreIndices(sd.dirichlet, &idx));
+    std::sort(sd.dirichletdofs.begin(), sd.dirichletdofs.end());
+    sd.dirichletdofs.erase(std::unique(sd.dirichletdofs.begin(), sd.dirichletdofs.end()), sd.dirichletdofs.end());
+  }
+  for (PetscInt d : sd.dirichletdofs) isD[d] = 1;
+
+  PetscCall(KernelFromInput(feti, sd, s));
+  if (impl.check) {
+    PetscReal res;
+    PetscCall(KernelResidual(sd, isD, &res));
+    PetscCheck(res <= impl.checktol, PETSC_COMM_SELF, PETSC_ERR_ARG_INCOMP,
+               "Subdomain %" PetscInt_FMT ": ||K_s R_s|| / ||K_s|| = %g exceeds -feti_check_tol %g: the coordinates (or kernel) do not match K_s (dof order x,y,z per node? same node order?)", s,
+               (double)res, (double)impl.checktol);
+  }
+  PetscCall(FETIChooseFixingDofs(sd.n, sd.nkernel, sd.R, sd.coords, sd.dirichletdofs, impl.nfixingcandidates, sd.fixing));
+  PetscCall(BuildCorrection(sd, isD));
+
+  /* d = mean diagonal entry over the free dofs */
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &diag));
+  PetscCall(MatGetDiagonal(sd.K, diag));
+  {
+    const PetscScalar *a;
+    PetscCall(VecGetArrayRead(diag, &a));
+    for (PetscInt i = 0; i < sd.n; i++)
+      if (!isD[i]) {
+        sum += PetscAbsScalar(a[i]);
+        nfree++;
+      }
+    PetscCall(VecRestoreArrayRead(diag, &a));
+  }
+  PetscCall(VecDestroy(&diag));
+  sd.regdiag = nfree && sum > 0 ? sum / nfree : 1.0;
+
+  PetscCallCXX(sd.removed = sd.fixing);
+  PetscCallCXX(sd.removed.insert(sd.removed.end(), sd.dirichletdofs.begin(), sd.dirichletdofs.end()));
+  std::sort(sd.removed.begin(), sd.removed.end());
+  sd.removed.erase(std::unique(sd.removed.begin(), sd.removed.end()), sd.removed.end());
+  if (((PetscObject)sd.K)->refct == 1) { /* nobody else sees K: regularize in place */
+    sd.Kreg = sd.K;
+    sd.K    = nullptr;
+  } else {
+    PetscCall(MatDuplicate(sd.K, MAT_COPY_VALUES, &sd.Kreg));
+    PetscCall(MatDestroy(&sd.K));
+  }
+  PetscCall(MatZeroRowsColumns(sd.Kreg, (PetscInt)sd.removed.size(), sd.removed.data(), sd.regdiag, NULL, NULL));
+  PetscCall(MatSetOption(sd.Kreg, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(sd.Kreg, MAT_SPD, PETSC_TRUE));
+
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
+  PetscCall(PetscSNPrintf(subprefix, sizeof(subprefix), "%sfeti_sub_", prefix ? prefix : ""));
+  {
+    /* CHOLMOD takes AIJ or block-size-1 SBAIJ only: convert an SBAIJ K_s once, in place */
+    char      solver[64];
+    PetscBool set, sbaij, cholmod;
+    PetscCall(PetscStrncpy(solver, impl.subsolver, sizeof(solver)));
+    PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, subprefix, "-pc_factor_mat_solver_type", solver, sizeof(solver), &set));
+    PetscCall(PetscStrcmp(solver, MATSOLVERCHOLMOD, &cholmod));
+    PetscCall(PetscObjectTypeCompare((PetscObject)sd.Kreg, MATSEQSBAIJ, &sbaij));
+    if (cholmod && sbaij) PetscCall(MatConvert(sd.Kreg, MATSEQAIJ, MAT_INPLACE_MATRIX, &sd.Kreg));
+  }
+  PetscCall(KSPCreate(PETSC_COMM_SELF, &sd.ksp));
+  PetscCall(KSPSetErrorIfNotConverged(sd.ksp, PETSC_TRUE));
+  PetscCall(KSPSetOperators(sd.ksp, sd.Kreg, sd.Kreg));
+  PetscCall(KSPSetOptionsPrefix(sd.ksp, subprefix));
+  PetscCall(KSPSetType(sd.ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(sd.ksp, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
+  PetscCall(KSPSetFromOptions(sd.ksp));
+  {
+    PetscBool failed;
+    PetscCall(FETIKSPSetUpFactorization(feti, sd.ksp, &failed));
+    PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+               "Subdomain %" PetscInt_FMT ": the regularized K_s is not positive definite: K_s has zero-energy modes outside its kernel basis of dimension %" PetscInt_FMT
+               " (a disconnected subdomain, a mechanism, wrong coordinates?)",
+               s, sd.nkernel);
+  }
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &sd.x));
+  PetscCall(VecDuplicate(sd.x, &sd.y));
+  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, sd.n, NULL, &sd.xa));
+  PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, sd.n, NULL, &sd.ya));
+  if (impl.check) {
+    PetscReal res;
+    PetscCall(RegularizationResidual(sd, &res));
+    PetscCheck(res <= impl.checktol, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+               "Subdomain %" PetscInt_FMT
+               ": ||K+ K x - x|| / ||x|| = %g exceeds -feti_check_tol %g: the regularized K_s is (nearly) singular, so K_s has zero-energy modes outside its kernel basis of dimension %" PetscInt_FMT
+               " (a disconnected subdomain, a mechanism, wrong coordinates?)",
+               s, (double)res, (double)impl.checktol, sd.nkernel);
+    PetscCall(PetscInfo(NULL, "Subdomain %" PetscInt_FMT ": kernel dimension %" PetscInt_FMT ", ||K+ K x - x|| / ||x|| = %g\n", s, sd.nkernel, (double)res));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
+{
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&sd.K));
+  PetscCall(VecDestroy(&sd.f));
+  PetscCall(VecDestroy(&sd.coords));
+  PetscCall(MatDestroy(&sd.Ruser));
+  PetscCall(ISDestroy(&sd.dirichlet));
+  PetscCall(MatDestroy(&sd.Kreg));
+  PetscCall(MatDestroy(&sd.correction));
+  PetscCall(KSPDestroy(&sd.ksp));
+  PetscCall(VecDestroy(&sd.x));
+  PetscCall(VecDestroy(&sd.y));
+  PetscCall(VecDestroy(&sd.xa));
+  PetscCall(VecDestroy(&sd.ya));
+  PetscCall(ISDestroy(&sd.boundary));
+  PetscCall(ISDestroy(&sd.interior));
+  PetscCall(MatDestroy(&sd.Kbb));
+  PetscCall(MatDestroy(&sd.Kbi));
+  PetscCall(MatDestroy(&sd.Fii));
+  PetscCall(VecDestroy(&sd.xb));
+  PetscCall(VecDestroy(&sd.yb));
+  PetscCall(VecDestroy(&sd.xi));
+  PetscCall(VecDestroy(&sd.yi));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

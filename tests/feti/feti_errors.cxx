@@ -1,0 +1,137 @@
+/* Bad input must stop with a clear PETSc error that names the problem, never a crash or NaN.
+   -case <name> selects one mistake; the program catches the error, prints its message and
+   "error caught", and exits 0 (the test then matches the message text). A case that does not
+   fail is itself a failure. */
+#include "scene.h"
+
+static PetscErrorCode PrintInitialError(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  (void)comm;
+  (void)line;
+  (void)fun;
+  (void)file;
+  (void)ctx;
+  if (p == PETSC_ERROR_INITIAL) printf("caught: %s\n", mess);
+  return n;
+}
+
+/* One subdomain per rank: the body's subdomain 0 local K, f, and the FETI as FEMCreateFETI() makes it */
+static PetscErrorCode Scene(FEM *fem, FETI *feti)
+{
+  PetscFunctionBeginUser;
+  PetscCall(CreateTestScene(PETSC_COMM_WORLD, fem));
+  PetscCall(FEMCreateFETI(*fem, feti));
+  PetscCall(FETISetFromOptions(*feti));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Coordinates (3 per node) of local subdomain 0, optionally in a wrong node order */
+static PetscErrorCode SubdomainCoordinates(FEM fem, PetscBool reversed, Vec *coords)
+{
+  PetscInt         body, nn;
+  const PetscInt  *nodes;
+  const PetscReal *x;
+  PetscScalar     *a;
+
+  PetscFunctionBeginUser;
+  PetscCall(FEMGetSubdomainMesh(fem, 0, &body, &nn, &nodes, NULL, NULL));
+  PetscCall(FEMGetBodyNodes(fem, body, NULL, &x));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * nn, coords));
+  PetscCall(VecGetArray(*coords, &a));
+  for (PetscInt l = 0; l < nn; l++)
+    for (PetscInt d = 0; d < 3; d++) a[3 * l + d] = x[3 * nodes[reversed ? (l + 1) % nn : l] + d]; /* shifted by one node */
+  PetscCall(VecRestoreArray(*coords, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode RunCase(const char *name)
+{
+  FEM  fem  = NULL;
+  FETI feti = NULL;
+
+  PetscFunctionBeginUser;
+  if (!strcmp(name, "wrong_block_size") || !strcmp(name, "not_square")) {
+    Mat      K;
+    PetscInt m = 6, n = !strcmp(name, "not_square") ? 9 : 6;
+    PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, m, n, 1, NULL, &K));
+    if (m == n) PetscCall(MatSetBlockSize(K, 1));
+    else PetscCall(MatSetBlockSizes(K, 3, 3));
+    PetscCall(MatAssemblyBegin(K, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(K, MAT_FINAL_ASSEMBLY));
+    PetscCall(FETICreate(PETSC_COMM_WORLD, &feti));
+    PetscCall(FETISetSubdomains(feti, 1, &K, NULL));
+  } else if (!strcmp(name, "B_wrong_columns")) {
+    Mat         B;
+    FETIRowKind kind = FETI_ROW_GLUING;
+    PetscInt    nprimal;
+    PetscCall(Scene(&fem, &feti));
+    PetscCall(FETIGetConstraints(feti, &B, NULL, NULL));
+    PetscCall(MatGetSize(B, NULL, &nprimal));
+    PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, 1, nprimal + 3, 1, NULL, 1, NULL, &B));
+    PetscCall(MatAssemblyBegin(B, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(B, MAT_FINAL_ASSEMBLY));
+    {
+      PetscInt m;
+      PetscCall(MatGetLocalSize(B, &m, NULL));
+      PetscCall(FETISetConstraints(feti, B, NULL, m ? &kind : NULL));
+    }
+    PetscCall(FETISetUp(feti));
+  } else if (!strcmp(name, "kernel_missing_a_mode") || !strcmp(name, "coordinates_do_not_match")) {
+    Vec coords;
+    PetscCall(Scene(&fem, &feti));
+    PetscCall(SubdomainCoordinates(fem, strcmp(name, "coordinates_do_not_match") ? PETSC_FALSE : PETSC_TRUE, &coords));
+    if (!strcmp(name, "kernel_missing_a_mode")) {
+      /* translations x, y, z and two of the three rotations: K_s still has the third rotation */
+      Mat                R;
+      PetscInt           n;
+      const PetscScalar *x;
+      PetscCall(VecGetSize(coords, &n));
+      PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, 5, NULL, &R));
+      PetscCall(VecGetArrayRead(coords, &x));
+      for (PetscInt i = 0; i < n / 3; i++) {
+        for (PetscInt d = 0; d < 3; d++) PetscCall(MatSetValue(R, 3 * i + d, d, 1.0, INSERT_VALUES));
+        PetscCall(MatSetValue(R, 3 * i + 0, 3, -x[3 * i + 1], INSERT_VALUES));
+        PetscCall(MatSetValue(R, 3 * i + 1, 3, x[3 * i + 0], INSERT_VALUES));
+        PetscCall(MatSetValue(R, 3 * i + 1, 4, -x[3 * i + 2], INSERT_VALUES));
+        PetscCall(MatSetValue(R, 3 * i + 2, 4, x[3 * i + 1], INSERT_VALUES));
+      }
+      PetscCall(VecRestoreArrayRead(coords, &x));
+      PetscCall(MatAssemblyBegin(R, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(R, MAT_FINAL_ASSEMBLY));
+      PetscCall(FETISetSubdomainKernel(feti, 0, R));
+    } else PetscCall(FETISetSubdomainCoordinates(feti, 0, coords));
+    PetscCall(FETISetUp(feti));
+  } else if (!strcmp(name, "fewer_subdomains_than_ranks") || !strcmp(name, "bad_option")) {
+    PetscCall(CreateTestScene(PETSC_COMM_WORLD, &fem));
+  } else if (!strcmp(name, "body_without_dirichlet")) {
+    PetscReal lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    PetscInt  c[3] = {2, 2, 2}, b, parts[3] = {2, 1, 1};
+    PetscCall(FEMCreate(PETSC_COMM_WORLD, &fem));
+    PetscCall(FEMAddBox(fem, lo, hi, c, &b));
+    PetscCall(FEMSetDecomposition(fem, b, FEM_DECOMPOSITION_STRUCTURED, parts));
+    PetscCall(FEMSetUp(fem));
+    PetscCall(FEMCreateFETI(fem, &feti));
+    PetscCall(FETISetFromOptions(feti));
+    PetscCall(FETISetUp(feti));
+  } else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "unknown -case %s", name);
+  PetscCall(FETIDestroy(&feti));
+  PetscCall(FEMDestroy(&fem));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  char           name[64] = "";
+  PetscErrorCode ierr;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, "Bad input gives clear errors"));
+  PetscCall(ConeFETIInitializePackage());
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-case", name, sizeof(name), NULL));
+  PetscCall(PetscPushErrorHandler(PrintInitialError, NULL));
+  ierr = RunCase(name);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(ierr, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "case %s: the bad input was accepted", name);
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "error caught\n"));
+  PetscCall(PetscFinalize());
+  return 0;
+}
