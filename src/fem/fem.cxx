@@ -535,7 +535,13 @@ PetscErrorCode FEMView(FEM fem, PetscViewer viewer)
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)fem), &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)fem, viewer));
+  {
+    PetscMPIInt size;
+    const char *prefix;
+    PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)fem), &size));
+    PetscCall(PetscObjectGetOptionsPrefix((PetscObject)fem, &prefix));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "FEM Object: %s%s%s%d MPI process%s\n", prefix ? "(" : "", prefix ? prefix : "", prefix ? ") " : "", size, size > 1 ? "es" : ""));
+  }
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "%d bodies, Dirichlet conditions %s\n", (int)impl.bodies.size(),
                                    impl.dirichletmode == FEM_DIRICHLET_PRIMAL ? "kept in the primal" : "by multipliers (Total FETI)"));

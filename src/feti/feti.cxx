@@ -481,7 +481,13 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(comm, &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)feti, viewer));
+  {
+    PetscMPIInt size;
+    const char *prefix;
+    PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)feti), &size));
+    PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "FETI Object: %s%s%s%d MPI process%s\n", prefix ? "(" : "", prefix ? prefix : "", prefix ? ") " : "", size, size > 1 ? "es" : ""));
+  }
   PetscCall(PetscViewerASCIIPushTab(viewer));
   if (!impl.setupcalled) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "not set up\n"));

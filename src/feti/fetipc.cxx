@@ -11,18 +11,16 @@
 
 struct PC_FETI {
   PetscBool dirichlet;
-  FETI      feti; /* not referenced: the FETI object owns the KSP that owns this PC */
+  char      solver[64]; /* factorization package of the interior blocks ("" = the subdomains' default) */
+  FETI      feti;       /* not referenced: the FETI object owns the KSP that owns this PC */
   Vec       wd, wp1, wp2;
 };
 
 /* Boundary dofs (touched by B, not Dirichlet in the primal) and interior dofs of each subdomain, and
    the blocks of K_V on them; for the Dirichlet preconditioner also the factored K_ii. Built once. */
-PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
+PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet, const char interiorsolver[])
 {
-  FETI_Impl  &impl = *feti->impl;
-  const char *prefix;
-  char        pcprefix[256];
-
+  FETI_Impl &impl = *feti->impl;
   PetscFunctionBegin;
   if (!impl.boundarymask) {
     PetscInt rstart, rend;
@@ -41,11 +39,7 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
     PetscCall(VecAssemblyBegin(impl.boundarymask));
     PetscCall(VecAssemblyEnd(impl.boundarymask));
   }
-  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
-  PetscCall(PetscSNPrintf(pcprefix, sizeof(pcprefix), "%sfeti_dirichlet_", prefix ? prefix : ""));
-  char solver[64];
-  PetscCall(PetscStrncpy(solver, impl.subsolver, sizeof(solver)));
-  PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, pcprefix, "-pc_factor_mat_solver_type", solver, sizeof(solver), NULL));
+  const char        *solver = interiorsolver && interiorsolver[0] ? interiorsolver : impl.subsolver;
   const PetscScalar *mask;
   PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
   for (FETISubdomain &sd : impl.sub) {
@@ -121,7 +115,7 @@ static PetscErrorCode PCSetUp_FETI(PC pc)
   PetscCheck(data->feti, PetscObjectComm((PetscObject)pc), PETSC_ERR_ARG_WRONG, "PC %s preconditions only the P F P operator of a FETI problem (use it through FETIGetKSP() / -feti_pc_type)",
              ((PetscObject)pc)->type_name);
   PetscCall(PetscLogEventBegin(FETI_SetUp, data->feti, 0, 0, 0));
-  PetscCall(FETISetUpPreconditionerData(data->feti, data->dirichlet));
+  PetscCall(FETISetUpPreconditionerData(data->feti, data->dirichlet, data->solver));
   PetscCall(PetscLogEventEnd(FETI_SetUp, data->feti, 0, 0, 0));
   if (!data->wd) {
     PetscCall(FETICreateVecs(data->feti, &data->wp1, &data->wd, NULL));
@@ -175,6 +169,19 @@ static PetscErrorCode PCApply_FETI(PC pc, Vec x, Vec y)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static PetscErrorCode PCSetFromOptions_FETI(PC pc, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
+{
+  PC_FETI *data = (PC_FETI *)pc->data;
+
+  PetscFunctionBegin;
+  PetscOptionsHeadBegin(PetscOptionsObject, "FETI preconditioner options");
+  if (data->dirichlet)
+    PetscCall(PetscOptionsString("-dirichlet_pc_factor_mat_solver_type", "Cholesky package of the interior blocks K_ii (default: that of the subdomains)", "PCFETIDIRICHLET", data->solver,
+                                 data->solver, sizeof(data->solver), NULL));
+  PetscOptionsHeadEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode PCReset_FETI(PC pc)
 {
   PC_FETI *data = (PC_FETI *)pc->data;
@@ -211,13 +218,14 @@ static PetscErrorCode PCCreate_FETI(PC pc, PetscBool dirichlet)
 
   PetscFunctionBegin;
   PetscCall(PetscNew(&data));
-  data->dirichlet  = dirichlet;
-  pc->data         = data;
-  pc->ops->setup   = PCSetUp_FETI;
-  pc->ops->apply   = PCApply_FETI;
-  pc->ops->reset   = PCReset_FETI;
-  pc->ops->destroy = PCDestroy_FETI;
-  pc->ops->view    = PCView_FETI;
+  data->dirichlet         = dirichlet;
+  pc->data                = data;
+  pc->ops->setup          = PCSetUp_FETI;
+  pc->ops->setfromoptions = PCSetFromOptions_FETI;
+  pc->ops->apply          = PCApply_FETI;
+  pc->ops->reset          = PCReset_FETI;
+  pc->ops->destroy        = PCDestroy_FETI;
+  pc->ops->view           = PCView_FETI;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -248,7 +256,7 @@ PetscErrorCode PCCreate_FETILumped(PC pc)
 
   Options Database Keys:
 + -feti_pc_type dirichlet                                  - select it (the default of `FETISolveLinear()`)
-- -feti_dirichlet_pc_factor_mat_solver_type <cholmod,...> - the factorization of the interior blocks K_ii
+- -feti_dirichlet_pc_factor_mat_solver_type <cholmod,mumps,petsc> - the factorization of the interior blocks K_ii
 
   Notes:
   Costs one more sparse Cholesky per subdomain (of the interior block) and one solve with it per

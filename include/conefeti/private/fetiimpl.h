@@ -100,7 +100,7 @@ PETSC_INTERN PetscErrorCode FETICreateCoarseKSP(FETI, Mat, KSP *, PetscBool *);
 PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscBool *);
 
 /* fetipc.cxx */
-PETSC_INTERN PetscErrorCode FETISetUpPreconditionerData(FETI, PetscBool);
+PETSC_INTERN PetscErrorCode FETISetUpPreconditionerData(FETI, PetscBool, const char[]);
 PETSC_INTERN PetscErrorCode PCCreate_FETILumped(PC);
 PETSC_INTERN PetscErrorCode PCCreate_FETIDirichlet(PC);
 PETSC_INTERN PetscErrorCode FETIFromMat(Mat, FETI *);
