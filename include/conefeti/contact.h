@@ -130,3 +130,120 @@ PETSC_EXTERN PetscErrorCode ContactProblemGetEqualityMultiplier(ContactProblem, 
 PETSC_EXTERN PetscErrorCode ContactProblemGetNodes(ContactProblem, PetscInt *, const PetscInt **, const PetscInt **, const PetscInt **, const ContactLaw **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode ContactProblemGetSlipBounds(ContactProblem, Vec, PetscReal[]);
 PETSC_EXTERN PetscErrorCode ContactProblemGetTao(ContactProblem, Tao *);
+
+/* ---------------------------------------------------------------------------------------------
+   Contact on a finite element model: zones, the FETI dual problem, primal recovery, residuals
+   --------------------------------------------------------------------------------------------- */
+
+#include <conefeti/fem.h>
+#include <conefeti/feti.h>
+
+/*E
+  ContactZoneType - Where a contact zone's nodes may touch.
+
+$ CONTACT_ZONE_FOUNDATION - a rigid plane
+$ CONTACT_ZONE_BODIES     - another body, node to node on conforming meshes
+
+  Level: beginner
+E*/
+typedef enum {
+  CONTACT_ZONE_FOUNDATION,
+  CONTACT_ZONE_BODIES
+} ContactZoneType;
+PETSC_EXTERN const char *const ContactZoneTypes[];
+
+/*S
+  ContactZone - A contact zone: the tagged face of a body that may touch a rigid plane or another
+  body's tagged face, and the law on it.
+
+  Fields:
++ type       - foundation or bodies
+. body, face - the body and the tag of the face that may touch (nodes with a Dirichlet component are left out)
+. other_body, other_face - bodies: the other body and its face (its nodes must coincide with the first face's)
+. point, normal - foundation: a point of the plane and its unit normal pointing toward the body;
+                  the gap of a node x is (x - point).normal
+. law        - frictionless, Tresca or Coulomb
+- coef       - Tresca: slip bound as a stress (force per area, turned into nodal forces with the nodal
+               areas); Coulomb: the friction coefficient F
+
+  Level: beginner
+
+.seealso: `ContactModelAddZone()`
+S*/
+typedef struct {
+  ContactZoneType type;
+  PetscInt        body;
+  char            face[64];
+  PetscInt        other_body;
+  char            other_face[64];
+  PetscReal       point[3], normal[3];
+  ContactLaw      law;
+  PetscReal       coef;
+} ContactZone;
+
+/*E
+  ContactNodeStatus - State of a contact node in a solution.
+
+$ CONTACT_NODE_SEPARATED - no pressure (the gap may be open)
+$ CONTACT_NODE_STICK     - in contact, no tangential motion
+$ CONTACT_NODE_SLIP      - in contact, tangential motion with the tangential force on its bound
+
+  Level: beginner
+E*/
+typedef enum {
+  CONTACT_NODE_SEPARATED,
+  CONTACT_NODE_STICK,
+  CONTACT_NODE_SLIP
+} ContactNodeStatus;
+PETSC_EXTERN const char *const ContactNodeStatuses[];
+
+/*S
+  ContactResiduals - The mechanical quality of a solution (ALGORITHMS.md section 4), computed from u
+  and lambda, each relative (dimensionless):
+
+  Fields:
++ equilibrium     - |K u - f + B'l| / max(|f|, |B'l|) (subdomain by subdomain)
+. gluing          - max |(B u - c)_i| over gluing and Dirichlet rows / max |u|
+. penetration     - max (N u - d)_+ / max |u|
+. normal_sign     - max (-l_n)_+ / max l_n
+. complementarity - max |l_n (d - N u)| / (max l_n max |u|)
+. friction_cone   - max (|l_t| - g)_+ / max l_n (g: Tresca bound or F l_n)
+. slip_rule       - max |l_t - P_g(l_t + k T u)| / max l_n with k = max l_n / max |u|: zero exactly when stick nodes do not move
+                    and slipping nodes move along l_t with |l_t| = g (the friction force -T'l_t opposes the slip)
+. max             - the largest of the above
+- counts[3]       - number of separated, stick and slip nodes
+
+  Level: beginner
+
+.seealso: `ContactModelComputeResiduals()`
+S*/
+typedef struct {
+  PetscReal equilibrium, gluing, penetration, normal_sign, complementarity, friction_cone, slip_rule, max;
+  PetscInt  counts[3];
+} ContactResiduals;
+
+/*S
+  ContactModel - A finite element model with contact zones, solved by FETI and the contact solver.
+
+  Level: beginner
+
+.seealso: `ContactModelCreate()`, `ContactModelAddZone()`, `ContactModelSolve()`
+S*/
+typedef struct _p_ContactModel *ContactModel;
+PETSC_EXTERN PetscClassId       CONTACTMODEL_CLASSID;
+
+PETSC_EXTERN PetscErrorCode ContactModelCreate(FEM, ContactModel *);
+PETSC_EXTERN PetscErrorCode ContactModelDestroy(ContactModel *);
+PETSC_EXTERN PetscErrorCode ContactModelAddZone(ContactModel, const ContactZone *);
+PETSC_EXTERN PetscErrorCode ContactModelSetFromOptions(ContactModel);
+PETSC_EXTERN PetscErrorCode ContactModelSetUp(ContactModel);
+PETSC_EXTERN PetscErrorCode ContactModelSolve(ContactModel);
+PETSC_EXTERN PetscErrorCode ContactModelView(ContactModel, PetscViewer);
+PETSC_EXTERN PetscErrorCode ContactModelGetFETI(ContactModel, FETI *);
+PETSC_EXTERN PetscErrorCode ContactModelGetContactProblem(ContactModel, ContactProblem *);
+PETSC_EXTERN PetscErrorCode ContactModelGetPipeline(ContactModel, ContactPipeline *);
+PETSC_EXTERN PetscErrorCode ContactModelGetSolution(ContactModel, Vec *, Vec *);
+PETSC_EXTERN PetscErrorCode ContactModelGetStatistics(ContactModel, ContactStatistics *);
+PETSC_EXTERN PetscErrorCode ContactModelComputeResiduals(ContactModel, ContactResiduals *);
+PETSC_EXTERN PetscErrorCode ContactModelGetNodes(ContactModel, PetscInt *, const PetscInt **, const PetscInt **, const PetscReal **, const PetscReal **);
+PETSC_EXTERN PetscErrorCode ContactModelGetNodeStates(ContactModel, PetscReal[], PetscReal[], PetscReal[], ContactNodeStatus[]);

@@ -6,6 +6,7 @@ PetscErrorCode ConeFETIContactInitializePackage(void)
 {
   PetscFunctionBegin;
   PetscCall(PetscClassIdRegister("ContactProblem", &CONTACTPROBLEM_CLASSID));
+  PetscCall(PetscClassIdRegister("ContactModel", &CONTACTMODEL_CLASSID));
   PetscCall(PetscLogEventRegister("ContactSolve", CONTACTPROBLEM_CLASSID, &CONTACT_Solve));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

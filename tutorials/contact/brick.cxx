@@ -1,0 +1,93 @@
+/* The seed paper's brick: a steel brick (0,3)x(0,1)x(0,1), cut into three cubes, clamped on x = 0,
+   pressed onto a rigid foundation and pulled sideways; Coulomb friction on the bottom of the two
+   free cubes.
+
+   Sample runs:
+     brick -k 4 -friction 0.3                       (n = 900, the paper's smallest size)
+     brick -k 12 -friction 0.1 -contact_coulomb_algorithm msa
+     brick -k 4 -law frictionless                   (no tangential multipliers, mprgp only)
+   Prints the pipeline, the counts of the paper's tables (n, m, Iter, n_A = QPP + QPQ), the node
+   states and the mechanical residuals. */
+#include <conefeti.h>
+#include <conefeti/private/compat.h>
+
+static PetscErrorCode ContactFace(const PetscReal c[3], const PetscReal n[3], PetscBool *tagged, void *)
+{
+  *tagged = (c[0] > 1.0 && n[2] < -0.5) ? PETSC_TRUE : PETSC_FALSE;
+  return PETSC_SUCCESS;
+}
+
+int main(int argc, char **argv)
+{
+  FEM               fem;
+  ContactModel      cm;
+  ContactZone       zone = {};
+  ContactStatistics st;
+  ContactResiduals  r;
+  PetscInt          k = 4, cells[3], sub[3] = {3, 1, 1}, b, n, m;
+  PetscReal         lo[3] = {0, 0, 0}, hi[3] = {3, 1, 1}, friction = 0.3, p = 4e7, tau = 2e7, gap = 0, tilt = 0;
+  char              law[32] = "coulomb";
+  Vec               lambda, u;
+  PetscLogDouble    t0, t1, t2;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, "The paper's brick"));
+  PetscCall(ConeFETIInitializePackage());
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-k", &k, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-friction", &friction, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-pressure", &p, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-shear", &tau, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-gap", &gap, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, NULL, "-tilt", &tilt, NULL));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-law", law, sizeof(law), NULL));
+  PetscCall(PetscTime(&t0));
+  cells[0] = 3 * k;
+  cells[1] = cells[2] = k;
+  PetscCall(FEMCreate(PETSC_COMM_WORLD, &fem));
+  PetscCall(FEMAddBox(fem, lo, hi, cells, &b));
+  PetscCall(FEMSetMaterial(fem, b, 21.2e10, 0.277));
+  PetscCall(FEMSetDirichlet(fem, b, "x0", NULL));
+  {
+    PetscReal top[3] = {0, 0, -p}, end[3] = {tau, 0, 0};
+    PetscCall(FEMSetTraction(fem, b, "z1", top));
+    PetscCall(FEMSetTraction(fem, b, "x1", end));
+  }
+  PetscCall(FEMTagFaces(fem, b, "contact", ContactFace, NULL));
+  PetscCall(FEMSetDecomposition(fem, b, FEM_DECOMPOSITION_STRUCTURED, sub));
+  PetscCall(FEMSetDirichletMode(fem, FEM_DIRICHLET_PRIMAL)); /* the paper: Gamma_u in the primal, 12 rigid modes */
+  PetscCall(FEMSetFromOptions(fem));
+  PetscCall(FEMSetUp(fem));
+
+  PetscCall(ContactModelCreate(fem, &cm));
+  zone.type = CONTACT_ZONE_FOUNDATION;
+  zone.body = b;
+  PetscCall(PetscStrcpy(zone.face, "contact"));
+  zone.point[2]  = -gap;
+  zone.normal[0] = tilt; /* a tilted plane: the gap grows along x */
+  zone.normal[2] = 1;
+  if (!strcmp(law, "frictionless")) zone.law = CONTACT_FRICTIONLESS;
+  else if (!strcmp(law, "tresca")) zone.law = CONTACT_TRESCA;
+  else zone.law = CONTACT_COULOMB;
+  zone.coef = friction;
+  PetscCall(ContactModelAddZone(cm, &zone));
+  PetscCall(ContactModelSetUp(cm));
+  PetscCall(PetscTime(&t1));
+  PetscCall(ContactModelSolve(cm));
+  PetscCall(PetscTime(&t2));
+  PetscCall(ContactModelGetStatistics(cm, &st));
+  PetscCall(ContactModelComputeResiduals(cm, &r));
+  PetscCall(ContactModelGetSolution(cm, &lambda, &u));
+  PetscCall(VecGetSize(lambda, &m));
+  n = 3 * 3 * k * (k + 1) * (k + 1); /* unknowns of the undecomposed mesh without the clamped face */
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "pipeline %s; %s\n", ContactPipelines[st.pipeline], st.reason));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                        "n %" PetscInt_FMT " m %" PetscInt_FMT " Iter %" PetscInt_FMT " n_A %" PetscInt_FMT " (QPP %" PetscInt_FMT " + QPQ %" PetscInt_FMT " + other %" PetscInt_FMT
+                        ") estimate %" PetscInt_FMT " setup %.3f s solve %.3f s\n",
+                        n, m, st.outer_iterations, st.products_qpp + st.products_qpq + st.products_other, st.products_qpp, st.products_qpq, st.products_other, st.products_estimate, t1 - t0, t2 - t1));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "nodes: %" PetscInt_FMT " separated, %" PetscInt_FMT " stick, %" PetscInt_FMT " slip\n", r.counts[0], r.counts[1], r.counts[2]));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "residuals: equilibrium %.1e gluing %.1e penetration %.1e sign %.1e complementarity %.1e cone %.1e slip %.1e\n", (double)r.equilibrium, (double)r.gluing,
+                        (double)r.penetration, (double)r.normal_sign, (double)r.complementarity, (double)r.friction_cone, (double)r.slip_rule));
+  PetscCall(ContactModelDestroy(&cm));
+  PetscCall(FEMDestroy(&fem));
+  PetscCall(PetscFinalize());
+  return 0;
+}
