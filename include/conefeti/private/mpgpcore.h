@@ -52,3 +52,16 @@ PETSC_INTERN PetscErrorCode MPGPCoreSolve(MPGPCore *, Vec);
 PETSC_INTERN PetscErrorCode MPGPCoreReset(MPGPCore *);
 
 PETSC_INTERN PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate;
+
+/* How ||A|| is obtained for the fixed step length, shared by the TAO and KSP wrappers. */
+struct QPNormSettings {
+  QPNormMethod method = QP_NORM_SLEPC;
+  PetscReal    margin = -1; /* < 0: the method's default (0.01 slepc, 0.05 power) */
+  PetscReal    user   = 0;  /* > 0: given, not estimated */
+  PetscReal    used   = 0;  /* the value of the last solve */
+};
+
+/* Options -<kind>_<name>_{gamma,alpha,bb,norm,norm_method,norm_margin,counters_view} (kind tao or ksp). */
+PETSC_INTERN PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS, MPI_Comm, const char *, const char *, MPGPCore *, QPNormSettings *, PetscBool *);
+/* ||A|| for a solve: the given value, or the cached or new estimate (products added to the counters). */
+PETSC_INTERN PetscErrorCode QPNormSettingsApply(QPNormSettings *, Mat, const char *, const char *, const char *, QPCounters *);

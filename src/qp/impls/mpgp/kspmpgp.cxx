@@ -15,12 +15,9 @@ struct KSPQP {
   Vec          dm_lb = nullptr, dm_ub = nullptr;
   QPCounters   counters = {};
 
-  QPNormMethod norm_method   = QP_NORM_SLEPC;
-  PetscReal    norm_margin   = -1;
-  PetscReal    norm_user     = 0;
-  PetscReal    norm_used     = 0;
-  PetscBool    counters_view = PETSC_FALSE;
-  PetscBool    unconstrained = PETSC_TRUE;
+  QPNormSettings norm;
+  PetscBool      counters_view = PETSC_FALSE;
+  PetscBool      unconstrained = PETSC_TRUE;
 };
 
 KSPQP *GetQP(KSP ksp) { return static_cast<KSPQP *>(ksp->data); }
@@ -112,22 +109,17 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   if (ksp->guess_zero) PetscCall(VecSet(ksp->vec_sol, 0.0));
 
   /* the fixed step length matters only when there are constraints: without them every step is CG */
-  if (qp->unconstrained) qp->norm_used = qp->norm_user > 0 ? qp->norm_user : 1.0;
-  else if (qp->norm_user > 0) qp->norm_used = qp->norm_user;
+  if (qp->unconstrained) qp->norm.used = qp->norm.user > 0 ? qp->norm.user : 1.0;
   else {
-    PetscInt    products;
-    char        prefix[256];
     const char *kprefix;
     PetscCall(KSPGetOptionsPrefix(ksp, &kprefix));
-    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%sksp_%s_norm_", kprefix ? kprefix : "", qp->name));
-    PetscCall(MatQPEstimateNorm(A, qp->norm_method, qp->norm_margin >= 0 ? qp->norm_margin : (qp->norm_method == QP_NORM_SLEPC ? 0.01 : 0.05), prefix, &qp->norm_used, &products));
-    qp->counters.estimate_mults += products;
+    PetscCall(QPNormSettingsApply(&qp->norm, A, kprefix, "ksp", qp->name, &qp->counters));
   }
 
   qp->core.A                = A;
   qp->core.b                = ksp->vec_rhs;
   qp->core.set              = qp->set;
-  qp->core.normA            = qp->norm_used;
+  qp->core.normA            = qp->norm.used;
   qp->core.counters         = &qp->counters;
   qp->core.report           = KSPQPReport;
   qp->core.report_ctx       = ksp;
@@ -147,36 +139,10 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
 
 PetscErrorCode KSPSetFromOptions_QP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  KSPQP    *qp = GetQP(ksp);
-  char      opt[64], title[64];
-  PetscReal value;
-  PetscBool set;
+  KSPQP *qp = GetQP(ksp);
 
   PetscFunctionBegin;
-  PetscCall(PetscSNPrintf(title, sizeof(title), "KSP %s: QP over a separable set (conefeti)", qp->name));
-  PetscOptionsHeadBegin(PetscOptionsObject, title);
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_gamma", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Proportioning parameter Gamma > 0", "KSPQP", qp->core.gamma, &qp->core.gamma, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_alpha", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "KSPQP", qp->core.alpha_scale, &qp->core.alpha_scale, NULL));
-  if (qp->core.variant == MPGPVariant::MPGP) {
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_bb", qp->name));
-    PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "KSPQP", qp->core.bb, &qp->core.bb, NULL));
-  }
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_norm", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "KSPQPSetNormEstimate", qp->norm_user, &value, &set));
-  if (set) PetscCall(KSPQPSetNormEstimate(ksp, value));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_norm_method", qp->name));
-  PetscCall(PetscOptionsEnum(opt, "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)qp->norm_method, (PetscEnum *)&qp->norm_method, NULL));
-  PetscCheck(qp->norm_method != QP_NORM_USER || qp->norm_user > 0, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_WRONG, "-ksp_%s_norm_method user needs -ksp_%s_norm <value>", qp->name, qp->name);
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_norm_margin", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Relative safety margin added to the norm estimate (default 0.01 for slepc, 0.05 for power)", "MatQPEstimateNorm", qp->norm_margin, &qp->norm_margin, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-ksp_%s_counters_view", qp->name));
-  PetscCall(PetscOptionsBool(opt, "Print the counters as one JSON line after each solve", "QPCountersViewJSON", qp->counters_view, &qp->counters_view, NULL));
-  PetscOptionsHeadEnd();
-  PetscCheck(qp->core.gamma > 0, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-ksp_%s_gamma must be positive, got %g", qp->name, (double)qp->core.gamma);
-  PetscCheck(qp->core.alpha_scale > 0 && qp->core.alpha_scale <= 2, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-ksp_%s_alpha must be in (0, 2], got %g", qp->name,
-             (double)qp->core.alpha_scale);
+  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)ksp), "ksp", qp->name, &qp->core, &qp->norm, &qp->counters_view));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -189,7 +155,7 @@ PetscErrorCode KSPView_QP(KSP ksp, PetscViewer viewer)
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &iascii));
   if (!iascii) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscViewerASCIIPrintf(viewer, "  %s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
-                                   qp->norm_user > 0 ? "given" : "estimated", (double)qp->norm_used));
+                                   qp->norm.user > 0 ? "given" : "estimated", (double)qp->norm.used));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(QPCountersView(&qp->counters, NULL, viewer));
   if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
@@ -262,7 +228,7 @@ PetscErrorCode KSPQPSetNormEstimate_QP(KSP ksp, PetscReal norm)
   PetscFunctionBegin;
   PetscCheck(norm >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "KSPQPSetNormEstimate: ||A|| must be finite and > 0 (0 to estimate), got %g",
              (double)norm);
-  GetQP(ksp)->norm_user = norm;
+  GetQP(ksp)->norm.user = norm;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -23,10 +23,7 @@ struct TaoQP {
   PetscReal    bnorm    = 0;
   QPCounters   counters = {};
 
-  QPNormMethod norm_method = QP_NORM_SLEPC;
-  PetscReal    norm_margin = -1; /* < 0: the method's default */
-  PetscReal    norm_user   = 0;  /* > 0: given by the user */
-  PetscReal    norm_used   = 0;
+  QPNormSettings norm;
 
   QPBlockType block_type    = QP_BLOCK_SCALAR; /* how the variable bounds describe blocks (unmodified programs) */
   PetscReal   cone_mu       = 1.0;
@@ -179,21 +176,16 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   qp->bnorm = PetscSqrtReal(qp->bnorm);
 
   /* the norm estimate for the fixed step length */
-  if (qp->norm_user > 0) qp->norm_used = qp->norm_user;
-  else {
-    PetscInt    products;
-    char        prefix[256];
+  {
     const char *tprefix;
     PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
-    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%stao_%s_norm_", tprefix ? tprefix : "", qp->name));
-    PetscCall(MatQPEstimateNorm(A, qp->norm_method, qp->norm_margin >= 0 ? qp->norm_margin : (qp->norm_method == QP_NORM_SLEPC ? 0.01 : 0.05), prefix, &qp->norm_used, &products));
-    qp->counters.estimate_mults += products;
+    PetscCall(QPNormSettingsApply(&qp->norm, A, tprefix, "tao", qp->name, &qp->counters));
   }
 
   qp->core.A          = A;
   qp->core.b          = qp->b;
   qp->core.set        = qp->set;
-  qp->core.normA      = qp->norm_used;
+  qp->core.normA      = qp->norm.used;
   qp->core.counters   = &qp->counters;
   qp->core.report     = TaoQPReport;
   qp->core.report_ctx = tao;
@@ -214,41 +206,19 @@ PetscErrorCode TaoSolve_QP(Tao tao)
 
 PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  TaoQP    *qp = GetQP(tao);
-  char      opt[64], title[64];
-  PetscReal value;
-  PetscBool set;
+  TaoQP *qp = GetQP(tao);
+  char   opt[64], title[64];
 
   PetscFunctionBegin;
-  PetscCall(PetscSNPrintf(title, sizeof(title), "%s: QP over a separable set (conefeti)", qp->name));
+  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), "tao", qp->name, &qp->core, &qp->norm, &qp->counters_view));
+  PetscCall(PetscSNPrintf(title, sizeof(title), "%s: block description from the variable bounds", qp->name));
   PetscOptionsHeadBegin(PetscOptionsObject, title);
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_gamma", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Proportioning parameter Gamma > 0 (|beta|^2 <= Gamma^2 phi~.phi means proportional)", "TaoQP", qp->core.gamma, &qp->core.gamma, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_alpha", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "TaoQP", qp->core.alpha_scale, &qp->core.alpha_scale, NULL));
-  if (qp->core.variant == MPGPVariant::MPGP) {
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_bb", qp->name));
-    PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "TaoQP", qp->core.bb, &qp->core.bb, NULL));
-  }
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_norm", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "TaoQPSetNormEstimate", qp->norm_user, &value, &set));
-  if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_norm_method", qp->name));
-  PetscCall(PetscOptionsEnum(opt, "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)qp->norm_method, (PetscEnum *)&qp->norm_method, NULL));
-  PetscCheck(qp->norm_method != QP_NORM_USER || qp->norm_user > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_%s_norm_method user needs -tao_%s_norm <value>", qp->name, qp->name);
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_norm_margin", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Relative safety margin added to the norm estimate (default 0.01 for slepc, 0.05 for power)", "MatQPEstimateNorm", qp->norm_margin, &qp->norm_margin, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_block_type", qp->name));
   PetscCall(PetscOptionsEnum(opt, "Without TaoQPSetConstraints(): scalar (bounds), disk (pairs in their bound boxes) or cone (triples)", "TaoQPSetConstraints", QPBlockTypes, (PetscEnum)qp->block_type,
                              (PetscEnum *)&qp->block_type, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_cone_mu", qp->name));
   PetscCall(PetscOptionsReal(opt, "Cone coefficient for -tao_mpgp_block_type cone", "TaoQPSetConstraints", qp->cone_mu, &qp->cone_mu, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_counters_view", qp->name));
-  PetscCall(PetscOptionsBool(opt, "Print the counters as one JSON line after each solve", "QPCountersViewJSON", qp->counters_view, &qp->counters_view, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(qp->core.gamma > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_gamma must be positive, got %g", qp->name, (double)qp->core.gamma);
-  PetscCheck(qp->core.alpha_scale > 0 && qp->core.alpha_scale <= 2, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_alpha must be in (0, 2], got %g", qp->name,
-             (double)qp->core.alpha_scale);
   PetscCheck(qp->block_type != QP_BLOCK_CONE || qp->cone_mu >= 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_cone_mu must be >= 0, got %g", qp->name, (double)qp->cone_mu);
   if (qp->block_type != QP_BLOCK_SCALAR && qp->core.variant == MPGPVariant::MPRGP)
     SETERRQ(PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_mprgp_block_type %s: mprgp handles bounds only; use -tao_type mpgp", QPBlockTypes[qp->block_type]);
@@ -265,7 +235,7 @@ PetscErrorCode TaoView_QP(Tao tao, PetscViewer viewer)
   if (!iascii) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
-                                   qp->norm_user > 0 ? "given" : "estimated", (double)qp->norm_used));
+                                   qp->norm.user > 0 ? "given" : "estimated", (double)qp->norm.used));
   PetscCall(PetscViewerASCIIPrintf(viewer, "stopping: |projected gradient| <= max(gatol %g, gttol %g * |b| = %g)\n", (double)tao->gatol, (double)tao->gttol, (double)(tao->gttol * qp->bnorm)));
   PetscCall(QPCountersView(&qp->counters, NULL, viewer));
   if (qp->core.status == MPGPStatus::INDEFINITE) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the Hessian is not positive definite (p'Ap <= 0)\n"));
@@ -325,14 +295,14 @@ PetscErrorCode TaoQPSetNormEstimate_QP(Tao tao, PetscReal norm)
   PetscFunctionBegin;
   PetscCheck(norm >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TaoQPSetNormEstimate: ||A|| must be finite and > 0 (0 to estimate), got %g",
              (double)norm);
-  GetQP(tao)->norm_user = norm;
+  GetQP(tao)->norm.user = norm;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode TaoQPGetNormEstimate_QP(Tao tao, PetscReal *norm)
 {
   PetscFunctionBegin;
-  *norm = GetQP(tao)->norm_used;
+  *norm = GetQP(tao)->norm.used;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

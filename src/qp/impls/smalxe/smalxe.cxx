@@ -66,8 +66,8 @@ struct TaoSMALXE {
 
   /* parameters */
   PetscReal    rho_rel = 1.0, M_rel = 0.1, M_min_rel = 1e-4, eta_rel = 0.1, beta = 10.0;
-  SMALXEUpdate update    = SMALXE_UPDATE_M;
-  PetscInt     sweeps    = 1;
+  SMALXEUpdate update     = SMALXE_UPDATE_M;
+  PetscInt     sweeps     = 1;
   PetscReal    block_rtol = 0.0; /* > 0: a block solve of a sweep also stops at this reduction of its projected gradient */
   PetscReal    norm_user = 0, norm_margin = -1;
   QPNormMethod norm_method   = QP_NORM_SLEPC;
@@ -251,7 +251,8 @@ PetscErrorCode InnerConvergenceTest(Tao sub, void *ctx)
   PetscCall(Feasibility(s, xfull, &e));
   PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
   /* blocks of a Gauss-Seidel sweep are only worth a relative reduction: the next sweep moves their data */
-  if (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e) || (blk.is && s->block_rtol > 0 && sub->niter > 0 && gp <= s->block_rtol * sub->gnorm0)) PetscCall(TaoSetConvergedReason(sub, TAO_CONVERGED_USER));
+  if (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e) || (blk.is && s->block_rtol > 0 && sub->niter > 0 && gp <= s->block_rtol * sub->gnorm0))
+    PetscCall(TaoSetConvergedReason(sub, TAO_CONVERGED_USER));
   else if (sub->niter >= sub->max_it) PetscCall(TaoSetConvergedReason(sub, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -694,7 +695,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsEnum("-tao_smalxe_update", "What the semi-monotonicity test updates: M (SMALBE-M), rho (SMALBE) or none", "TaoSMALXE", SMALXEUpdates, (PetscEnum)s->update,
                              (PetscEnum *)&s->update, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_projector", "Projector form: C has orthonormal rows; inner Hessian PAP + rho Q", "TaoSMALXESetProjector", s->projector, &s->projector, NULL));
-  PetscCall(PetscOptionsReal("-tao_smalxe_block_rtol", "With blocks: a block solve also stops when its projected gradient fell by this factor", "TaoSMALXESetBlocks", s->block_rtol, &s->block_rtol, NULL));
+  PetscCall(
+      PetscOptionsReal("-tao_smalxe_block_rtol", "With blocks: a block solve also stops when its projected gradient fell by this factor", "TaoSMALXESetBlocks", s->block_rtol, &s->block_rtol, NULL));
   PetscCall(PetscOptionsInt("-tao_smalxe_sweeps", "Block Gauss-Seidel sweeps per outer iteration (with TaoSMALXESetBlocks())", "TaoSMALXESetBlocks", s->sweeps, &s->sweeps, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_norm", "Use this ||A|| (||PAP|| in projector form) instead of estimating it", "TaoQPSetNormEstimate", s->norm_user, &value, &set));
   if (set) PetscCall(TaoQPSetNormEstimate(tao, value));

@@ -1,0 +1,56 @@
+/* Options and the norm estimate of the MPRGP/MPGP core, shared by the TAO and KSP types. */
+#include <conefeti/private/mpgpcore.h>
+
+/* kind: "tao" or "ksp"; name: "mprgp" or "mpgp" */
+PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject, MPI_Comm comm, const char *kind, const char *name, MPGPCore *core, QPNormSettings *norm, PetscBool *counters_view)
+{
+  char      opt[64], title[64];
+  PetscReal value;
+  PetscBool set;
+
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(title, sizeof(title), "%s %s: QP over a separable set (conefeti)", kind, name));
+  PetscOptionsHeadBegin(PetscOptionsObject, title);
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_gamma", kind, name));
+  PetscCall(PetscOptionsReal(opt, "Proportioning parameter Gamma > 0 (|beta|^2 <= Gamma^2 phi~.phi means proportional)", "MPGP", core->gamma, &core->gamma, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_alpha", kind, name));
+  PetscCall(PetscOptionsReal(opt, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "MPGP", core->alpha_scale, &core->alpha_scale, NULL));
+  if (core->variant == MPGPVariant::MPGP) {
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_bb", kind, name));
+    PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "MPGP", core->bb, &core->bb, NULL));
+  }
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm", kind, name));
+  PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "TaoQPSetNormEstimate", norm->user, &value, &set));
+  if (set) {
+    PetscCheck(value >= 0 && !PetscIsInfOrNanReal(value), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and > 0 (0 to estimate), got %g", opt, (double)value);
+    norm->user = value;
+  }
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm_method", kind, name));
+  PetscCall(PetscOptionsEnum(opt, "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)norm->method, (PetscEnum *)&norm->method, NULL));
+  PetscCheck(norm->method != QP_NORM_USER || norm->user > 0, comm, PETSC_ERR_ARG_WRONG, "-%s_%s_norm_method user needs -%s_%s_norm <value>", kind, name, kind, name);
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm_margin", kind, name));
+  PetscCall(PetscOptionsReal(opt, "Relative safety margin added to the norm estimate (default 0.01 for slepc, 0.05 for power)", "MatQPEstimateNorm", norm->margin, &norm->margin, NULL));
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_counters_view", kind, name));
+  PetscCall(PetscOptionsBool(opt, "Print the counters as one JSON line after each solve", "QPCountersViewJSON", *counters_view, counters_view, NULL));
+  PetscOptionsHeadEnd();
+  PetscCheck(core->gamma > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%s_%s_gamma must be positive, got %g", kind, name, (double)core->gamma);
+  PetscCheck(core->alpha_scale > 0 && core->alpha_scale <= 2, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%s_%s_alpha must be in (0, 2], got %g", kind, name, (double)core->alpha_scale);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* objprefix: the solver's options prefix (may be NULL); kind, name as above */
+PetscErrorCode QPNormSettingsApply(QPNormSettings *norm, Mat A, const char *objprefix, const char *kind, const char *name, QPCounters *counters)
+{
+  PetscInt products;
+  char     prefix[256];
+
+  PetscFunctionBegin;
+  if (norm->user > 0) {
+    norm->used = norm->user;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%s%s_%s_norm_", objprefix ? objprefix : "", kind, name));
+  PetscCall(MatQPEstimateNorm(A, norm->method, norm->margin >= 0 ? norm->margin : (norm->method == QP_NORM_SLEPC ? 0.01 : 0.05), prefix, &norm->used, &products));
+  counters->estimate_mults += products;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
