@@ -9,6 +9,8 @@
    stick_shear             the same with a uniform shear tau = 0.5 F p (top shear plus the complementary
                            shear on the faces x = 0, 1, so that the exact stress state is homogeneous):
                            every node sticks and carries pressure p and tangential stress tau (1e-6)
+   twobodies_pressure      two nu = 0 blocks stacked, node to node, the upper one pressed by p: the
+                           interface carries p at every node (1e-6)
    no_equilibrium          tau = 2 F p: no equilibrium exists; the solve must end with the stated
                            reason, not with a result
    residuals               the brick with -law tresca|coulomb: every mechanical residual <= 1e-6
@@ -97,6 +99,39 @@ static PetscErrorCode CreateBlock(PetscReal p, PetscReal tau, PetscReal F, Scene
   z.law       = CONTACT_COULOMB;
   z.coef      = F;
   PetscCall(ContactModelAddZone(s->cm, &z));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* two nu = 0 blocks stacked node to node: the lower one (0,1)^2x(0,0.5) clamped at its bottom, the
+   upper one (0,1)^2x(0.5,1) floating and pressed by p on top; METIS decomposition, Total FETI */
+static PetscErrorCode CreateTwoBlocks(PetscReal p, PetscReal F, Scene *s)
+{
+  PetscReal   lo0[3] = {0, 0, 0}, hi0[3] = {1, 1, 0.5}, lo1[3] = {0, 0, 0.5}, hi1[3] = {1, 1, 1}, top[3] = {0, 0, -p};
+  PetscInt    cells[3] = {4, 4, 2}, b0, b1, parts = 3;
+  ContactZone z = {};
+
+  PetscFunctionBeginUser;
+  PetscCall(FEMCreate(PETSC_COMM_WORLD, &s->fem));
+  PetscCall(FEMAddBox(s->fem, lo0, hi0, cells, &b0));
+  PetscCall(FEMAddBox(s->fem, lo1, hi1, cells, &b1));
+  for (PetscInt b : {b0, b1}) {
+    PetscCall(FEMSetMaterial(s->fem, b, 2.1e11, 0.0));
+    PetscCall(FEMSetDecomposition(s->fem, b, FEM_DECOMPOSITION_METIS, &parts));
+  }
+  PetscCall(FEMSetDirichlet(s->fem, b0, "z0", NULL));
+  PetscCall(FEMSetTraction(s->fem, b1, "z1", top));
+  PetscCall(FEMSetDirichletMode(s->fem, FEM_DIRICHLET_MULTIPLIERS));
+  PetscCall(FEMSetUp(s->fem));
+  PetscCall(ContactModelCreate(s->fem, &s->cm));
+  z.type       = CONTACT_ZONE_BODIES;
+  z.body       = b1;
+  z.other_body = b0;
+  PetscCall(PetscStrcpy(z.face, "z0"));
+  PetscCall(PetscStrcpy(z.other_face, "z1"));
+  z.law  = CONTACT_COULOMB;
+  z.coef = F;
+  PetscCall(ContactModelAddZone(s->cm, &z));
+  s->body = b1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -236,8 +271,8 @@ static PetscErrorCode CaseFrictionlessVsPrimal(PetscInt k)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* the nu = 0 block: pressure p and tangential stress tau at every contact node, all stick */
-static PetscErrorCode CaseBlock(PetscReal tau_over_Fp, PetscBool expect_equilibrium)
+/* the nu = 0 block (or two stacked blocks): pressure p and tangential stress tau at every contact node, all stick */
+static PetscErrorCode CaseBlock(PetscReal tau_over_Fp, PetscBool expect_equilibrium, PetscBool twobodies = PETSC_FALSE)
 {
   const PetscReal   p = 1e7, F = 0.3, tau = tau_over_Fp * F * p;
   Scene             s;
@@ -246,7 +281,8 @@ static PetscErrorCode CaseBlock(PetscReal tau_over_Fp, PetscBool expect_equilibr
   ContactResiduals  r;
 
   PetscFunctionBeginUser;
-  PetscCall(CreateBlock(p, tau, F, &s));
+  if (twobodies) PetscCall(CreateTwoBlocks(p, F, &s));
+  else PetscCall(CreateBlock(p, tau, F, &s));
   PetscCall(SolveScene(&s, &st, expect_equilibrium));
   if (!expect_equilibrium) {
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "RESULT no_equilibrium converged=%d\n", (int)st.converged));
@@ -385,6 +421,7 @@ int main(int argc, char **argv)
   if (s == "frictionless_vs_primal") PetscCall(CaseFrictionlessVsPrimal(k));
   else if (s == "pressure") PetscCall(CaseBlock(0.0, PETSC_TRUE));
   else if (s == "stick_shear") PetscCall(CaseBlock(0.5, PETSC_TRUE));
+  else if (s == "twobodies_pressure") PetscCall(CaseBlock(0.0, PETSC_TRUE, PETSC_TRUE));
   else if (s == "no_equilibrium") PetscCall(CaseBlock(2.0, PETSC_FALSE));
   else if (s == "residuals") PetscCall(CaseResiduals(k, !strcmp(law, "tresca") ? CONTACT_TRESCA : CONTACT_COULOMB));
   else if (s == "algorithms") PetscCall(CaseAlgorithms(k));
