@@ -9,7 +9,9 @@
    never sees a half-written file, and a failed write removes its temporary files and leaves any
    previous output untouched. */
 #include "ioimpl.h"
-#include <petscviewerhdf5.h>
+#if defined(PETSC_HAVE_HDF5)
+#  include <petscviewerhdf5.h>
+#endif
 
 #include <cerrno>
 #include <cmath>
@@ -193,6 +195,9 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
   cconn.resize(nc);
   for (PetscInt i = 0; i < nc; i++) cconn[i] = cfirst + i;
 
+#if !defined(PETSC_HAVE_HDF5)
+  SETERRQ(comm, PETSC_ERR_SUP_SYS, "-output: this PETSc is built without HDF5; rebuild PETSc with HDF5 (Debian's petsc-dev has it)");
+#else
   PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_WRITE, &v));
   {
     char      version[32];
@@ -231,6 +236,7 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
   PetscCall(PetscViewerDestroy(&v));
+#endif
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
