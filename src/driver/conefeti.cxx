@@ -68,8 +68,7 @@ int main(int argc, char **argv)
   PetscCheck(!hasoutput || output[0], comm, PETSC_ERR_ARG_WRONG, "-output needs a base name: -output results/brick writes results/brick.h5 and results/brick.xmf");
   PetscCheck(!hasjson || jsonfile[0], comm, PETSC_ERR_ARG_WRONG, "-summary_json needs a file name");
 
-  PetscCall(ContactSceneCreate(comm, &scene));
-  PetscCall(ContactSceneSetFromOptions(scene));
+  PetscCall(ContactSceneCreateFromOptions(comm, NULL, &scene));
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   {
     PetscBool hasbody;

@@ -723,6 +723,19 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
   comm = PetscObjectComm((PetscObject)scene);
   PetscCheck(!impl.bodies.empty(), comm, PETSC_ERR_ARG_WRONGSTATE,
              "the scene has no body: give one with -scene_body0_lower, -scene_body0_upper and -scene_body0_cells (e.g. -options_file petsc-options/brick.opts; see docs/scenes.md)");
+  {
+    /* every rank needs a subdomain: say which scene options to change (METIS may add subdomains, never remove them) */
+    PetscMPIInt size;
+    PetscInt64  nsub = 0;
+    PetscBool   all  = PETSC_TRUE;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    for (const SceneBody &body : impl.bodies) {
+      if (!body.decompositionset) all = PETSC_FALSE;
+      nsub += (PetscInt64)body.parts[0] * body.parts[1] * body.parts[2];
+    }
+    PetscCheck(!all || nsub >= size, comm, PETSC_ERR_ARG_SIZ, "the scene has %lld subdomains for %d MPI ranks: every rank needs one; raise -scene_body<b>_subdomains or run on fewer ranks",
+               (long long)nsub, (int)size);
+  }
   PetscCall(PetscLogEventBegin(CONTACTSCENE_SetUp, scene, 0, 0, 0));
   PetscCall(PetscTime(&t0));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
@@ -850,53 +863,56 @@ PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
 {
   Scene_Impl &impl = *scene->impl;
   PetscBool   ascii;
+  PetscMPIInt size;
+  std::string text;
+  const char *prefix;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)scene), &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)scene, viewer));
-  PetscCall(PetscViewerASCIIPushTab(viewer));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "scene \"%s\": %d bod%s, %d contact zone%s, refinement %" PetscInt_FMT "\n", impl.name.c_str(), (int)impl.bodies.size(),
-                                   impl.bodies.size() == 1 ? "y" : "ies", (int)impl.zones.size(), impl.zones.size() == 1 ? "" : "s", impl.refine));
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)scene), &size));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
+  /* the lines are formatted here (C printf: plain %g) and printed whole */
+  text = Format("ContactScene Object: %s%s%s%d MPI process%s\n", prefix ? "(" : "", prefix ? prefix : "", prefix ? ") " : "", (int)size, size > 1 ? "es" : "");
+  text += Format("  scene \"%s\": %d bod%s, %d contact zone%s, refinement %d\n", impl.name.c_str(), (int)impl.bodies.size(), impl.bodies.size() == 1 ? "y" : "ies", (int)impl.zones.size(),
+                 impl.zones.size() == 1 ? "" : "s", (int)impl.refine);
   for (size_t b = 0; b < impl.bodies.size(); b++) {
     const SceneBody &body = impl.bodies[b];
-    PetscCall(PetscViewerASCIIPrintf(viewer, "body %d: box [%g,%g]x[%g,%g]x[%g,%g], %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT " cells, E %g, nu %g", (int)b, (double)body.lower[0],
-                                     (double)body.upper[0], (double)body.lower[1], (double)body.upper[1], (double)body.lower[2], (double)body.upper[2], body.cells[0] * impl.refine,
-                                     body.cells[1] * impl.refine, body.cells[2] * impl.refine, (double)body.E, (double)body.nu));
+    text += Format("  body %d: box [%g,%g]x[%g,%g]x[%g,%g], %dx%dx%d cells, E %g, nu %g", (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1],
+                   (double)body.lower[2], (double)body.upper[2], (int)(body.cells[0] * impl.refine), (int)(body.cells[1] * impl.refine), (int)(body.cells[2] * impl.refine), (double)body.E,
+                   (double)body.nu);
     if (body.decompositionset) {
-      if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED)
-        PetscCall(PetscViewerASCIIPrintf(viewer, ", structured %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT " subdomains", body.parts[0], body.parts[1], body.parts[2]));
-      else PetscCall(PetscViewerASCIIPrintf(viewer, ", METIS %" PetscInt_FMT " subdomains", body.parts[0]));
+      if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED) text += Format(", structured %dx%dx%d subdomains", (int)body.parts[0], (int)body.parts[1], (int)body.parts[2]);
+      else text += Format(", METIS %d subdomains", (int)body.parts[0]);
     }
-    PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
-    PetscCall(PetscViewerASCIIPushTab(viewer));
+    text += "\n";
     for (const SceneSupport &sp : body.supports)
-      PetscCall(PetscViewerASCIIPrintf(viewer, "support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : ""));
-    for (const SceneTraction &t : body.tractions)
-      PetscCall(PetscViewerASCIIPrintf(viewer, "traction %s: (%g, %g, %g)\n", t.selector.text.c_str(), (double)t.value[0], (double)t.value[1], (double)t.value[2]));
-    if (body.hasforce) PetscCall(PetscViewerASCIIPrintf(viewer, "volume force (%g, %g, %g)\n", (double)body.force[0], (double)body.force[1], (double)body.force[2]));
-    PetscCall(PetscViewerASCIIPopTab(viewer));
+      text += Format("    support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : "");
+    for (const SceneTraction &t : body.tractions) text += Format("    traction on %s: (%g, %g, %g)\n", t.selector.text.c_str(), (double)t.value[0], (double)t.value[1], (double)t.value[2]);
+    if (body.hasforce) text += Format("    volume force (%g, %g, %g)\n", (double)body.force[0], (double)body.force[1], (double)body.force[2]);
   }
   for (size_t z = 0; z < impl.zones.size(); z++) {
-    const ContactZone &zn = impl.zones[z].zone;
-    char               law[64];
-    if (zn.law == CONTACT_FRICTIONLESS) PetscCall(PetscStrncpy(law, "frictionless", sizeof(law)));
-    else PetscCall(PetscSNPrintf(law, sizeof(law), "%s %s %g", ContactLaws[zn.law], zn.law == CONTACT_TRESCA ? "slip bound" : "F", (double)zn.coef));
+    const ContactZone &zn  = impl.zones[z].zone;
+    const std::string  law = zn.law == CONTACT_FRICTIONLESS ? std::string("frictionless") : Format("%s %s %g", ContactLaws[zn.law], zn.law == CONTACT_TRESCA ? "slip bound" : "F", (double)zn.coef);
     if (zn.type == CONTACT_ZONE_FOUNDATION)
-      PetscCall(PetscViewerASCIIPrintf(viewer, "zone %d: body %" PetscInt_FMT " face %s on the rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s\n", (int)z, zn.body,
-                                       impl.zones[z].face.text.c_str(), (double)zn.point[0], (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2],
-                                       law));
+      text += Format("  zone %d: body %d face %s on the rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (double)zn.point[0],
+                     (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], law.c_str());
     else
-      PetscCall(PetscViewerASCIIPrintf(viewer, "zone %d: body %" PetscInt_FMT " face %s against body %" PetscInt_FMT " face %s (node to node), %s\n", (int)z, zn.body, impl.zones[z].face.text.c_str(),
-                                       zn.other_body, impl.zones[z].other.text.c_str(), law));
+      text += Format("  zone %d: body %d face %s against body %d face %s (node to node), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (int)zn.other_body,
+                     impl.zones[z].other.text.c_str(), law.c_str());
+  }
+  for (size_t start = 0, end; start < text.size(); start = end + 1) { /* line by line: the viewer's tab applies to each */
+    end = text.find('\n', start);
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", text.substr(start, end - start).c_str()));
   }
   if (impl.setup) {
+    PetscCall(PetscViewerASCIIPushTab(viewer));
     PetscCall(FEMView(impl.fem, viewer));
     PetscCall(ContactModelView(impl.cm, viewer));
+    PetscCall(PetscViewerASCIIPopTab(viewer));
   }
-  PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
