@@ -239,12 +239,22 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
   if (s->pipeline != CONTACT_PIPELINE_LINEAR)
     PetscCall(PetscViewerASCIIPrintf(viewer, "contact nodes: %" PetscInt_FMT " = %" PetscInt_FMT " separated + %" PetscInt_FMT " stick + %" PetscInt_FMT " slip\n", s->contact_nodes, r.counts[0],
                                      r.counts[1], r.counts[2]));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "residuals (relative): equilibrium %.1e, gluing %.1e", (double)r.equilibrium, (double)r.gluing));
-  if (s->pipeline != CONTACT_PIPELINE_LINEAR)
-    PetscCall(PetscViewerASCIIPrintf(viewer, ", non-penetration %.1e, normal sign %.1e, complementarity %.1e, friction cone %.1e, slip rule %.1e", (double)r.penetration, (double)r.normal_sign,
-                                     (double)r.complementarity, (double)r.friction_cone, (double)r.slip_rule));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "; max %.1e\n", (double)r.max));
-  if (s->pipeline == CONTACT_PIPELINE_COULOMB) PetscCall(PetscViewerASCIIPrintf(viewer, "Coulomb fixed point: |g - F l_n| / |F l_n| = %.1e\n", (double)s->fixed_point));
+  {
+    /* a residual that is not a finite number is said so, not printed as nan */
+    auto E = [](PetscReal v) {
+      char buf[32];
+      if (std::isfinite((double)v)) snprintf(buf, sizeof(buf), "%.1e", (double)v);
+      else snprintf(buf, sizeof(buf), "NOT FINITE");
+      return std::string(buf);
+    };
+    std::string line = "residuals (relative): equilibrium " + E(r.equilibrium) + ", gluing " + E(r.gluing);
+    if (s->pipeline != CONTACT_PIPELINE_LINEAR)
+      line += ", non-penetration " + E(r.penetration) + ", normal sign " + E(r.normal_sign) + ", complementarity " + E(r.complementarity) + ", friction cone " + E(r.friction_cone) + ", slip rule " +
+              E(r.slip_rule);
+    line += "; max " + E(r.max);
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", line.c_str()));
+    if (s->pipeline == CONTACT_PIPELINE_COULOMB) PetscCall(PetscViewerASCIIPrintf(viewer, "Coulomb fixed point: |g - F l_n| / |F l_n| = %s\n", E(s->fixed_point).c_str()));
+  }
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s: %s\n", s->converged ? "CONVERGED" : "NOT CONVERGED", s->reason));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
