@@ -682,11 +682,14 @@ PetscErrorCode EvaluateNodes(ContactModel cm, Vec Bu, NodeValues &v)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-ContactNodeStatus Classify(PetscReal ln, PetscReal lnmax, const PetscReal tu[2], PetscReal umax)
+/* The regime from the multipliers: separated without pressure, slip on the boundary of the
+   friction disk, stick inside it. Frictionless nodes in contact slide freely: slip. The margins
+   (1e-4 of the largest pressure, 1e-3 of the slip bound) sit above the solver's tolerance. */
+ContactNodeStatus Classify(PetscReal ln, PetscReal lnmax, const PetscReal lt[2], PetscReal g, PetscBool frictionless)
 {
-  if (ln <= 1e-6 * lnmax) return CONTACT_NODE_SEPARATED;
-  if (std::hypot(tu[0], tu[1]) <= 1e-6 * umax) return CONTACT_NODE_STICK;
-  return CONTACT_NODE_SLIP;
+  if (ln <= 1e-4 * lnmax) return CONTACT_NODE_SEPARATED;
+  if (frictionless || std::hypot(lt[0], lt[1]) >= (1 - 1e-3) * g) return CONTACT_NODE_SLIP;
+  return CONTACT_NODE_STICK;
 }
 
 } // namespace
@@ -705,8 +708,9 @@ ContactNodeStatus Classify(PetscReal ln, PetscReal lnmax, const PetscReal tu[2],
 . r - the residuals
 
   Notes:
-  A node is separated when l_n <= 1e-6 max l_n; among the others, it slips when its tangential
-  displacement |T u| exceeds 1e-6 max |u|, and sticks otherwise.
+  A node is separated when l_n <= 1e-4 max l_n; among the others, it slips when |l_t| >= (1 - 1e-3) g
+  (on the boundary of its friction disk; frictionless nodes in contact always slip), and sticks
+  otherwise. Whether stick nodes really do not move is what the slip_rule residual checks.
 
   Level: beginner
 
@@ -777,7 +781,7 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
         if (ny > g) y[0] *= g / ny, y[1] *= g / ny;
         slip = PetscMax(slip, std::hypot(lt[0] - y[0], lt[1] - y[1]));
       }
-      r->counts[Classify(ln, lnmax, tu, umax)]++;
+      r->counts[Classify(ln, lnmax, lt, g, d->mult[3 * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE)]++;
     }
     PetscReal m[6] = {pen, sign, comp, cone, slip, 0};
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 6, MPIU_REAL, MPIU_MAX, comm));
@@ -844,7 +848,7 @@ PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], 
       if (traction) traction[3 * j + c] = (v.lt[2 * j] * nd.t1[c] + v.lt[2 * j + 1] * nd.t2[c]) / nd.area;
       if (slip) slip[3 * j + c] = v.tu[2 * j] * nd.t1[c] + v.tu[2 * j + 1] * nd.t2[c];
     }
-    if (status) status[j] = Classify(v.ln[j], lnmax, &v.tu[2 * j], umax);
+    if (status) status[j] = Classify(v.ln[j], lnmax, &v.lt[2 * j], v.g[j], d->mult[3 * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -91,7 +91,7 @@ PetscErrorCode Consistent(Tao, Vec lambda, PetscBool *ok, void *ctx)
   PetscFunctionBegin;
   PetscCall(TargetRadii(cp, lambda, target));
   PetscCall(RelativeChange(PetscObjectComm((PetscObject)cp), target, d->radius, &rel));
-  *ok = rel <= d->fixed_point_rtol ? PETSC_TRUE : PETSC_FALSE;
+  *ok = rel <= (d->fixed_point_rtol > 0 ? d->fixed_point_rtol : d->rtol) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -215,11 +215,11 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . cp - the problem
 
   Options Database Keys:
-+ -contact_coulomb_algorithm <merged>  - msa (Algorithm 1), merged (Algorithm 2), monolithic
++ -contact_coulomb_algorithm <monolithic> - msa (Algorithm 1), merged (Algorithm 2), monolithic (one mpgp over all multipliers; the default: fewest products on the brick)
 . -contact_rtol <1e-6>                  - projected gradient and equality residual relative to |h| (smalxe's gttol)
-. -contact_msa_rtol <1e-6>              - MSA: stop when the slip bounds change by less than this, relatively
+. -contact_msa_rtol <rtol>              - MSA: stop when the slip bounds change by less than this, relatively
 . -contact_msa_max_it <100>             - MSA: most successive approximations
-. -contact_fixed_point_rtol <1e-6>      - monolithic: radii must agree with F l_n to this relative tolerance
+. -contact_fixed_point_rtol <rtol>      - monolithic: radii must agree with F l_n to this relative tolerance
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
 
   Level: beginner
@@ -243,9 +243,10 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
       PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance", "ContactProblemSolve", d->fixed_point_rtol, &d->fixed_point_rtol, NULL));
   PetscOptionsEnd();
   PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_rtol must be in (0, 1), got %g", (double)d->rtol);
-  PetscCheck(d->msa_rtol > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_rtol must be positive, got %g", (double)d->msa_rtol);
+  PetscCheck(d->msa_rtol > 0 || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_rtol must be positive, got %g", (double)d->msa_rtol);
   PetscCheck(d->msa_max_it > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_max_it must be positive, got %" PetscInt_FMT, d->msa_max_it);
-  PetscCheck(d->fixed_point_rtol > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_fixed_point_rtol must be positive, got %g", (double)d->fixed_point_rtol);
+  PetscCheck(d->fixed_point_rtol > 0 || d->fixed_point_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_fixed_point_rtol must be positive, got %g",
+             (double)d->fixed_point_rtol);
   if (d->tao) PetscCall(TaoSetFromOptions(d->tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -405,9 +406,12 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
   d->stats.fixed_point = 0;
 
   if (d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MSA) {
-    PetscReal change = 1;
+    PetscReal       change   = 1;
+    const PetscReal msa_rtol = d->msa_rtol > 0 ? d->msa_rtol : d->rtol;
     /* successive approximations: g from the current multipliers, a full Tresca solve, repeat */
     PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, NULL));
+    /* each Tresca solve a decade tighter than the test on the slip bounds, so the change is not noise */
+    PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, 0.1 * PetscMin(msa_rtol, d->rtol)));
     for (outer = 0; outer < d->msa_max_it; outer++) {
       PetscCall(TaoSolve(d->tao));
       PetscCall(TaoGetConvergedReason(d->tao, &reason));
@@ -416,18 +420,19 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
       if (reason <= 0) break;
       PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, &change));
       PetscCall(PetscInfo(cp, "MSA step %" PetscInt_FMT ": %" PetscInt_FMT " outer iterations, relative change of the slip bounds %g\n", outer + 1, its + 1, (double)change));
-      if (change <= d->msa_rtol) {
+      if (change <= msa_rtol) {
         outer++;
         break;
       }
     }
     d->stats.fixed_point = change;
+    PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol));
     PetscCall(CollectStatistics(cp, outer, al));
     if (reason <= 0) PetscCall(DescribeReason(cp, reason, its + 1));
-    else if (change <= d->msa_rtol) {
+    else if (change <= msa_rtol) {
       d->stats.converged = PETSC_TRUE;
-      PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "converged: %" PetscInt_FMT " successive approximations, slip bounds change %.2e <= %.2e", outer, (double)change,
-                              (double)d->msa_rtol));
+      PetscCall(
+          PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "converged: %" PetscInt_FMT " successive approximations, slip bounds change %.2e <= %.2e", outer, (double)change, (double)msa_rtol));
     } else
       PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
                               "not converged: the successive approximations did not settle in %" PetscInt_FMT

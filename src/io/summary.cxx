@@ -3,6 +3,9 @@
 #include "ioimpl.h"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <string>
 
 /* the type of a TAO once it has one; else keep the default given */
@@ -13,6 +16,45 @@ static PetscErrorCode TaoTypeOr(Tao tao, TaoType *type)
   PetscFunctionBegin;
   PetscCall(TaoGetType(tao, &t));
   if (t) *type = t;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The Coulomb algorithm the contact problem will run, before its first solve. ContactProblem has no
+   getter for it (its default is the contact layer's choice), so read it from ContactProblemView(): rank 0
+   views into memory, finds "algorithm <name>", and tells the others. found is false if the view has no
+   such line. */
+static PetscErrorCode ViewedAlgorithm(ContactProblem cp, ContactCoulombAlgorithm *alg, PetscBool *found)
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)cp);
+  PetscMPIInt rank;
+  char       *buf = NULL;
+  size_t      len = 0;
+  FILE       *fp;
+  PetscViewer v;
+  int         value = -1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  fp = open_memstream(&buf, &len);
+  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_MEM, "open_memstream() failed");
+  PetscCall(PetscViewerASCIIOpenWithFILE(comm, fp, &v));
+  PetscCall(ContactProblemView(cp, v));
+  PetscCall(PetscViewerDestroy(&v));
+  fclose(fp);
+  if (!rank && buf) {
+    const char *at = strstr(buf, ", algorithm ");
+    if (at) {
+      at += strlen(", algorithm ");
+      for (int i = 0; i < 3; i++) {
+        const size_t n = strlen(ContactCoulombAlgorithms[i]);
+        if (!strncmp(at, ContactCoulombAlgorithms[i], n) && (at[n] == '\n' || at[n] == ' ' || at[n] == ',' || at[n] == 0)) value = i;
+      }
+    }
+  }
+  free(buf);
+  PetscCallMPI(MPI_Bcast(&value, 1, MPI_INT, 0, comm));
+  *found = value >= 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (value >= 0) *alg = (ContactCoulombAlgorithm)value;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -38,21 +80,29 @@ PetscErrorCode ContactSceneGetPipelineDescription(ContactScene scene, ContactPip
 {
   Scene_Impl             &impl = *scene->impl;
   ContactPipeline         pipe;
-  ContactCoulombAlgorithm alg = CONTACT_COULOMB_MERGED;
-  const char             *prefix;
+  ContactCoulombAlgorithm alg = CONTACT_COULOMB_MONOLITHIC;
   char                    buf[256];
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
   PetscCheck(impl.setup, PetscObjectComm((PetscObject)scene), PETSC_ERR_ORDER, "Call ContactSceneSetUp() first");
   PetscCall(ContactModelGetPipeline(impl.cm, &pipe));
-  /* the algorithm: the solve's own statistics once it ran, else the option (default merged) */
-  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
+  /* the algorithm: the solve's own statistics once it ran, else what the contact problem says it will run */
   if (impl.solved) {
     ContactStatistics st;
     PetscCall(ContactModelGetStatistics(impl.cm, &st));
     alg = st.algorithm;
-  } else PetscCall(PetscOptionsGetEnum(NULL, prefix, "-contact_coulomb_algorithm", ContactCoulombAlgorithms, (PetscEnum *)&alg, NULL));
+  } else if (pipe == CONTACT_PIPELINE_COULOMB) {
+    ContactProblem cp;
+    PetscBool      found;
+    PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
+    PetscCall(ViewedAlgorithm(cp, &alg, &found));
+    if (!found) {
+      const char *prefix;
+      PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
+      PetscCall(PetscOptionsGetEnum(NULL, prefix, "-contact_coulomb_algorithm", ContactCoulombAlgorithms, (PetscEnum *)&alg, NULL));
+    }
+  }
   if (pipe == CONTACT_PIPELINE_LINEAR) {
     FETI      feti;
     KSP       ksp;

@@ -6,8 +6,9 @@ usage: check-json.py [--exit-code N] [--first-line REGEX] [--expect PYTHON_EXPRE
 The command's output is printed. The test fails unless the command exits with N (default 0), prints
 exactly one line starting with {"conefeti": that parses as JSON (no NaN or infinity) and has every
 documented field with its type, the first output line matches --first-line (if given), and every
---expect expression is true with the JSON fields as variables (the residuals as `residuals`), and no
---no-file path exists afterwards."""
+--expect expression is true with the JSON fields as variables (the residuals as `residuals`), the
+pipeline line printed before the solve equals the JSON description of what ran, and no --no-file path
+exists afterwards."""
 import json
 import os
 import re
@@ -70,6 +71,10 @@ def main(argv):
                     fail.append("JSON residual %s missing or not a finite number" % k)
             if "algorithm" not in data:
                 fail.append("JSON field algorithm missing")
+            # the pipeline line printed before the solve must describe what ran
+            pre = [l for l in lines if re.match(r"^conefeti [0-9.]+: pipeline ", l)]
+            if pre and isinstance(data.get("description"), str) and pre[0].split(": pipeline ", 1)[1] != data["description"]:
+                fail.append("the pipeline printed before the solve (%r) is not what ran (%r)" % (pre[0].split(": pipeline ", 1)[1], data["description"]))
             for e in expects:
                 try:
                     ok = eval(e, {}, dict(data))

@@ -25,7 +25,7 @@ int main(int argc, char **argv)
   ContactStatistics st;
   ContactResiduals  r;
   PetscInt          k = 4, cells[3], sub[3] = {3, 1, 1}, b, n, m;
-  PetscReal         lo[3] = {0, 0, 0}, hi[3] = {3, 1, 1}, friction = 0.3, p = 4e7, tau = 2e7, gap = 0, tilt = 0;
+  PetscReal         lo[3] = {0, 0, 0}, hi[3] = {3, 1, 1}, friction = 0.3, p = 4e7, tau = 2e6, gap = 1e-3, tilt = 0;
   char              law[32] = "coulomb";
   Vec               lambda, u;
   PetscLogDouble    t0, t1, t2;
@@ -52,7 +52,11 @@ int main(int argc, char **argv)
     PetscCall(FEMSetTraction(fem, b, "x1", end));
   }
   PetscCall(FEMTagFaces(fem, b, "contact", ContactFace, NULL));
-  PetscCall(FEMSetDecomposition(fem, b, FEM_DECOMPOSITION_STRUCTURED, sub));
+  {
+    PetscBool given; /* three cubes, as the paper, unless -fem_subdomains says otherwise */
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-fem_subdomains", &given));
+    if (!given) PetscCall(FEMSetDecomposition(fem, b, FEM_DECOMPOSITION_STRUCTURED, sub));
+  }
   PetscCall(FEMSetDirichletMode(fem, FEM_DIRICHLET_PRIMAL)); /* the paper: Gamma_u in the primal, 12 rigid modes */
   PetscCall(FEMSetFromOptions(fem));
   PetscCall(FEMSetUp(fem));

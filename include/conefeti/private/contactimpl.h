@@ -31,7 +31,7 @@ struct ContactProblemData {
   std::vector<PetscInt>   disk_node; /* node of each local disk (friction nodes, in order) */
   std::vector<PetscReal>  radius;    /* current radii, one per local disk */
   ContactPipeline         pipeline    = CONTACT_PIPELINE_LINEAR;
-  ContactCoulombAlgorithm algorithm   = CONTACT_COULOMB_MERGED;
+  ContactCoulombAlgorithm algorithm   = CONTACT_COULOMB_MONOLITHIC;
   PetscBool               has_coulomb = PETSC_FALSE, has_tresca = PETSC_FALSE, has_normal = PETSC_FALSE;
   Tao                     tao   = nullptr;
   Mat                     C0    = nullptr; /* empty equality when the problem has none */
@@ -42,7 +42,7 @@ struct ContactProblemData {
   PetscReal rtol             = 1e-6; /* smalxe: |gP| and feasibility relative to |h| */
   PetscReal msa_rtol         = 1e-6; /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| */
   PetscInt  msa_max_it       = 100;
-  PetscReal fixed_point_rtol = 1e-6; /* monolithic: radii consistent with F l_n to this relative tolerance */
+  PetscReal fixed_point_rtol = -1; /* monolithic: radii consistent with F l_n to this relative tolerance (< 0: rtol) */
 
   ContactStatistics stats = {};
 };

@@ -21,10 +21,10 @@ typedef PetscErrorCode (*MPGPPreconditionFn)(void *ctx, Vec g, Vec z);
 
 struct MPGPCore {
   MPGPVariant variant     = MPGPVariant::MPGP;
-  PetscReal   gamma       = 1.0;        /* proportioning parameter Gamma */
-  PetscReal   alpha_scale = 1.95;       /* fixed step alpha = alpha_scale / ||A||, in (0, 2] */
-  PetscReal   normA       = 0;          /* estimate of ||A||, provided by the owner before the solve */
-  PetscBool   bb          = PETSC_TRUE; /* MPGP: try Barzilai-Borwein lengths in gradient projection steps */
+  PetscReal   gamma       = 1.0;         /* proportioning parameter Gamma */
+  PetscReal   alpha_scale = 1.95;        /* fixed step alpha = alpha_scale / ||A||, in (0, 2] */
+  PetscReal   normA       = 0;           /* estimate of ||A||, provided by the owner before the solve */
+  PetscBool   bb          = PETSC_FALSE; /* MPGP: try Barzilai-Borwein lengths in gradient projection steps */
 
   Mat          A   = nullptr; /* not owned */
   Vec          b   = nullptr; /* not owned */

@@ -288,7 +288,7 @@ PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name
   PetscFunctionBegin;
   PetscCallCXX(qp = new KSPQP);
   qp->core.variant = variant;
-  qp->core.bb      = variant == MPGPVariant::MPGP ? PETSC_TRUE : PETSC_FALSE;
+  qp->core.bb      = PETSC_FALSE;
   qp->name         = name;
   ksp->data        = qp;
   PetscCall(KSPSetSupportedNorm(ksp, KSP_NORM_UNPRECONDITIONED, PC_LEFT, 3));

@@ -7,11 +7,11 @@
      along p, then a projected step of fixed length alpha along the free gradient, and CG restarts;
    - proportioning step when not proportional: along the chopped gradient with exact line search
      (MPRGP: it stays feasible for bounds), or a projected gradient step (MPGP, which is what curved
-     boundaries need). MPGP's proportioning step first tries the Barzilai-Borwein length
-     s's/s'(As) of the last step (free: As = g - g_prev for a QP) and keeps it only if q decreased;
-     otherwise it takes Kucera's fixed length alpha, which always decreases q. On curved boundaries
-     the fixed length makes long runs of proportioning steps crawl; BB lengths cut them by a large
-     factor (disable with -tao_mpgp_bb 0 to get the textbook algorithm).
+     boundaries need), of Kucera's fixed length alpha. With -tao_mpgp_bb the proportioning step
+     first tries the Barzilai-Borwein length s's/s'(As) of the last step (free: As = g - g_prev for
+     a QP) and keeps it only if q decreased. Measured: BB shortens long runs of proportioning steps
+     on random cone problems (docs/qp-benchmark.md) but costs products on the brick's friction disks,
+     so it is off by default.
    Math: ../shared/ALGORITHMS.md section 3. */
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/private/reproduciblesum.h>

@@ -357,7 +357,7 @@ PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name
   PetscFunctionBegin;
   PetscCallCXX(qp = new TaoQP);
   qp->core.variant = variant;
-  qp->core.bb      = variant == MPGPVariant::MPGP ? PETSC_TRUE : PETSC_FALSE;
+  qp->core.bb      = PETSC_FALSE;
   qp->name         = name;
   qp->tao          = tao;
   tao->data        = qp;
@@ -429,7 +429,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_norm <value>        - ||A|| given, not estimated
 . -tao_mpgp_norm_method <slepc> - slepc or power
 . -tao_mpgp_norm_margin         - safety margin on the estimate
-. -tao_mpgp_bb <true>           - try Barzilai-Borwein lengths in gradient projection steps, kept only when q decreases
+. -tao_mpgp_bb <false>          - try Barzilai-Borwein lengths in gradient projection steps, kept only when q decreases
 . -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
 . -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
 - -tao_mpgp_counters_view       - print the counters as one JSON line after each solve

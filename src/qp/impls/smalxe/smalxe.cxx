@@ -54,17 +54,18 @@ struct TaoSMALXE {
   PetscBool    projector = PETSC_FALSE, Q_from_C = PETSC_FALSE;
 
   /* augmented Lagrangian state */
-  Vec       mu     = nullptr; /* general form: the multiplier (m-vector) */
-  Vec       nu     = nullptr; /* projector form: C'mu */
-  Vec       bx     = nullptr; /* linear term of the inner problem */
-  Vec       bconst = nullptr; /* projector form: P(b - A x~) */
-  Vec       g      = nullptr; /* gradient of L at the current x */
-  PetscReal rho = 0, M = 0, eta = 0, feas = 0, gpnorm = 0, beff = 0;
-  PetscReal normA = 0, normC2 = 1, normH = 0;
-  PetscReal dnorm2 = 0, qxt = 0; /* |d|^2 or |x~|^2, and q(x~): constants of L */
+  Vec              mu     = nullptr; /* general form: the multiplier (m-vector) */
+  Vec              nu     = nullptr; /* projector form: C'mu */
+  Vec              bx     = nullptr; /* linear term of the inner problem */
+  Vec              bconst = nullptr; /* projector form: P(b - A x~) */
+  Vec              g      = nullptr; /* gradient of L at the current x */
+  PetscReal        rho = 0, M = 0, eta = 0, feas = 0, gpnorm = 0, beff = 0;
+  PetscReal        normA = 0, normC2 = 1, normH = 0;
+  PetscReal        dnorm2 = 0, qxt = 0;            /* |d|^2 or |x~|^2, and q(x~): constants of L */
+  PetscObjectState hessian_state = 0, q_state = 0; /* of the operators the norm estimate belongs to */
 
   /* parameters */
-  PetscReal    rho_rel = 1.0, M_rel = 1.0, M_min_rel = 1e-4, eta_rel = 0.1, beta = 10.0;
+  PetscReal    rho_rel = 1.0, M_rel = 0.1, M_min_rel = 1e-4, eta_rel = 0.1, beta = 10.0;
   SMALXEUpdate update    = SMALXE_UPDATE_M;
   PetscInt     sweeps    = 1;
   PetscReal    norm_user = 0, norm_margin = -1;
@@ -461,6 +462,15 @@ PetscErrorCode EstimateNorms(Tao tao, TaoSMALXE *s)
   PetscReal   margin = s->norm_margin >= 0 ? s->norm_margin : (s->norm_method == QP_NORM_SLEPC ? 0.01 : 0.05);
 
   PetscFunctionBegin;
+  /* once per operator: repeated solves (successive approximations) reuse the estimate */
+  {
+    PetscObjectState sa, sq = 0;
+    PetscCall(PetscObjectStateGet((PetscObject)tao->hessian, &sa));
+    if (s->Q) PetscCall(PetscObjectStateGet((PetscObject)s->Q, &sq));
+    if (s->normA > 0 && s->norm_user <= 0 && sa == s->hessian_state && sq == s->q_state) PetscFunctionReturn(PETSC_SUCCESS);
+    s->hessian_state = sa;
+    s->q_state       = sq;
+  }
   PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
   PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%stao_smalxe_norm_", tprefix ? tprefix : ""));
   if (s->norm_user > 0) s->normA = s->norm_user;
@@ -970,7 +980,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 
   Options Database Keys:
 + -tao_smalxe_rho <1>          - penalty rho relative to ||A|| (||PAP|| in projector form)
-. -tao_smalxe_M <1>            - initial M relative to ||H|| (inner precision |gP| <= min(M |Cx - d|, eta))
+. -tao_smalxe_M <0.1>          - initial M relative to ||H|| (inner precision |gP| <= min(M |Cx - d|, eta))
 . -tao_smalxe_M_min <1e-4>     - floor of M relative to ||H||
 . -tao_smalxe_eta <0.1>        - eta relative to |b|
 . -tao_smalxe_beta <10>        - update factor of M or rho

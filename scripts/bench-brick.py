@@ -1,0 +1,66 @@
+#!/usr/bin/python3
+"""The seed paper's Tables 1 and 2 side by side with ours: the brick with Coulomb friction.
+
+Runs the brick tutorial (build/tutorials/contact/brick) for the paper's mesh sizes and both friction
+coefficients and prints, per size: n, m, Iter, n_A (= QPP + QPQ + other) and the solve time, next to
+the paper's Iter and n_A. Iter and n_A are machine independent; times are this machine's.
+
+usage: scripts/bench-brick.py [--algorithms monolithic,merged,msa] [--sizes 4,6,8,10,12] [--rtol 1e-4]
+                              [--extra "-option value ..."] [--build build]
+"""
+import argparse, os, re, subprocess, sys
+
+PAPER = {  # n: (m, {F: (Iter, n_A, time)})
+    900: (180, {0.1: (5, 102, 1), 0.3: (7, 140, 2)}),
+    2646: (378, {0.1: (5, 180, 11), 0.3: (7, 186, 12)}),
+    5832: (648, {0.1: (5, 156, 34), 0.3: (7, 169, 38)}),
+    10890: (990, {0.1: (5, 112, 67), 0.3: (7, 153, 94)}),
+    18252: (1404, {0.1: (5, 155, 221), 0.3: (7, 176, 254)}),
+}
+
+def run(build, k, F, algorithm, rtol, extra):
+    exe = os.path.join(build, "tutorials", "contact", "brick")
+    cmd = [exe, "-k", str(k), "-friction", str(F), "-contact_coulomb_algorithm", algorithm, "-contact_rtol", str(rtol)] + extra
+    out = subprocess.run(cmd, capture_output=True, text=True)
+    text = out.stdout + out.stderr
+    m = re.search(r"^n (\d+) m (\d+) Iter (\d+) n_A (\d+) \(QPP (\d+) \+ QPQ (\d+) \+ other (\d+)\) estimate (\d+) setup ([\d.]+) s solve ([\d.]+) s", text, re.M)
+    nodes = re.search(r"nodes: (\d+) separated, (\d+) stick, (\d+) slip", text)
+    res = re.search(r"residuals: (.*)", text)
+    conv = "converged" in text.split("\n")[0] if text else False
+    if not m or out.returncode != 0:
+        sys.exit("brick failed (%s):\n%s" % (" ".join(cmd), text[-2000:]))
+    v = [int(x) for x in m.groups()[:8]] + [float(m.group(9)), float(m.group(10))]
+    return dict(n=v[0], m=v[1], iter=v[2], nA=v[3], qpp=v[4], qpq=v[5], other=v[6], est=v[7], setup=v[8], solve=v[9],
+                nodes=tuple(int(x) for x in nodes.groups()), converged=conv, residuals=res.group(1) if res else "")
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--algorithms", default="monolithic,merged,msa")
+    ap.add_argument("--sizes", default="4,6,8,10,12")
+    ap.add_argument("--frictions", default="0.1,0.3")
+    ap.add_argument("--rtol", default="1e-4")
+    ap.add_argument("--extra", default="")
+    ap.add_argument("--build", default="build")
+    a = ap.parse_args()
+    extra = a.extra.split()
+    print("# brick with Coulomb friction: paper (Matlab 7, Pentium 4) vs conefeti (this machine, 1 core)")
+    print("# command: %s" % " ".join(sys.argv))
+    print("# stopping: projected gradient and |G l - e| relative to |h| <= %s; Coulomb fixed point to the same tolerance" % a.rtol)
+    for F in [float(x) for x in a.frictions.split(",")]:
+        for alg in a.algorithms.split(","):
+            print()
+            print("F = %g, algorithm %s" % (F, alg))
+            print("| n | m (paper) | m | Iter (paper) | Iter | n_A (paper) | n_A = QPP + QPQ + other | time (paper) | setup + solve | separated/stick/slip |")
+            print("|---|---|---|---|---|---|---|---|---|---|")
+            first = None
+            for k in [int(x) for x in a.sizes.split(",")]:
+                r = run(a.build, k, F, alg, a.rtol, extra)
+                pm, pf = PAPER.get(r["n"], (None, {}))
+                pi, pa, pt = pf.get(F, ("-", "-", "-"))
+                first = first or r["nA"]
+                print("| %d | %s | %d | %s | %d | %s | %d = %d + %d + %d | %s s | %.2f + %.2f s | %d/%d/%d |" % (
+                    r["n"], pm if pm else "-", r["m"], pi, r["iter"], pa, r["nA"], r["qpp"], r["qpq"], r["other"], pt, r["setup"], r["solve"], *r["nodes"]))
+            print("growth of n_A from the smallest to the largest size: %.2fx" % (r["nA"] / first))
+
+if __name__ == "__main__":
+    main()
