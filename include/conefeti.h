@@ -11,3 +11,4 @@
 #include <conefeti/feti.h>
 #include <conefeti/fem.h>
 #include <conefeti/contact.h>
+#include <conefeti/io.h>

@@ -9,6 +9,7 @@ packages=(
   petsc-dev slepc-dev                   # PETSc 3.18 (OpenMPI, HDF5, MUMPS, SuiteSparse) and SLEPc
   libopenblas0-serial                   # optimized BLAS for CHOLMOD/MUMPS (8x faster factorizations than the reference BLAS)
   libmetis-dev                          # graph partitioning of meshes
+  libhdf5-openmpi-dev                   # hdf5.h for PETSc's HDF5 viewer (the HDF5 + XDMF output); PETSc links this HDF5
   openmpi-bin                           # mpiexec for the parallel tests
   clang-format                          # style check (a test)
   python3 python3-numpy python3-h5py    # result checks and benchmark tables

@@ -21,6 +21,7 @@ PetscErrorCode ConeFETIFinalizePackage(void)
   PetscCall(ConeFETIFETIFinalizePackage());
   PetscCall(ConeFETIFEMFinalizePackage());
   PetscCall(ConeFETIContactFinalizePackage());
+  PetscCall(ConeFETIIOFinalizePackage());
   if (conefeti_began_slepc) {
     PetscBool finalized;
     PetscCall(SlepcFinalized(&finalized));
@@ -55,6 +56,7 @@ PetscErrorCode ConeFETIInitializePackage(void)
   PetscCall(ConeFETIFETIInitializePackage());
   PetscCall(ConeFETIFEMInitializePackage());
   PetscCall(ConeFETIContactInitializePackage());
+  PetscCall(ConeFETIIOInitializePackage());
   PetscCall(PetscRegisterFinalize(ConeFETIFinalizePackage));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

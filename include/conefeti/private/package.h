@@ -12,3 +12,5 @@ PETSC_INTERN PetscErrorCode ConeFETIFEMInitializePackage(void);
 PETSC_INTERN PetscErrorCode ConeFETIFEMFinalizePackage(void);
 PETSC_INTERN PetscErrorCode ConeFETIContactInitializePackage(void);
 PETSC_INTERN PetscErrorCode ConeFETIContactFinalizePackage(void);
+PETSC_INTERN PetscErrorCode ConeFETIIOInitializePackage(void);
+PETSC_INTERN PetscErrorCode ConeFETIIOFinalizePackage(void);

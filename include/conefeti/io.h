@@ -1,0 +1,94 @@
+/* Layer io: scenes from the options database, the summary of a solve (human table and one JSON
+   line), and HDF5 + XDMF output that ParaView opens.
+
+   A scene is a set of -scene_* options (usually a commented options file in petsc-options/, see
+   docs/scenes.md): boxes with material, mesh and decomposition, supports, tractions, volume
+   forces, and contact zones with their laws. ContactSceneSetUp() turns it into a set-up FEM and a set-up
+   ContactModel; ContactSceneSolve() runs the pipeline the scene calls for; ContactSceneGetSummary() collects the
+   counts of the seed paper's tables and the mechanical residuals; ContactSceneWriteOutput() writes
+   <basename>.h5 and <basename>.xmf (docs/output.md). */
+#pragma once
+
+#include <conefeti/contact.h>
+
+/*S
+  ContactScene - A contact (or linear elasticity) problem read from options: a FEM model, its contact
+  zones, and the ContactModel that solves it.
+
+  Level: beginner
+
+.seealso: `ContactSceneCreateFromOptions()`, `ContactSceneSetUp()`, `ContactSceneSolve()`, `ContactSceneGetSummary()`, `ContactSceneWriteOutput()`
+S*/
+typedef struct _p_ContactScene *ContactScene;
+
+PETSC_EXTERN PetscClassId  CONTACTSCENE_CLASSID;
+PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_Summary, CONTACTSCENE_Output;
+
+/*S
+  ContactSceneSummary - What a solve of a scene cost and how good it is: the counts of the seed paper's
+  tables, times, the mechanical residuals and the contact node states.
+
+  Fields:
++ scene         - the scene name (-scene_name)
+. ranks         - MPI processes
+. pipeline      - linear, frictionless, tresca or coulomb
+. algorithm     - the Coulomb algorithm (meaningful for the Coulomb pipeline)
+. description   - one line: the pipeline and the solvers it runs
+. n             - primal unknowns of the undecomposed mesh without Dirichlet dofs (the seed paper's n)
+. n_primal      - FETI primal dimension (subdomain dofs, interface nodes counted in every subdomain)
+. m             - multipliers (rows of B); m = m_gluing + m_dirichlet + m_normal + m_tangential
+. m_gluing, m_dirichlet, m_normal, m_tangential - the rows by kind
+. subdomains    - number of subdomains
+. rigid_modes   - coarse dimension (rows of G)
+. contact_nodes - contact nodes (separated + stick + slip)
+. iter          - Iter of the seed paper (outer iterations, or successive approximations for MSA; CG iterations for the linear pipeline)
+. al_iter       - all augmented Lagrangian outer iterations
+. n_A           - n_A^QPP + n_A^QPQ + n_A^other: Hessian (F) products of the solve
+. n_A_qpp, n_A_qpq, n_A_other - products in the bound-constrained (mprgp) solves, the disk-constrained (mpgp) solves, and elsewhere
+. n_A_estimate  - products spent estimating ||F|| (not in n_A)
+. norm_F        - the ||F|| estimate the solver used (0 for the linear pipeline)
+. time_setup    - seconds: mesh, FETI operators and factorizations, contact problem
+. time_solve    - seconds: the solve with primal recovery
+. fixed_point   - Coulomb: relative fixed-point residual |g - F l_n| / |F l_n| at the end
+. feasibility   - |G l - e| at the end
+. residuals     - the mechanical residuals (each relative) and the node counts
+. finite        - whether every residual is a finite number
+. converged     - whether the solve met its tolerances (and the residuals are finite)
+- reason        - a sentence saying how the solve ended
+
+  Level: beginner
+
+.seealso: `ContactSceneGetSummary()`, `ContactSceneSummaryView()`, `ContactSceneSummaryViewJSON()`
+S*/
+typedef struct {
+  char                    scene[64];
+  PetscMPIInt             ranks;
+  ContactPipeline         pipeline;
+  ContactCoulombAlgorithm algorithm;
+  char                    description[256];
+  PetscInt                n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
+  PetscInt                iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
+  PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility;
+  ContactResiduals        residuals;
+  PetscBool               finite, converged;
+  char                    reason[256];
+} ContactSceneSummary;
+
+PETSC_EXTERN PetscErrorCode ContactSceneCreate(MPI_Comm, ContactScene *);
+PETSC_EXTERN PetscErrorCode ContactSceneCreateFromOptions(MPI_Comm, const char[], ContactScene *);
+PETSC_EXTERN PetscErrorCode ContactSceneDestroy(ContactScene *);
+PETSC_EXTERN PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene, const char[]);
+PETSC_EXTERN PetscErrorCode ContactSceneSetFromOptions(ContactScene);
+PETSC_EXTERN PetscErrorCode ContactSceneSetUp(ContactScene);
+PETSC_EXTERN PetscErrorCode ContactSceneSolve(ContactScene);
+PETSC_EXTERN PetscErrorCode ContactSceneView(ContactScene, PetscViewer);
+PETSC_EXTERN PetscErrorCode ContactSceneGetName(ContactScene, const char **);
+PETSC_EXTERN PetscErrorCode ContactSceneGetFEM(ContactScene, FEM *);
+PETSC_EXTERN PetscErrorCode ContactSceneGetContactModel(ContactScene, ContactModel *);
+PETSC_EXTERN PetscErrorCode ContactSceneGetBodyMaterial(ContactScene, PetscInt, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode ContactSceneGetPipelineDescription(ContactScene, ContactPipeline *, ContactCoulombAlgorithm *, char[], size_t);
+PETSC_EXTERN PetscErrorCode ContactSceneGetSummary(ContactScene, ContactSceneSummary *);
+PETSC_EXTERN PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *, PetscViewer);
+PETSC_EXTERN PetscErrorCode ContactSceneSummaryViewJSON(const ContactSceneSummary *, PetscViewer);
+PETSC_EXTERN PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *, char[], size_t);
+PETSC_EXTERN PetscErrorCode ContactSceneWriteOutput(ContactScene, const char[]);

@@ -1,0 +1,103 @@
+/* conefeti: solve a scene (3D contact of elastic bodies with Coulomb friction, by FETI) given as
+   options, usually a commented options file of petsc-options/ (docs/scenes.md).
+
+   Sample runs:
+     conefeti -options_file petsc-options/brick.opts                    (the seed paper's brick, F = 0.3)
+     conefeti -options_file petsc-options/brick.opts -scene_refine 8    (n = 5832)
+     mpiexec -n 3 conefeti -options_file petsc-options/twobodies.opts -output twobodies
+     conefeti -options_file petsc-options/brick.opts -help              (every option of the scene and the solvers)
+
+   It prints the pipeline the scene calls for before solving (linear, frictionless, Tresca or Coulomb
+   with its algorithm), then a table with the counts of the seed paper's tables (n, m, Iter,
+   n_A = QPP + QPQ), times, the mechanical residuals and the contact node states, and one JSON line
+   starting with {"conefeti": (docs/output.md). With -output <basename> it writes <basename>.h5 and
+   <basename>.xmf (open the .xmf in ParaView).
+
+   Exit status: 0 when the solve converged; 2 when it did not (iteration limit, or no equilibrium: the
+   stated reason is printed, the JSON line has "converged":false, no output is written unless
+   -output_unconverged); 1 (PETSc error) for bad input, with a message naming the option or file. */
+#include <conefeti.h>
+#include <conefeti/private/compat.h>
+#include <cerrno>
+#include <cstring>
+
+static const char usage[] = "conefeti: 3D contact problems of linear elasticity with Coulomb friction by FETI.\n"
+                            "Give a scene with -options_file petsc-options/<scene>.opts (docs/scenes.md).\n\n";
+
+/* rank 0 writes the JSON line to a file */
+static PetscErrorCode WriteJSONFile(MPI_Comm comm, const char *path, const char *json)
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    FILE *f = fopen(path, "w");
+    if (!f) err = errno ? errno : EIO;
+    else {
+      if (fprintf(f, "%s\n", json) < 0) err = errno ? errno : EIO;
+      if (fclose(f) != 0 && !err) err = errno ? errno : EIO;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "-summary_json: cannot write %s: %s", path, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  ContactScene            scene;
+  ContactSceneSummary     summary;
+  ContactPipeline         pipeline;
+  ContactCoulombAlgorithm algorithm;
+  char                    output[PETSC_MAX_PATH_LEN] = "", jsonfile[PETSC_MAX_PATH_LEN] = "", description[256], json[4096];
+  PetscBool               hasoutput = PETSC_FALSE, hasjson = PETSC_FALSE, table = PETSC_TRUE, unconverged = PETSC_FALSE, help;
+  PetscInt                major, minor, patch;
+  MPI_Comm                comm;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, usage));
+  PetscCall(ConeFETIInitializePackage());
+  comm = PETSC_COMM_WORLD;
+  PetscOptionsBegin(comm, NULL, "conefeti driver", "conefeti");
+  PetscCall(PetscOptionsString("-output", "Write <basename>.h5 and <basename>.xmf (open the .xmf in ParaView)", "ContactSceneWriteOutput", output, output, sizeof(output), &hasoutput));
+  PetscCall(PetscOptionsBool("-output_unconverged", "Write the output even when the solve did not converge", "ContactSceneWriteOutput", unconverged, &unconverged, NULL));
+  PetscCall(PetscOptionsString("-summary_json", "Also write the JSON summary line to this file", "ContactSceneSummaryViewJSON", jsonfile, jsonfile, sizeof(jsonfile), &hasjson));
+  PetscCall(PetscOptionsBool("-summary_table", "Print the human-readable table", "ContactSceneSummaryView", table, &table, NULL));
+  PetscOptionsEnd();
+  PetscCheck(!hasoutput || output[0], comm, PETSC_ERR_ARG_WRONG, "-output needs a base name: -output results/brick writes results/brick.h5 and results/brick.xmf");
+  PetscCheck(!hasjson || jsonfile[0], comm, PETSC_ERR_ARG_WRONG, "-summary_json needs a file name");
+
+  PetscCall(ContactSceneCreateFromOptions(comm, NULL, &scene));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  {
+    PetscBool hasbody;
+    PetscCall(PetscOptionsHasName(NULL, NULL, "-scene_body0_cells", &hasbody));
+    if (help && !hasbody) {
+      /* -help without a scene: the scene and driver options are listed; the solvers' need a scene */
+      PetscCall(PetscPrintf(comm, "\nconefeti: no scene given; run with -options_file petsc-options/brick.opts -help to list the solver options too (docs/scenes.md)\n"));
+      PetscCall(ContactSceneDestroy(&scene));
+      PetscCall(PetscFinalize());
+      return 0;
+    }
+  }
+  PetscCall(ConeFETIGetVersion(&major, &minor, &patch));
+  PetscCall(ContactSceneSetUp(scene));
+  PetscCall(ContactSceneGetPipelineDescription(scene, &pipeline, &algorithm, description, sizeof(description)));
+  PetscCall(PetscPrintf(comm, "conefeti %" PetscInt_FMT ".%" PetscInt_FMT ".%" PetscInt_FMT ": pipeline %s\n", major, minor, patch, description));
+  PetscCall(ContactSceneSolve(scene));
+  PetscCall(ContactSceneGetSummary(scene, &summary));
+  if (table) PetscCall(ContactSceneSummaryView(&summary, NULL));
+  PetscCall(ContactSceneSummaryToJSON(&summary, json, sizeof(json)));
+  PetscCall(PetscPrintf(comm, "%s\n", json));
+  if (hasjson) PetscCall(WriteJSONFile(comm, jsonfile, json));
+  if (hasoutput) {
+    if (summary.converged || unconverged) {
+      PetscCall(ContactSceneWriteOutput(scene, output));
+      PetscCall(PetscPrintf(comm, "output: %s.h5, %s.xmf%s\n", output, output, summary.converged ? "" : " (NOT CONVERGED)"));
+    } else PetscCall(PetscPrintf(comm, "output: not written, the solve did not converge (-output_unconverged writes it anyway)\n"));
+  }
+  PetscCall(ContactSceneDestroy(&scene));
+  PetscCall(PetscFinalize());
+  return summary.converged ? 0 : 2;
+}

@@ -1,0 +1,80 @@
+/* Private structures of the io layer, shared between the files of src/io. */
+#pragma once
+
+#include <petsc/private/petscimpl.h>
+#include <conefeti/sys.h>
+#include <conefeti/io.h>
+#include <conefeti/private/compat.h>
+
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+/* A part of a box face: the built-in face and conditions on the centroid of its boundary triangles,
+   written FACE[/AXIS OP VALUE]..., e.g. "z0/x>1" (docs/scenes.md). */
+struct SceneCondition {
+  PetscInt  axis;    /* 0, 1, 2 */
+  PetscBool greater; /* > or >= (else < or <=) */
+  PetscBool equal;   /* >= or <= */
+  PetscReal value;
+};
+
+struct SceneSelector {
+  std::string                 text;   /* as given */
+  std::string                 option; /* the option it came from, for messages */
+  PetscInt                    face = -1;
+  std::vector<SceneCondition> conditions;
+  std::string                 tag; /* the FEM boundary tag it becomes */
+};
+
+struct SceneSupport {
+  SceneSelector selector;
+  unsigned      mask; /* bit c: component c fixed */
+};
+
+struct SceneTraction {
+  SceneSelector            selector;
+  std::array<PetscReal, 3> value;
+};
+
+struct SceneBody {
+  std::array<PetscReal, 3>   lower{}, upper{};
+  std::array<PetscInt, 3>    cells{};
+  PetscReal                  E = 2.12e11, nu = 0.277;
+  PetscBool                  decompositionset = PETSC_FALSE;
+  FEMDecompositionType       decomposition    = FEM_DECOMPOSITION_STRUCTURED;
+  std::array<PetscInt, 3>    parts{1, 1, 1};
+  std::vector<SceneSupport>  supports;
+  std::vector<SceneTraction> tractions;
+  PetscBool                  hasforce = PETSC_FALSE;
+  std::array<PetscReal, 3>   force{};
+};
+
+struct SceneZoneSpec {
+  ContactZone   zone{};
+  SceneSelector face, other;
+};
+
+struct Scene_Impl {
+  std::string                                 name   = "scene";
+  PetscInt                                    refine = 1;
+  std::vector<SceneBody>                      bodies;
+  std::vector<SceneZoneSpec>                  zones;
+  std::vector<std::unique_ptr<SceneSelector>> predicates; /* contexts of the FEM tag predicates (stable addresses) */
+  PetscBool                                   fromoptions = PETSC_FALSE, setup = PETSC_FALSE, solved = PETSC_FALSE;
+  FEM                                         fem        = nullptr;
+  ContactModel                                cm         = nullptr;
+  PetscLogDouble                              time_setup = 0, time_solve = 0;
+};
+
+struct _SceneOps {
+  PetscErrorCode (*unused)(void);
+};
+
+struct _p_ContactScene {
+  PETSCHEADER(struct _SceneOps);
+  Scene_Impl *impl;
+};
+
+PETSC_INTERN const char *const SceneFaceNames[6];

@@ -1,0 +1,407 @@
+/* HDF5 + XDMF output of a solved scene (docs/output.md).
+
+   The HDF5 file is written in parallel through PETSc's HDF5 viewer (collective MPI-IO): every rank
+   writes the nodes, tetrahedra and contact nodes it owns as its slice of each dataset, so nothing is
+   gathered on one rank and the file is the same whatever the number of ranks that wrote it, up to the
+   order of the subdomains' pieces. The XDMF file (small, XML) is written by rank 0.
+
+   Both files are written under temporary names (<file>.tmp) and renamed when complete: a reader
+   never sees a half-written file, and a failed write removes its temporary files and leaves any
+   previous output untouched. */
+#include "ioimpl.h"
+#if defined(PETSC_HAVE_HDF5)
+#  include <petscviewerhdf5.h>
+#endif
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace {
+
+struct Layout {
+  PetscInt nnodes = 0, nelements = 0, ncontact = 0;
+};
+
+/* von Mises stress of a P1 tetrahedron from its vertices X (4x3) and nodal displacements U (4x3) */
+PetscReal VonMises(const PetscReal X[12], const PetscReal U[12], PetscReal E, PetscReal nu)
+{
+  PetscReal D[3][3], W[3][3], Di[3][3], G[3][3], eps[3][3], sig[3][3];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      D[i][j] = X[3 * (i + 1) + j] - X[j];
+      W[i][j] = U[3 * (i + 1) + j] - U[j];
+    }
+  const PetscReal det = D[0][0] * (D[1][1] * D[2][2] - D[1][2] * D[2][1]) - D[0][1] * (D[1][0] * D[2][2] - D[1][2] * D[2][0]) + D[0][2] * (D[1][0] * D[2][1] - D[1][1] * D[2][0]);
+  Di[0][0]            = (D[1][1] * D[2][2] - D[1][2] * D[2][1]) / det;
+  Di[0][1]            = (D[0][2] * D[2][1] - D[0][1] * D[2][2]) / det;
+  Di[0][2]            = (D[0][1] * D[1][2] - D[0][2] * D[1][1]) / det;
+  Di[1][0]            = (D[1][2] * D[2][0] - D[1][0] * D[2][2]) / det;
+  Di[1][1]            = (D[0][0] * D[2][2] - D[0][2] * D[2][0]) / det;
+  Di[1][2]            = (D[0][2] * D[1][0] - D[0][0] * D[1][2]) / det;
+  Di[2][0]            = (D[1][0] * D[2][1] - D[1][1] * D[2][0]) / det;
+  Di[2][1]            = (D[0][1] * D[2][0] - D[0][0] * D[2][1]) / det;
+  Di[2][2]            = (D[0][0] * D[1][1] - D[0][1] * D[1][0]) / det;
+  /* (u_k - u_0) = G (x_k - x_0): W = D G^T, so G^T = D^{-1} W */
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) {
+      G[j][i] = 0;
+      for (int k = 0; k < 3; k++) G[j][i] += Di[i][k] * W[k][j];
+    }
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) eps[i][j] = 0.5 * (G[i][j] + G[j][i]);
+  const PetscReal lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu)), tr = eps[0][0] + eps[1][1] + eps[2][2];
+  for (int i = 0; i < 3; i++)
+    for (int j = 0; j < 3; j++) sig[i][j] = 2 * mu * eps[i][j] + (i == j ? lambda * tr : 0);
+  const PetscReal a = sig[0][0] - sig[1][1], b = sig[1][1] - sig[2][2], c = sig[2][2] - sig[0][0];
+  return std::sqrt(0.5 * (a * a + b * b + c * c) + 3 * (sig[0][1] * sig[0][1] + sig[1][2] * sig[1][2] + sig[0][2] * sig[0][2]));
+}
+
+PetscErrorCode ViewReal(PetscViewer v, MPI_Comm comm, const char *name, PetscInt bs, const std::vector<PetscReal> &data)
+{
+  Vec          x;
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecCreate(comm, &x));
+  PetscCall(VecSetSizes(x, (PetscInt)data.size(), PETSC_DETERMINE));
+  PetscCall(VecSetBlockSize(x, bs));
+  PetscCall(VecSetType(x, VECMPI));
+  PetscCall(VecGetArray(x, &a));
+  for (size_t i = 0; i < data.size(); i++) a[i] = data[i];
+  PetscCall(VecRestoreArray(x, &a));
+  PetscCall(PetscObjectSetName((PetscObject)x, name));
+  PetscCall(VecView(x, v));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ViewInt(PetscViewer v, MPI_Comm comm, const char *name, PetscInt bs, const std::vector<PetscInt> &data)
+{
+  IS is;
+
+  PetscFunctionBegin;
+  PetscCall(ISCreateGeneral(comm, (PetscInt)data.size(), data.data(), PETSC_COPY_VALUES, &is));
+  if (bs > 1) PetscCall(ISSetBlockSize(is, bs));
+  PetscCall(PetscObjectSetName((PetscObject)is, name));
+  PetscCall(ISView(is, v));
+  PetscCall(ISDestroy(&is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
+{
+  Scene_Impl        &impl = *scene->impl;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)scene);
+  PetscViewer        v;
+  FETI               feti;
+  Vec                u;
+  const PetscScalar *ua;
+  PetscInt           nsub, nlocal, firstsub, ustart, nodefirst, nn = 0, ne = 0;
+  PetscMPIInt        size;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(ContactModelGetFETI(impl.cm, &feti));
+  PetscCall(ContactModelGetSolution(impl.cm, NULL, &u));
+  PetscCall(FEMGetNumSubdomains(impl.fem, &nsub, &nlocal, &firstsub));
+  PetscCall(VecGetOwnershipRange(u, &ustart, NULL));
+  /* the rank's volume nodes are its subdomains' nodes in primal order: the displacement is u itself */
+  for (PetscInt s = 0; s < nlocal; s++) {
+    PetscInt n, e;
+    PetscCall(FEMGetSubdomainMesh(impl.fem, s, NULL, &n, NULL, &e, NULL));
+    nn += n;
+    ne += e;
+  }
+  {
+    PetscInt ul;
+    PetscCall(VecGetLocalSize(u, &ul));
+    PetscCheck(ul == 3 * nn, PETSC_COMM_SELF, PETSC_ERR_PLIB, "ContactSceneWriteOutput: the primal vector has %" PetscInt_FMT " local entries, the subdomains %" PetscInt_FMT " nodes", ul, nn);
+  }
+  {
+    PetscInt counts[2] = {nn, ne}, last[2];
+    PetscCallMPI(MPI_Scan(counts, last, 2, MPIU_INT, MPI_SUM, comm));
+    nodefirst = last[0] - nn;
+    PetscCallMPI(MPI_Allreduce(counts, last, 2, MPIU_INT, MPI_SUM, comm));
+    layout.nnodes    = last[0];
+    layout.nelements = last[1];
+  }
+  std::vector<PetscReal> coords(3 * nn), disp(3 * nn), vm(ne);
+  std::vector<PetscInt>  conn(4 * ne), subdomain(ne), body(ne);
+  PetscCall(VecGetArrayRead(u, &ua));
+  {
+    PetscInt node = 0, elem = 0;
+    for (PetscInt s = 0; s < nlocal; s++) {
+      PetscInt         b, n, e, primal, coarse;
+      const PetscInt  *nodes, *c;
+      const PetscReal *X;
+      PetscReal        E, nu;
+      PetscCall(FEMGetSubdomainMesh(impl.fem, s, &b, &n, &nodes, &e, &c));
+      PetscCall(FEMGetBodyNodes(impl.fem, b, NULL, &X));
+      PetscCall(FETIGetSubdomainOffset(feti, s, &primal, &coarse));
+      PetscCheck(primal - ustart == 3 * node, PETSC_COMM_SELF, PETSC_ERR_PLIB, "ContactSceneWriteOutput: subdomain %" PetscInt_FMT " is not where the nodes are counted", firstsub + s);
+      PetscCall(ContactSceneGetBodyMaterial(scene, b, &E, &nu));
+      for (PetscInt l = 0; l < n; l++)
+        for (PetscInt d = 0; d < 3; d++) {
+          coords[3 * (node + l) + d] = X[3 * nodes[l] + d];
+          disp[3 * (node + l) + d]   = PetscRealPart(ua[3 * (node + l) + d]);
+        }
+      for (PetscInt k = 0; k < e; k++) {
+        PetscReal Xe[12], Ue[12];
+        for (PetscInt q = 0; q < 4; q++) {
+          conn[4 * (elem + k) + q] = nodefirst + node + c[4 * k + q];
+          for (PetscInt d = 0; d < 3; d++) {
+            Xe[3 * q + d] = coords[3 * (node + c[4 * k + q]) + d];
+            Ue[3 * q + d] = disp[3 * (node + c[4 * k + q]) + d];
+          }
+        }
+        vm[elem + k]        = VonMises(Xe, Ue, E, nu);
+        subdomain[elem + k] = firstsub + s;
+        body[elem + k]      = b;
+      }
+      node += n;
+      elem += e;
+    }
+  }
+  PetscCall(VecRestoreArrayRead(u, &ua));
+
+  /* contact nodes owned by this rank */
+  PetscInt               nc = 0, cfirst = 0;
+  const PetscInt        *cbody = NULL, *cnode = NULL;
+  const PetscReal       *ccoords = NULL, *carea = NULL;
+  std::vector<PetscReal> pressure, traction, slip;
+  std::vector<PetscInt>  status, cconn;
+  ContactProblem         cp;
+  PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
+  if (cp) {
+    std::vector<ContactNodeStatus> st;
+    PetscCall(ContactModelGetNodes(impl.cm, &nc, &cbody, &cnode, &ccoords, &carea));
+    pressure.resize(nc);
+    traction.resize(3 * nc);
+    slip.resize(3 * nc);
+    st.resize(nc);
+    PetscCall(ContactModelGetNodeStates(impl.cm, pressure.data(), traction.data(), slip.data(), st.data()));
+    status.resize(nc);
+    for (PetscInt i = 0; i < nc; i++) status[i] = (PetscInt)st[i];
+  }
+  {
+    PetscInt last, total;
+    PetscCallMPI(MPI_Scan(&nc, &last, 1, MPIU_INT, MPI_SUM, comm));
+    PetscCallMPI(MPI_Allreduce(&nc, &total, 1, MPIU_INT, MPI_SUM, comm));
+    cfirst          = last - nc;
+    layout.ncontact = total;
+  }
+  cconn.resize(nc);
+  for (PetscInt i = 0; i < nc; i++) cconn[i] = cfirst + i;
+
+#if !defined(PETSC_HAVE_HDF5)
+  SETERRQ(comm, PETSC_ERR_SUP_SYS, "-output: this PETSc is built without HDF5; rebuild PETSc with HDF5 (Debian's petsc-dev has it)");
+#else
+  PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_WRITE, &v));
+  {
+    char      version[32];
+    PetscInt  sizes[3] = {layout.nnodes, layout.nelements, layout.ncontact};
+    PetscBool solved   = PETSC_TRUE;
+    PetscCall(PetscSNPrintf(version, sizeof(version), "%d.%d.%d", CONEFETI_VERSION_MAJOR, CONEFETI_VERSION_MINOR, CONEFETI_VERSION_PATCH));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "conefeti", PETSC_STRING, version));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "scene", PETSC_STRING, impl.name.c_str()));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "ranks", PETSC_INT, &size));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "nodes", PETSC_INT, &sizes[0]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "tetrahedra", PETSC_INT, &sizes[1]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "contact_nodes", PETSC_INT, &sizes[2]));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "solved", PETSC_BOOL, &solved));
+  }
+  PetscCall(PetscViewerHDF5PushGroup(v, "/volume"));
+  PetscCall(ViewReal(v, comm, "coordinates", 3, coords));
+  PetscCall(ViewInt(v, comm, "connectivity", 4, conn));
+  PetscCall(ViewReal(v, comm, "displacement", 3, disp));
+  PetscCall(ViewInt(v, comm, "subdomain", 1, subdomain));
+  PetscCall(ViewInt(v, comm, "body", 1, body));
+  PetscCall(ViewReal(v, comm, "von_mises", 1, vm));
+  PetscCall(PetscViewerHDF5PopGroup(v));
+  if (layout.ncontact) {
+    std::vector<PetscReal> cx(ccoords, ccoords + 3 * nc), area(carea, carea + nc);
+    std::vector<PetscInt>  cb(cbody, cbody + nc), cn(cnode, cnode + nc);
+    PetscCall(PetscViewerHDF5PushGroup(v, "/contact"));
+    PetscCall(ViewReal(v, comm, "coordinates", 3, cx));
+    PetscCall(ViewInt(v, comm, "connectivity", 1, cconn));
+    PetscCall(ViewReal(v, comm, "pressure", 1, pressure));
+    PetscCall(ViewReal(v, comm, "tangential_stress", 3, traction));
+    PetscCall(ViewReal(v, comm, "tangential_displacement", 3, slip));
+    PetscCall(ViewInt(v, comm, "status", 1, status));
+    PetscCall(ViewInt(v, comm, "body", 1, cb));
+    PetscCall(ViewInt(v, comm, "node", 1, cn));
+    PetscCall(ViewReal(v, comm, "area", 1, area));
+    PetscCall(PetscViewerHDF5PopGroup(v));
+  }
+  PetscCall(PetscViewerDestroy(&v));
+#endif
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::string Item(const char *h5, const char *dataset, PetscInt rows, PetscInt cols, PetscBool integer)
+{
+  char buf[1024];
+  if (cols > 1 || integer) /* PETSc's ISView writes integer datasets as rows x block size, also for block size 1 */
+    snprintf(buf, sizeof(buf), "<DataItem Dimensions=\"%lld %lld\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>", (long long)rows, (long long)cols, integer ? "Int" : "Float",
+             integer ? (int)sizeof(PetscInt) : 8, h5, dataset);
+  else
+    snprintf(buf, sizeof(buf), "<DataItem Dimensions=\"%lld\" NumberType=\"%s\" Precision=\"%d\" Format=\"HDF\">%s:%s</DataItem>", (long long)rows, integer ? "Int" : "Float",
+             integer ? (int)sizeof(PetscInt) : 8, h5, dataset);
+  return buf;
+}
+
+std::string Attribute(const char *name, const char *type, const char *center, const std::string &item)
+{
+  return std::string("      <Attribute Name=\"") + name + "\" AttributeType=\"" + type + "\" Center=\"" + center + "\">\n        " + item + "\n      </Attribute>\n";
+}
+
+/* the XDMF text: a volume grid of tetrahedra and a contact grid of points, both referring to datasets of h5 */
+std::string XDMF(const char *h5, const char *scene, const Layout &L)
+{
+  std::string x;
+  x += "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
+  x += std::string("    <!-- conefeti scene \"") + scene + "\": datasets in " + h5 + " (docs/output.md) -->\n";
+  x += "    <Grid Name=\"volume\" GridType=\"Uniform\">\n";
+  x += "      <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" + std::to_string((long long)L.nelements) + "\">\n        " + Item(h5, "/volume/connectivity", L.nelements, 4, PETSC_TRUE) +
+       "\n      </Topology>\n";
+  x += "      <Geometry GeometryType=\"XYZ\">\n        " + Item(h5, "/volume/coordinates", L.nnodes, 3, PETSC_FALSE) + "\n      </Geometry>\n";
+  x += Attribute("displacement", "Vector", "Node", Item(h5, "/volume/displacement", L.nnodes, 3, PETSC_FALSE));
+  x += Attribute("von_mises", "Scalar", "Cell", Item(h5, "/volume/von_mises", L.nelements, 1, PETSC_FALSE));
+  x += Attribute("subdomain", "Scalar", "Cell", Item(h5, "/volume/subdomain", L.nelements, 1, PETSC_TRUE));
+  x += Attribute("body", "Scalar", "Cell", Item(h5, "/volume/body", L.nelements, 1, PETSC_TRUE));
+  x += "    </Grid>\n";
+  if (L.ncontact) {
+    x += "    <Grid Name=\"contact\" GridType=\"Uniform\">\n";
+    x += "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" + std::to_string((long long)L.ncontact) + "\" NodesPerElement=\"1\">\n        " +
+         Item(h5, "/contact/connectivity", L.ncontact, 1, PETSC_TRUE) + "\n      </Topology>\n";
+    x += "      <Geometry GeometryType=\"XYZ\">\n        " + Item(h5, "/contact/coordinates", L.ncontact, 3, PETSC_FALSE) + "\n      </Geometry>\n";
+    x += Attribute("pressure", "Scalar", "Node", Item(h5, "/contact/pressure", L.ncontact, 1, PETSC_FALSE));
+    x += Attribute("tangential_stress", "Vector", "Node", Item(h5, "/contact/tangential_stress", L.ncontact, 3, PETSC_FALSE));
+    x += Attribute("tangential_displacement", "Vector", "Node", Item(h5, "/contact/tangential_displacement", L.ncontact, 3, PETSC_FALSE));
+    x += Attribute("status", "Scalar", "Node", Item(h5, "/contact/status", L.ncontact, 1, PETSC_TRUE));
+    x += Attribute("area", "Scalar", "Node", Item(h5, "/contact/area", L.ncontact, 1, PETSC_FALSE));
+    x += Attribute("body", "Scalar", "Node", Item(h5, "/contact/body", L.ncontact, 1, PETSC_TRUE));
+    x += "    </Grid>\n";
+  }
+  x += "  </Domain>\n</Xdmf>\n";
+  return x;
+}
+
+/* rank 0 writes text to path; the error (errno) is shared */
+PetscErrorCode WriteText(MPI_Comm comm, const char *path, const std::string &text, const char *what)
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    FILE *f = fopen(path, "w");
+    if (!f) err = errno ? errno : EIO;
+    else {
+      if (fwrite(text.data(), 1, text.size(), f) != text.size()) err = errno ? errno : EIO;
+      if (fclose(f) != 0 && !err) err = errno ? errno : EIO;
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "%s: cannot write %s: %s", what, path, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Rename(MPI_Comm comm, const char *from, const char *to, const char *what)
+{
+  PetscMPIInt rank;
+  int         err = 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank && rename(from, to) != 0) err = errno ? errno : EIO;
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "%s: cannot rename %s to %s: %s", what, from, to, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::string &xmf, const std::string &h5tmp, const std::string &xmftmp, PetscBool fail)
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)scene);
+  Layout      layout;
+  std::string h5name = h5;
+  const char *what   = "-output";
+
+  PetscFunctionBegin;
+  /* the XDMF file refers to the HDF5 file by its name relative to the XDMF file's directory */
+  const size_t slash = h5name.find_last_of('/');
+  if (slash != std::string::npos) h5name = h5name.substr(slash + 1);
+  PetscCall(WriteHDF5(scene, h5tmp.c_str(), layout));
+  PetscCall(WriteText(comm, xmftmp.c_str(), XDMF(h5name.c_str(), scene->impl->name.c_str(), layout), what));
+  PetscCheck(!fail, comm, PETSC_ERR_FILE_WRITE, "-output_test_failure: failing on purpose after writing %s and %s (tests that a failed write leaves no file behind)", h5tmp.c_str(), xmftmp.c_str());
+  PetscCall(Rename(comm, h5tmp.c_str(), h5.c_str(), what));
+  PetscCall(Rename(comm, xmftmp.c_str(), xmf.c_str(), what));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+/*@C
+  ContactSceneWriteOutput - Write the solution of a scene to <basename>.h5 (HDF5) and <basename>.xmf (XDMF, opens in ParaView).
+
+  Collective
+
+  Input Parameters:
++ scene    - the scene, solved
+- basename - path without extension
+
+  Options Database Key:
+. -output_test_failure - developer: fail after writing the temporary files (tests that a failed write leaves no file)
+
+  Notes:
+  The volume grid holds every subdomain's tetrahedra with their own copies of the nodes (nodes on subdomain
+  interfaces appear once per subdomain) and the cell fields subdomain, body and von Mises stress (P1: constant per
+  tetrahedron). The contact grid holds the contact nodes with normal pressure, tangential stress vector,
+  tangential displacement and status (0 separated, 1 stick, 2 slip). docs/output.md lists every dataset.
+
+  The files are written under temporary names and renamed once complete: a failed write (for example an
+  unwritable directory) gives an error naming the file and leaves no partial file; a run killed while
+  writing leaves at most the temporary files <basename>.h5.tmp and <basename>.xmf.tmp.
+
+  Level: beginner
+
+.seealso: `ContactSceneSolve()`, `ContactSceneGetSummary()`
+@*/
+PetscErrorCode ContactSceneWriteOutput(ContactScene scene, const char basename[])
+{
+  MPI_Comm       comm;
+  PetscErrorCode ierr;
+  PetscMPIInt    rank;
+  PetscBool      fail = PETSC_FALSE;
+  std::string    h5, xmf, h5tmp, xmftmp;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  comm = PetscObjectComm((PetscObject)scene);
+  PetscCheck(scene->impl->solved, comm, PETSC_ERR_ORDER, "Call ContactSceneSolve() before ContactSceneWriteOutput()");
+  PetscCheck(basename && basename[0], comm, PETSC_ERR_ARG_WRONG, "-output needs a base name (the files are <basename>.h5 and <basename>.xmf)");
+  PetscObjectOptionsBegin((PetscObject)scene);
+  PetscCall(PetscOptionsBool("-output_test_failure", "Developer: fail after writing the temporary output files (tests the atomic write)", "ContactSceneWriteOutput", fail, &fail, NULL));
+  PetscOptionsEnd();
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  h5     = std::string(basename) + ".h5";
+  xmf    = std::string(basename) + ".xmf";
+  h5tmp  = h5 + ".tmp";
+  xmftmp = xmf + ".tmp";
+  PetscCall(PetscLogEventBegin(CONTACTSCENE_Output, scene, 0, 0, 0));
+  /* a clear message before HDF5 prints its own error stack: can the directory be written? */
+  PetscCall(WriteText(comm, xmftmp.c_str(), "", "-output"));
+  ierr = WriteAll(scene, h5, xmf, h5tmp, xmftmp, fail);
+  if (ierr) {
+    if (!rank) {
+      (void)remove(h5tmp.c_str());
+      (void)remove(xmftmp.c_str());
+    }
+    PetscCall(ierr);
+  }
+  PetscCall(PetscLogEventEnd(CONTACTSCENE_Output, scene, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

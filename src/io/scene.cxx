@@ -1,0 +1,1016 @@
+/* ContactScene: a FEM model with contact zones read from -scene_* options (docs/scenes.md).
+
+   Parsing is strict: every value is checked before PETSc converts it, so a bad value gives an error
+   that names the option and the value; a -scene_* option that no body or zone uses (a typo, or a
+   body/zone index after a gap) is an error, not a warning at the end of the run. */
+#include "ioimpl.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdarg>
+#include <cstdlib>
+#include <cstring>
+#include <set>
+
+PetscClassId      CONTACTSCENE_CLASSID;
+PetscLogEvent     CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_Summary, CONTACTSCENE_Output;
+const char *const SceneFaceNames[6] = {"x0", "x1", "y0", "y1", "z0", "z1"};
+
+namespace {
+
+const PetscInt MaxList = 16; /* entries of a list option (e.g. -scene_body0_fix) */
+
+std::string Format(const char *fmt, ...)
+{
+  char    buf[512];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(buf, sizeof(buf), fmt, ap);
+  va_end(ap);
+  return buf;
+}
+
+/* What the parser needs to read and check options: the prefix and the communicator for errors */
+struct Reader {
+  PetscOptionItems *PetscOptionsObject;
+  const char       *prefix;
+  MPI_Comm          comm;
+  PetscBool         help;
+
+  /* "-<prefix>name" for messages, from "-name" */
+  std::string Full(const std::string &name) const { return "-" + std::string(prefix ? prefix : "") + name.substr(1); }
+
+  PetscErrorCode Raw(const std::string &name, std::string &value, PetscBool *set) const
+  {
+    char buf[4096];
+
+    PetscFunctionBegin;
+    buf[0] = 0;
+    PetscCall(PetscOptionsGetString(NULL, prefix, name.c_str(), buf, sizeof(buf), set));
+    value = buf;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode Has(const std::string &name, PetscBool *set) const
+  {
+    PetscFunctionBegin;
+    PetscCall(PetscOptionsHasName(NULL, prefix, name.c_str(), set));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  static void Split(const std::string &raw, std::vector<std::string> &tokens)
+  {
+    std::string cur;
+    tokens.clear();
+    for (char c : raw) {
+      if (c == ',') {
+        tokens.push_back(cur);
+        cur.clear();
+      } else if (c != ' ' && c != '\t') cur += c;
+    }
+    tokens.push_back(cur);
+  }
+
+  /* check that the option's value is nmin..nmax comma-separated finite numbers (integers when integer) */
+  PetscErrorCode CheckNumbers(const std::string &name, PetscInt nmin, PetscInt nmax, PetscBool integer, const char *what) const
+  {
+    std::string              raw;
+    std::vector<std::string> tokens;
+    PetscBool                set;
+
+    PetscFunctionBegin;
+    PetscCall(Raw(name, raw, &set));
+    if (!set) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCheck(!raw.empty(), comm, PETSC_ERR_ARG_WRONG, "%s needs a value: %s", Full(name).c_str(), what);
+    Split(raw, tokens);
+    const PetscInt n = (PetscInt)tokens.size();
+    PetscCheck(n >= nmin && n <= nmax, comm, PETSC_ERR_ARG_WRONG, "%s %s: %" PetscInt_FMT " value%s given, expected %s", Full(name).c_str(), raw.c_str(), n, n == 1 ? "" : "s", what);
+    for (const std::string &t : tokens) {
+      char *end = nullptr;
+      errno     = 0;
+      if (integer) {
+        const long long v = t.empty() ? 0 : std::strtoll(t.c_str(), &end, 10);
+        PetscCheck(!t.empty() && *end == 0 && errno == 0 && v >= PETSC_MIN_INT && v <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_WRONG, "%s %s: '%s' is not an integer (expected %s)", Full(name).c_str(),
+                   raw.c_str(), t.c_str(), what);
+      } else {
+        const double v = t.empty() ? 0 : std::strtod(t.c_str(), &end);
+        PetscCheck(!t.empty() && *end == 0 && std::isfinite(v), comm, PETSC_ERR_ARG_WRONG, "%s %s: '%s' is not a finite number (expected %s)", Full(name).c_str(), raw.c_str(), t.c_str(), what);
+      }
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode Reals(const std::string &name, const char *help, const char *what, PetscInt nmin, PetscInt nmax, PetscReal v[], PetscInt *n, PetscBool *set) const
+  {
+    PetscInt cnt = nmax;
+
+    PetscFunctionBegin;
+    PetscCall(CheckNumbers(name, nmin, nmax, PETSC_FALSE, what));
+    PetscCall(PetscOptionsRealArray(name.c_str(), help, "ContactSceneSetFromOptions", v, &cnt, set));
+    if (n) *n = cnt;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode Real(const std::string &name, const char *help, const char *what, PetscReal *v, PetscBool *set) const
+  {
+    PetscFunctionBegin;
+    PetscCall(CheckNumbers(name, 1, 1, PETSC_FALSE, what));
+    PetscCall(PetscOptionsReal(name.c_str(), help, "ContactSceneSetFromOptions", *v, v, set));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode Ints(const std::string &name, const char *help, const char *what, PetscInt nmin, PetscInt nmax, PetscInt v[], PetscInt *n, PetscBool *set) const
+  {
+    PetscInt cnt = nmax;
+
+    PetscFunctionBegin;
+    PetscCall(CheckNumbers(name, nmin, nmax, PETSC_TRUE, what));
+    PetscCall(PetscOptionsIntArray(name.c_str(), help, "ContactSceneSetFromOptions", v, &cnt, set));
+    if (n) *n = cnt;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode Int(const std::string &name, const char *help, const char *what, PetscInt *v, PetscBool *set) const
+  {
+    PetscFunctionBegin;
+    PetscCall(CheckNumbers(name, 1, 1, PETSC_TRUE, what));
+    PetscCall(PetscOptionsInt(name.c_str(), help, "ContactSceneSetFromOptions", *v, v, set));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  /* an enum given by one of the names of list (a PETSc enum list: names, then the type name, prefix, NULL) */
+  PetscErrorCode Enum(const std::string &name, const char *help, const char *const *list, PetscEnum *v, PetscBool *set) const
+  {
+    std::string raw, choices;
+    PetscBool   has, found = PETSC_FALSE;
+    PetscInt    count = 0;
+
+    PetscFunctionBegin;
+    while (list[count]) count++;
+    count -= 2; /* the type name and the prefix follow the names */
+    PetscCall(Raw(name, raw, &has));
+    if (has) {
+      for (PetscInt i = 0; i < count; i++) {
+        PetscBool eq;
+        PetscCall(PetscStrcasecmp(raw.c_str(), list[i], &eq));
+        if (eq) found = PETSC_TRUE;
+        choices += (i ? (i == count - 1 ? " or " : ", ") : "") + std::string(list[i]);
+      }
+      PetscCheck(found, comm, PETSC_ERR_ARG_WRONG, "%s '%s': unknown value (use %s)", Full(name).c_str(), raw.c_str(), choices.c_str());
+    }
+    PetscCall(PetscOptionsEnum(name.c_str(), help, "ContactSceneSetFromOptions", list, *v, v, set));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode String(const std::string &name, const char *help, const char *what, std::string &v, PetscBool *set) const
+  {
+    char buf[256];
+
+    PetscFunctionBegin;
+    PetscCall(PetscStrncpy(buf, v.c_str(), sizeof(buf)));
+    PetscCall(PetscOptionsString(name.c_str(), help, "ContactSceneSetFromOptions", buf, buf, sizeof(buf), set));
+    if (*set) {
+      PetscCheck(buf[0], comm, PETSC_ERR_ARG_WRONG, "%s needs a value: %s", Full(name).c_str(), what);
+      v = buf;
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode Strings(const std::string &name, const char *help, const char *what, std::vector<std::string> &v, PetscBool *set) const
+  {
+    std::string              raw;
+    std::vector<std::string> tokens;
+    PetscBool                has;
+    char                    *arr[MaxList];
+    PetscInt                 n = MaxList;
+
+    PetscFunctionBegin;
+    PetscCall(Raw(name, raw, &has));
+    if (has) {
+      PetscCheck(!raw.empty(), comm, PETSC_ERR_ARG_WRONG, "%s needs a value: %s", Full(name).c_str(), what);
+      Split(raw, tokens);
+      PetscCheck((PetscInt)tokens.size() <= MaxList, comm, PETSC_ERR_ARG_WRONG, "%s: at most %" PetscInt_FMT " entries, got %d", Full(name).c_str(), MaxList, (int)tokens.size());
+      for (const std::string &t : tokens) PetscCheck(!t.empty(), comm, PETSC_ERR_ARG_WRONG, "%s %s: empty entry (expected %s)", Full(name).c_str(), raw.c_str(), what);
+    }
+    PetscCall(PetscOptionsStringArray(name.c_str(), help, "ContactSceneSetFromOptions", arr, &n, set));
+    v.clear();
+    if (*set)
+      for (PetscInt i = 0; i < n; i++) {
+        v.push_back(arr[i]);
+        PetscCall(PetscFree(arr[i]));
+      }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+
+/* FACE[/AXIS OP VALUE]..., OP one of > >= < <= */
+PetscErrorCode ParseSelector(MPI_Comm comm, const std::string &option, const std::string &given, SceneSelector &sel)
+{
+  std::string              text;
+  std::vector<std::string> parts;
+  std::string              cur;
+  const char              *usage = "use FACE or FACE/COND[/COND...] with FACE one of x0 x1 y0 y1 z0 z1 and COND like x>1, y<=0.5 (a condition on the centroids of the face's triangles)";
+
+  PetscFunctionBegin;
+  for (char c : given)
+    if (c != ' ' && c != '\t') text += c;
+  for (char c : text) {
+    if (c == '/') {
+      parts.push_back(cur);
+      cur.clear();
+    } else cur += c;
+  }
+  parts.push_back(cur);
+  sel        = SceneSelector{};
+  sel.text   = text;
+  sel.option = option;
+  for (PetscInt f = 0; f < 6; f++)
+    if (parts[0] == SceneFaceNames[f]) sel.face = f;
+  PetscCheck(sel.face >= 0, comm, PETSC_ERR_ARG_WRONG, "%s '%s': unknown face '%s' (%s)", option.c_str(), given.c_str(), parts[0].c_str(), usage);
+  for (size_t i = 1; i < parts.size(); i++) {
+    const std::string &p = parts[i];
+    SceneCondition     c{};
+    size_t             k = 1;
+    PetscCheck(p.size() >= 3 && (p[0] == 'x' || p[0] == 'y' || p[0] == 'z') && (p[1] == '<' || p[1] == '>'), comm, PETSC_ERR_ARG_WRONG, "%s '%s': condition '%s' is not AXIS OP VALUE (%s)",
+               option.c_str(), given.c_str(), p.c_str(), usage);
+    c.axis    = p[0] - 'x';
+    c.greater = p[1] == '>' ? PETSC_TRUE : PETSC_FALSE;
+    k         = 2;
+    if (p[2] == '=') {
+      c.equal = PETSC_TRUE;
+      k       = 3;
+    }
+    const std::string num = p.substr(k);
+    char             *end = nullptr;
+    const double      v   = num.empty() ? 0 : std::strtod(num.c_str(), &end);
+    PetscCheck(!num.empty() && *end == 0 && std::isfinite(v), comm, PETSC_ERR_ARG_WRONG, "%s '%s': '%s' in condition '%s' is not a finite number", option.c_str(), given.c_str(), num.c_str(),
+               p.c_str());
+    c.value = v;
+    sel.conditions.push_back(c);
+  }
+  sel.tag = sel.conditions.empty() ? std::string(SceneFaceNames[sel.face]) : text;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SelectorPredicate(const PetscReal centroid[3], const PetscReal normal[3], PetscBool *tagged, void *ctx)
+{
+  const SceneSelector *sel  = (const SceneSelector *)ctx;
+  PetscInt             axis = 0;
+
+  for (PetscInt d = 1; d < 3; d++)
+    if (std::fabs(normal[d]) > std::fabs(normal[axis])) axis = d;
+  *tagged = (2 * axis + (normal[axis] > 0 ? 1 : 0)) == sel->face ? PETSC_TRUE : PETSC_FALSE;
+  for (const SceneCondition &c : sel->conditions) {
+    const PetscReal x  = centroid[c.axis];
+    const PetscBool ok = c.greater ? (c.equal ? (x >= c.value ? PETSC_TRUE : PETSC_FALSE) : (x > c.value ? PETSC_TRUE : PETSC_FALSE))
+                                   : (c.equal ? (x <= c.value ? PETSC_TRUE : PETSC_FALSE) : (x < c.value ? PETSC_TRUE : PETSC_FALSE));
+    if (!ok) *tagged = PETSC_FALSE;
+  }
+  return PETSC_SUCCESS;
+}
+
+PetscErrorCode ConstantForce(const PetscReal *, PetscReal value[3], void *ctx)
+{
+  const PetscReal *f = (const PetscReal *)ctx;
+  for (PetscInt d = 0; d < 3; d++) value[d] = f[d];
+  return PETSC_SUCCESS;
+}
+
+PetscErrorCode AnySet(const Reader &r, const std::string &stem, std::initializer_list<const char *> keys, PetscBool *any)
+{
+  PetscFunctionBegin;
+  *any = PETSC_FALSE;
+  for (const char *k : keys) {
+    PetscBool set;
+    PetscCall(r.Has(stem + k, &set));
+    if (set) *any = PETSC_TRUE;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody &body)
+{
+  const std::string s    = Format("-scene_body%d_", (int)b);
+  const MPI_Comm    comm = r.comm;
+  PetscBool         set, setlo, setup, setcells, setE, setnu, setdec, setparts;
+  PetscInt          n, parts[3] = {1, 1, 1};
+  PetscReal         femE = 2.12e11, femnu = 0.277;
+
+  PetscFunctionBegin;
+  PetscCall(r.Reals(s + "lower", "Lower corner of the box (x,y,z)", "3 numbers x,y,z", 3, 3, body.lower.data(), NULL, &setlo));
+  PetscCall(r.Reals(s + "upper", "Upper corner of the box (x,y,z)", "3 numbers x,y,z", 3, 3, body.upper.data(), NULL, &setup));
+  PetscCall(r.Ints(s + "cells", "Hexahedra along x,y,z (each cut into 6 tetrahedra), multiplied by -scene_refine", "3 positive integers nx,ny,nz", 3, 3, body.cells.data(), NULL, &setcells));
+  if (exists) {
+    PetscCheck(setlo && setup && setcells, comm, PETSC_ERR_ARG_WRONG, "body %d needs %s, %s and %s", (int)b, r.Full(s + "lower").c_str(), r.Full(s + "upper").c_str(), r.Full(s + "cells").c_str());
+    for (PetscInt d = 0; d < 3; d++) {
+      PetscCheck(body.upper[d] > body.lower[d], comm, PETSC_ERR_ARG_OUTOFRANGE, "%s and %s: upper %g must exceed lower %g along %c", r.Full(s + "lower").c_str(), r.Full(s + "upper").c_str(),
+                 (double)body.upper[d], (double)body.lower[d], (char)('x' + d));
+      PetscCheck(body.cells[d] >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: %" PetscInt_FMT " cells along %c, need at least 1", r.Full(s + "cells").c_str(), body.cells[d], (char)('x' + d));
+    }
+  }
+  /* material: the body's own, else -fem_E / -fem_nu, else steel */
+  PetscCall(PetscOptionsGetReal(NULL, r.prefix, "-fem_E", &femE, NULL));
+  PetscCall(PetscOptionsGetReal(NULL, r.prefix, "-fem_nu", &femnu, NULL));
+  body.E  = femE;
+  body.nu = femnu;
+  PetscCall(r.Real(s + "E", "Young's modulus (default -fem_E, else steel 2.12e11)", "Young's modulus E > 0", &body.E, &setE));
+  PetscCall(r.Real(s + "nu", "Poisson's ratio (default -fem_nu, else 0.277)", "Poisson's ratio in (-1, 0.5)", &body.nu, &setnu));
+  if (exists) {
+    PetscCheck(body.E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: Young's modulus must be positive", setE ? r.Full(s + "E").c_str() : "-fem_E", (double)body.E);
+    PetscCheck(body.nu > -1 && body.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: Poisson's ratio must lie in (-1, 0.5)", setnu ? r.Full(s + "nu").c_str() : "-fem_nu", (double)body.nu);
+  }
+  /* decomposition */
+  PetscCall(r.Enum(s + "decomposition", "How the body is cut into subdomains (default: from the count of -scene_body<b>_subdomains, else -fem_decomposition)", FEMDecompositionTypes,
+                   (PetscEnum *)&body.decomposition, &setdec));
+  PetscCall(r.Ints(s + "subdomains", "Subdomains: px,py,pz (structured) or n (metis)", "px,py,pz (structured) or one count n (metis)", 1, 3, parts, &n, &setparts));
+  if (exists && (setdec || setparts)) {
+    if (!setdec) body.decomposition = n == 1 ? FEM_DECOMPOSITION_METIS : FEM_DECOMPOSITION_STRUCTURED;
+    if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED) {
+      if (!setparts) n = 3;
+      PetscCheck(n == 3, comm, PETSC_ERR_ARG_WRONG, "%s: the structured decomposition needs px,py,pz, got %" PetscInt_FMT " value%s", r.Full(s + "subdomains").c_str(), n, n == 1 ? "" : "s");
+    } else {
+      PetscCheck(setparts && n == 1, comm, PETSC_ERR_ARG_WRONG, "%s metis needs one subdomain count: %s n", r.Full(s + "decomposition").c_str(), r.Full(s + "subdomains").c_str());
+      parts[1] = parts[2] = 1;
+    }
+    for (PetscInt d = 0; d < 3; d++) PetscCheck(parts[d] >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: subdomain count %" PetscInt_FMT " must be positive", r.Full(s + "subdomains").c_str(), parts[d]);
+    for (PetscInt d = 0; d < 3; d++) body.parts[d] = parts[d];
+    body.decompositionset = PETSC_TRUE;
+  }
+  /* supports */
+  body.supports.clear();
+  {
+    const char *keys[4]  = {"fix", "fix_x", "fix_y", "fix_z"};
+    const char *helps[4] = {"Faces (or parts of faces) with zero displacement: FACE[/COND...],...", "Faces with zero x displacement (e.g. a symmetry plane x = const)",
+                            "Faces with zero y displacement", "Faces with zero z displacement"};
+    for (PetscInt k = 0; k < 4; k++) {
+      std::vector<std::string> list;
+      PetscCall(r.Strings(s + keys[k], helps[k], "face selectors FACE[/COND...]", list, &set));
+      if (!exists) continue;
+      for (const std::string &t : list) {
+        SceneSupport sp;
+        PetscCall(ParseSelector(comm, r.Full(s + keys[k]), t, sp.selector));
+        sp.mask = k == 0 ? 7u : (1u << (k - 1));
+        body.supports.push_back(sp);
+      }
+    }
+  }
+  /* tractions: per whole face, then on parts of faces */
+  body.tractions.clear();
+  for (PetscInt f = 0; f < 6; f++) {
+    SceneTraction     t;
+    const std::string name = s + "traction_" + SceneFaceNames[f];
+    PetscCall(r.Reals(name, "Constant traction (force per area) tx,ty,tz on the face", "3 numbers tx,ty,tz", 3, 3, t.value.data(), NULL, &set));
+    if (!exists || !set) continue;
+    PetscCall(ParseSelector(comm, r.Full(name), SceneFaceNames[f], t.selector));
+    body.tractions.push_back(t);
+  }
+  for (PetscInt k = 0; k < MaxList; k++) {
+    const std::string sf = Format("%straction%d_face", s.c_str(), (int)k), sv = Format("%straction%d_value", s.c_str(), (int)k);
+    PetscBool         has, hasv, setv;
+    SceneTraction     t;
+    std::string       text;
+    PetscCall(r.Has(sf, &has));
+    PetscCall(r.Has(sv, &hasv));
+    if (!has && !hasv && !(r.help && k == 0)) break;
+    PetscCall(r.String(sf, "Part of a face carrying traction <k>: FACE/COND... (e.g. z1/x<1)", "a face selector", text, &set));
+    PetscCall(r.Reals(sv, "Traction <k> (force per area) tx,ty,tz", "3 numbers tx,ty,tz", 3, 3, t.value.data(), NULL, &setv));
+    if (!exists || (!has && !hasv)) continue;
+    PetscCheck(has && hasv, comm, PETSC_ERR_ARG_WRONG, "traction %d of body %d needs both %s and %s", (int)k, (int)b, r.Full(sf).c_str(), r.Full(sv).c_str());
+    PetscCall(ParseSelector(comm, r.Full(sf), text, t.selector));
+    body.tractions.push_back(t);
+  }
+  PetscCall(r.Reals(s + "force", "Constant volume force density fx,fy,fz (force per volume, e.g. density times gravity); none when not given", "3 numbers fx,fy,fz", 3, 3, body.force.data(), NULL,
+                    &body.hasforce));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt nbodies, SceneZoneSpec &spec)
+{
+  const std::string s    = Format("-scene_zone%d_", (int)z);
+  const MPI_Comm    comm = r.comm;
+  ContactZone      &zone = spec.zone;
+  PetscBool         set, setface, setpoint, setnormal, setother, setotherface, setlaw, setF, setg;
+  std::string       face, other;
+  PetscReal         F = 0, g = 0;
+
+  PetscFunctionBegin;
+  zone           = ContactZone{};
+  zone.type      = CONTACT_ZONE_FOUNDATION;
+  zone.normal[2] = 1;
+  zone.law       = CONTACT_FRICTIONLESS;
+  PetscCall(r.Enum(s + "type", "Where the zone touches: foundation (a rigid plane) or bodies (another body, node to node)", ContactZoneTypes, (PetscEnum *)&zone.type, &set));
+  PetscCall(r.Int(s + "body", "The body whose face may touch", "a body index", &zone.body, &set));
+  PetscCall(r.String(s + "face", "The face (or part) that may touch: FACE[/COND...], e.g. z0/x>1", "a face selector", face, &setface));
+  PetscCall(r.Reals(s + "point", "Foundation: a point of the rigid plane", "3 numbers x,y,z", 3, 3, zone.point, NULL, &setpoint));
+  PetscCall(r.Reals(s + "normal", "Foundation: the plane's normal, pointing toward the body (the gap of x is (x - point).normal)", "3 numbers nx,ny,nz", 3, 3, zone.normal, NULL, &setnormal));
+  PetscCall(r.Int(s + "other_body", "Bodies: the other body", "a body index", &zone.other_body, &setother));
+  PetscCall(r.String(s + "other_face", "Bodies: the other body's face (its nodes must coincide with the first face's)", "a face selector", other, &setotherface));
+  PetscCall(r.Enum(s + "law", "Contact law: frictionless, tresca (given slip bound) or coulomb (friction coefficient)", ContactLaws, (PetscEnum *)&zone.law, &setlaw));
+  PetscCall(r.Real(s + "friction", "Coulomb: the friction coefficient F >= 0", "a friction coefficient F >= 0", &F, &setF));
+  PetscCall(r.Real(s + "slip_bound", "Tresca: the slip bound, a tangential stress (force per area) >= 0", "a slip bound (stress) >= 0", &g, &setg));
+  if (!exists) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(setface, comm, PETSC_ERR_ARG_WRONG, "contact zone %d needs %s (e.g. z0, or z0/x>1 for part of a face)", (int)z, r.Full(s + "face").c_str());
+  PetscCheck(setlaw, comm, PETSC_ERR_ARG_WRONG, "contact zone %d needs %s frictionless, tresca or coulomb", (int)z, r.Full(s + "law").c_str());
+  PetscCheck(zone.body >= 0 && zone.body < nbodies, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": no such body (the scene has %" PetscInt_FMT " bod%s, numbered from 0)",
+             r.Full(s + "body").c_str(), zone.body, nbodies, nbodies == 1 ? "y" : "ies");
+  PetscCall(ParseSelector(comm, r.Full(s + "face"), face, spec.face));
+  if (zone.type == CONTACT_ZONE_FOUNDATION) {
+    PetscCheck(!setother && !setotherface, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is a foundation zone: %s and %s belong to -scene_zone%d_type bodies", (int)z, r.Full(s + "other_body").c_str(),
+               r.Full(s + "other_face").c_str(), (int)z);
+    PetscCheck(setnormal, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d needs %s nx,ny,nz (the plane's normal, pointing toward the body)", (int)z, r.Full(s + "normal").c_str());
+    const PetscReal len = std::sqrt(zone.normal[0] * zone.normal[0] + zone.normal[1] * zone.normal[1] + zone.normal[2] * zone.normal[2]);
+    PetscCheck(len > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the normal must be nonzero", r.Full(s + "normal").c_str());
+  } else {
+    PetscCheck(!setpoint && !setnormal, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is between bodies: %s and %s belong to foundation zones (the normal is the first face's)", (int)z,
+               r.Full(s + "point").c_str(), r.Full(s + "normal").c_str());
+    PetscCheck(setother && setotherface, comm, PETSC_ERR_ARG_WRONG, "contact zone %d between bodies needs %s and %s", (int)z, r.Full(s + "other_body").c_str(), r.Full(s + "other_face").c_str());
+    PetscCheck(zone.other_body >= 0 && zone.other_body < nbodies && zone.other_body != zone.body, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s %" PetscInt_FMT ": must be a body of the scene (0..%" PetscInt_FMT ") other than %s %" PetscInt_FMT, r.Full(s + "other_body").c_str(), zone.other_body, nbodies - 1,
+               r.Full(s + "body").c_str(), zone.body);
+    PetscCall(ParseSelector(comm, r.Full(s + "other_face"), other, spec.other));
+  }
+  switch (zone.law) {
+  case CONTACT_FRICTIONLESS:
+    PetscCheck(!setF && !setg, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is frictionless: remove %s", (int)z, setF ? r.Full(s + "friction").c_str() : r.Full(s + "slip_bound").c_str());
+    break;
+  case CONTACT_TRESCA:
+    PetscCheck(!setF, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is Tresca: it takes %s (a stress), not %s", (int)z, r.Full(s + "slip_bound").c_str(), r.Full(s + "friction").c_str());
+    PetscCheck(setg, comm, PETSC_ERR_ARG_WRONG, "Tresca contact zone %d needs %s g (the slip bound, a tangential stress)", (int)z, r.Full(s + "slip_bound").c_str());
+    PetscCheck(g >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: the slip bound must be >= 0", r.Full(s + "slip_bound").c_str(), (double)g);
+    zone.coef = g;
+    break;
+  case CONTACT_COULOMB:
+    PetscCheck(!setg, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is Coulomb: it takes %s, not %s", (int)z, r.Full(s + "friction").c_str(), r.Full(s + "slip_bound").c_str());
+    PetscCheck(setF, comm, PETSC_ERR_ARG_WRONG, "Coulomb contact zone %d needs %s F (the friction coefficient)", (int)z, r.Full(s + "friction").c_str());
+    PetscCheck(F >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: the friction coefficient must be >= 0", r.Full(s + "friction").c_str(), (double)F);
+    zone.coef = F;
+    break;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* every -<prefix>scene_* option must have been used by the parser */
+PetscErrorCode CheckUnused(MPI_Comm comm, const char *prefix)
+{
+  PetscInt          n;
+  char            **names, **values;
+  const std::string stem = std::string(prefix ? prefix : "") + "scene_";
+  std::string       bad, value;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  for (PetscInt i = 0; i < n && bad.empty(); i++) {
+    const char *name = names[i][0] == '-' ? names[i] + 1 : names[i];
+    if (!strncmp(name, stem.c_str(), stem.size())) {
+      bad   = name;
+      value = values[i] ? values[i] : "";
+    }
+  }
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
+  PetscCheck(bad.empty(), comm, PETSC_ERR_ARG_WRONG,
+             "unknown scene option -%s %s: no body or zone reads it (a misspelled name, or a body/zone index after a gap: bodies and zones are numbered 0, 1, 2, ... without gaps); run with "
+             "-help for the scene options, or see docs/scenes.md",
+             bad.c_str(), value.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+static PetscErrorCode ContactSceneReset(ContactScene scene)
+{
+  Scene_Impl &impl = *scene->impl;
+
+  PetscFunctionBegin;
+  PetscCall(ContactModelDestroy(&impl.cm));
+  PetscCall(FEMDestroy(&impl.fem));
+  impl.predicates.clear();
+  impl.setup = impl.solved = PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneCreate - Create an empty scene.
+
+  Collective
+
+  Input Parameter:
+. comm - the communicator the model is solved on
+
+  Output Parameter:
+. scene - the scene
+
+  Level: beginner
+
+.seealso: `ContactSceneCreateFromOptions()`, `ContactSceneSetFromOptions()`, `ContactSceneSetUp()`, `ContactSceneDestroy()`
+@*/
+PetscErrorCode ContactSceneCreate(MPI_Comm comm, ContactScene *scene)
+{
+  ContactScene s;
+
+  PetscFunctionBegin;
+  PetscValidPointer(scene, 2);
+  PetscCall(ConeFETIInitializePackage());
+  PetscCall(PetscHeaderCreate(s, CONTACTSCENE_CLASSID, "ContactScene", "Contact scene from options", "ContactScene", comm, ContactSceneDestroy, ContactSceneView));
+  PetscCallCXX(s->impl = new Scene_Impl());
+  *scene = s;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneCreateFromOptions - Create a scene and read it from the options database (`ContactSceneSetFromOptions()`).
+
+  Collective
+
+  Input Parameters:
++ comm   - the communicator
+- prefix - options prefix (NULL for none): the scene reads -<prefix>scene_*, its model -<prefix>fem_*, -<prefix>feti_*, -<prefix>contact_*
+
+  Output Parameter:
+. scene - the scene, not yet set up
+
+  Level: beginner
+
+.seealso: `ContactSceneSetFromOptions()`, `ContactSceneSetUp()`
+@*/
+PetscErrorCode ContactSceneCreateFromOptions(MPI_Comm comm, const char prefix[], ContactScene *scene)
+{
+  PetscFunctionBegin;
+  PetscCall(ContactSceneCreate(comm, scene));
+  PetscCall(ContactSceneSetOptionsPrefix(*scene, prefix));
+  PetscCall(ContactSceneSetFromOptions(*scene));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneDestroy - Destroy a scene with its model.
+
+  Collective
+
+  Input Parameter:
+. scene - the scene
+
+  Level: beginner
+
+.seealso: `ContactSceneCreate()`
+@*/
+PetscErrorCode ContactSceneDestroy(ContactScene *scene)
+{
+  PetscFunctionBegin;
+  if (!scene || !*scene) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscValidHeaderSpecific(*scene, CONTACTSCENE_CLASSID, 1);
+  if (--((PetscObject)(*scene))->refct > 0) {
+    *scene = NULL;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(ContactSceneReset(*scene));
+  PetscCallCXX(delete (*scene)->impl);
+  PetscCall(PetscHeaderDestroy(scene));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneSetOptionsPrefix - Set the prefix of the scene's options (-<prefix>scene_*); the model it builds gets the same prefix.
+
+  Logically Collective
+
+  Input Parameters:
++ scene  - the scene
+- prefix - the prefix
+
+  Level: intermediate
+
+.seealso: `ContactSceneSetFromOptions()`
+@*/
+PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefix[])
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)scene, prefix));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneSetFromOptions - Read the scene from the options database (the schema is in docs/scenes.md).
+
+  Collective
+
+  Input Parameter:
+. scene - the scene
+
+  Options Database Keys:
++ -scene_name <name>                         - a name for the summary and the output
+. -scene_refine <r>                          - multiply every body's cells by r (mesh sizes of one scene)
+. -scene_view                                - view the scene after `ContactSceneSetUp()`
+. -scene_body<b>_lower, _upper <x,y,z>       - corners of box b (bodies are numbered 0, 1, ... without gaps)
+. -scene_body<b>_cells <nx,ny,nz>            - hexahedra along each axis (each cut into 6 tetrahedra)
+. -scene_body<b>_E, _nu                      - material (default -fem_E, -fem_nu, else steel)
+. -scene_body<b>_decomposition <structured,metis> - how the body is cut into subdomains
+. -scene_body<b>_subdomains <px,py,pz or n>  - subdomains (structured: per axis; metis: a count)
+. -scene_body<b>_fix <sel,...>               - faces (or parts) with u = 0; _fix_x, _fix_y, _fix_z fix one component
+. -scene_body<b>_traction_<face> <tx,ty,tz>  - traction on a whole face x0 x1 y0 y1 z0 z1
+. -scene_body<b>_traction<k>_face <sel>      - traction k on part of a face, with -scene_body<b>_traction<k>_value <tx,ty,tz>
+. -scene_body<b>_force <fx,fy,fz>            - volume force density (none when not given)
+. -scene_zone<z>_type <foundation,bodies>    - contact zone z: a rigid plane or another body
+. -scene_zone<z>_body, _face <b>, <sel>      - the body and face (part) that may touch
+. -scene_zone<z>_point, _normal <x,y,z>      - foundation: the plane (normal toward the body)
+. -scene_zone<z>_other_body, _other_face     - bodies: the other body and its face
+- -scene_zone<z>_law <frictionless,tresca,coulomb> - with -scene_zone<z>_slip_bound <g> (Tresca, a stress) or -scene_zone<z>_friction <F> (Coulomb)
+
+  Notes:
+  A face selector is FACE or FACE/COND[/COND...]: FACE one of x0 x1 y0 y1 z0 z1 (x = lower x, x = upper x, ...),
+  COND a condition AXIS OP VALUE (OP one of < <= > >=) on the centroids of the face's triangles; e.g. z0/x>1 is
+  the part of the bottom face beyond x = 1. Quote selectors on the command line ('z0/x>1').
+
+  Dirichlet conditions enter FETI as the model's option -fem_dirichlet says (multipliers: Total FETI, the
+  default; primal: kept in the primal space). Any -scene_* option that no body or zone reads is an error.
+
+  Level: beginner
+
+.seealso: `ContactSceneSetUp()`, `ContactSceneView()`
+@*/
+PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
+{
+  Scene_Impl &impl = *scene->impl;
+  const char *prefix;
+  MPI_Comm    comm;
+  PetscBool   help, set;
+  char        name[64];
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  comm = PetscObjectComm((PetscObject)scene);
+  PetscCall(ContactSceneReset(scene));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
+  PetscCall(PetscOptionsHasHelp(NULL, &help));
+  PetscCall(PetscStrncpy(name, impl.name.c_str(), sizeof(name)));
+  PetscObjectOptionsBegin((PetscObject)scene);
+  Reader r{PetscOptionsObject, prefix, comm, help};
+  PetscCall(PetscOptionsString("-scene_name", "Name of the scene (summary, output)", "ContactSceneSetFromOptions", name, name, sizeof(name), &set));
+  PetscCall(r.Int("-scene_refine", "Multiply every body's cells by this factor", "a positive integer", &impl.refine, &set));
+  PetscCheck(impl.refine >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": the refinement factor must be a positive integer", r.Full("-scene_refine").c_str(), impl.refine);
+  PetscCall(PetscOptionsName("-scene_view", "View the scene after ContactSceneSetUp()", "ContactSceneView", &set));
+  impl.bodies.clear();
+  impl.zones.clear();
+  for (PetscInt b = 0;; b++) {
+    PetscBool exists;
+    SceneBody body;
+    PetscCall(AnySet(r, Format("-scene_body%d_", (int)b), {"lower", "upper", "cells"}, &exists));
+    if (!exists && !(help && b == 0)) break;
+    PetscCall(ReadBody(r, b, exists, body));
+    if (exists) PetscCallCXX(impl.bodies.push_back(body));
+    if (!exists) break;
+  }
+  for (PetscInt z = 0;; z++) {
+    PetscBool     exists;
+    SceneZoneSpec spec;
+    PetscCall(AnySet(r, Format("-scene_zone%d_", (int)z), {"face", "law", "type"}, &exists));
+    if (!exists && !(help && z == 0)) break;
+    PetscCall(ReadZone(r, z, exists, (PetscInt)impl.bodies.size(), spec));
+    if (exists) PetscCallCXX(impl.zones.push_back(spec));
+    if (!exists) break;
+  }
+  PetscOptionsEnd();
+  impl.name = name;
+  PetscCall(CheckUnused(comm, prefix));
+  /* mesh sizes after refinement, and subdomain counts that fit them */
+  for (size_t b = 0; b < impl.bodies.size(); b++) {
+    SceneBody &body  = impl.bodies[b];
+    PetscInt64 cells = 1;
+    for (PetscInt d = 0; d < 3; d++) cells *= (PetscInt64)body.cells[d] * impl.refine;
+    PetscCheck(6 * cells < PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE, "body %d: %lld tetrahedra do not fit this build's PetscInt (reduce -scene_body%d_cells or -scene_refine)", (int)b,
+               (long long)(6 * cells), (int)b);
+    if (!body.decompositionset) continue;
+    if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED)
+      for (PetscInt d = 0; d < 3; d++)
+        PetscCheck(body.parts[d] <= body.cells[d] * impl.refine, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%sscene_body%d_subdomains: %" PetscInt_FMT " subdomains along %c but the body has %" PetscInt_FMT " cells there", prefix ? prefix : "", (int)b, body.parts[d], (char)('x' + d),
+                   body.cells[d] * impl.refine);
+    else
+      PetscCheck(body.parts[0] <= 6 * cells, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sscene_body%d_subdomains: %" PetscInt_FMT " METIS subdomains but the body has %lld tetrahedra", prefix ? prefix : "",
+                 (int)b, body.parts[0], (long long)(6 * cells));
+  }
+  impl.fromoptions = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneSetUp - Build the scene's model: mesh and decompose the bodies, set up the FEM, add the contact zones,
+  and set up the `ContactModel` (FETI operators, factorizations, the dual contact problem).
+
+  Collective
+
+  Input Parameter:
+. scene - the scene, read by `ContactSceneSetFromOptions()`
+
+  Notes:
+  Only what the scene calls for is built: tractions on the faces given, a volume force only when given, contact
+  rows only for the zones given (no zone: the linear FETI pipeline).
+
+  Level: beginner
+
+.seealso: `ContactSceneSolve()`, `ContactSceneGetFEM()`, `ContactSceneGetContactModel()`
+@*/
+PetscErrorCode ContactSceneSetUp(ContactScene scene)
+{
+  Scene_Impl    &impl = *scene->impl;
+  MPI_Comm       comm;
+  const char    *prefix;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  if (impl.setup) PetscFunctionReturn(PETSC_SUCCESS);
+  comm = PetscObjectComm((PetscObject)scene);
+  PetscCheck(!impl.bodies.empty(), comm, PETSC_ERR_ARG_WRONGSTATE,
+             "the scene has no body: give one with -scene_body0_lower, -scene_body0_upper and -scene_body0_cells (e.g. -options_file petsc-options/brick.opts; see docs/scenes.md)");
+  {
+    /* every rank needs a subdomain: say which scene options to change (METIS may add subdomains, never remove them) */
+    PetscMPIInt size;
+    PetscInt64  nsub = 0;
+    PetscBool   all  = PETSC_TRUE;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    for (const SceneBody &body : impl.bodies) {
+      if (!body.decompositionset) all = PETSC_FALSE;
+      nsub += (PetscInt64)body.parts[0] * body.parts[1] * body.parts[2];
+    }
+    PetscCheck(!all || nsub >= size, comm, PETSC_ERR_ARG_SIZ, "the scene has %lld subdomains for %d MPI ranks: every rank needs one; raise -scene_body<b>_subdomains or run on fewer ranks",
+               (long long)nsub, (int)size);
+  }
+  PetscCall(PetscLogEventBegin(CONTACTSCENE_SetUp, scene, 0, 0, 0));
+  PetscCall(PetscTime(&t0));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
+  PetscCall(FEMCreate(comm, &impl.fem));
+  PetscCall(FEMSetOptionsPrefix(impl.fem, prefix));
+  for (size_t bi = 0; bi < impl.bodies.size(); bi++) {
+    SceneBody                   &body = impl.bodies[bi];
+    const PetscInt               b    = (PetscInt)bi;
+    PetscInt                     cells[3], id;
+    std::set<std::string>        tagged;
+    std::vector<SceneSelector *> selectors;
+
+    for (PetscInt d = 0; d < 3; d++) cells[d] = body.cells[d] * impl.refine;
+    PetscCall(FEMAddBox(impl.fem, body.lower.data(), body.upper.data(), cells, &id));
+    PetscCall(FEMSetMaterial(impl.fem, id, body.E, body.nu));
+    if (body.decompositionset) PetscCall(FEMSetDecomposition(impl.fem, id, body.decomposition, body.parts.data()));
+    /* the parts of faces become boundary tags, one per distinct selector */
+    for (SceneSupport &sp : body.supports) selectors.push_back(&sp.selector);
+    for (SceneTraction &t : body.tractions) selectors.push_back(&t.selector);
+    for (SceneZoneSpec &z : impl.zones) {
+      if (z.zone.body == b) selectors.push_back(&z.face);
+      if (z.zone.type == CONTACT_ZONE_BODIES && z.zone.other_body == b) selectors.push_back(&z.other);
+    }
+    for (SceneSelector *sel : selectors) {
+      if (sel->conditions.empty() || tagged.count(sel->tag)) continue;
+      PetscCheck(sel->tag.size() < sizeof(((ContactZone *)0)->face), comm, PETSC_ERR_ARG_WRONG, "%s '%s': the selector is too long (at most %d characters)", sel->option.c_str(), sel->text.c_str(),
+                 (int)sizeof(((ContactZone *)0)->face) - 1);
+      PetscCallCXX(impl.predicates.push_back(std::make_unique<SceneSelector>(*sel)));
+      PetscCall(FEMTagFaces(impl.fem, id, sel->tag.c_str(), SelectorPredicate, impl.predicates.back().get()));
+      tagged.insert(sel->tag);
+    }
+    for (const SceneSupport &sp : body.supports) {
+      const PetscBool comps[3] = {(sp.mask & 1u) ? PETSC_TRUE : PETSC_FALSE, (sp.mask & 2u) ? PETSC_TRUE : PETSC_FALSE, (sp.mask & 4u) ? PETSC_TRUE : PETSC_FALSE};
+      PetscCall(FEMSetDirichlet(impl.fem, id, sp.selector.tag.c_str(), comps));
+    }
+    for (const SceneTraction &t : body.tractions) PetscCall(FEMSetTraction(impl.fem, id, t.selector.tag.c_str(), t.value.data()));
+    if (body.hasforce) PetscCall(FEMSetBodyForce(impl.fem, id, ConstantForce, body.force.data()));
+  }
+  PetscCall(FEMSetFromOptions(impl.fem));
+  PetscCall(FEMSetUp(impl.fem));
+  /* every selector must select something */
+  for (size_t b = 0; b < impl.bodies.size(); b++) {
+    std::vector<const SceneSelector *> selectors;
+    for (const SceneSupport &sp : impl.bodies[b].supports) selectors.push_back(&sp.selector);
+    for (const SceneTraction &t : impl.bodies[b].tractions) selectors.push_back(&t.selector);
+    for (const SceneZoneSpec &z : impl.zones) {
+      if (z.zone.body == (PetscInt)b) selectors.push_back(&z.face);
+      if (z.zone.type == CONTACT_ZONE_BODIES && z.zone.other_body == (PetscInt)b) selectors.push_back(&z.other);
+    }
+    for (const SceneSelector *sel : selectors) {
+      PetscInt         n;
+      const SceneBody &body = impl.bodies[b];
+      PetscCall(FEMGetTaggedNodes(impl.fem, (PetscInt)b, sel->tag.c_str(), &n, NULL, NULL, NULL));
+      PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG, "%s '%s' selects no boundary triangle of body %d, the box [%g,%g]x[%g,%g]x[%g,%g] (conditions apply to triangle centroids)", sel->option.c_str(),
+                 sel->text.c_str(), (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1], (double)body.lower[2], (double)body.upper[2]);
+    }
+  }
+  PetscCall(ContactModelCreate(impl.fem, &impl.cm));
+  for (SceneZoneSpec &z : impl.zones) {
+    PetscCall(PetscStrncpy(z.zone.face, z.face.tag.c_str(), sizeof(z.zone.face)));
+    if (z.zone.type == CONTACT_ZONE_BODIES) PetscCall(PetscStrncpy(z.zone.other_face, z.other.tag.c_str(), sizeof(z.zone.other_face)));
+    PetscCall(ContactModelAddZone(impl.cm, &z.zone));
+  }
+  PetscCall(ContactModelSetUp(impl.cm));
+  PetscCall(PetscTime(&t1));
+  impl.time_setup = t1 - t0;
+  impl.setup      = PETSC_TRUE;
+  PetscCall(PetscLogEventEnd(CONTACTSCENE_SetUp, scene, 0, 0, 0));
+  PetscCall(PetscObjectViewFromOptions((PetscObject)scene, NULL, "-scene_view"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneSolve - Solve the scene: the pipeline its zones call for, then the primal solution.
+
+  Collective
+
+  Input Parameter:
+. scene - the scene (set up on demand)
+
+  Notes:
+  The solve always ends with a stated reason (`ContactSceneGetSummary()`): converged, not converged within the
+  iteration limits, or no equilibrium (loads that supports and friction cannot carry). It does not raise an
+  error in those cases; check `ContactSceneSummary`.converged.
+
+  Level: beginner
+
+.seealso: `ContactSceneSetUp()`, `ContactSceneGetSummary()`, `ContactSceneWriteOutput()`
+@*/
+PetscErrorCode ContactSceneSolve(ContactScene scene)
+{
+  Scene_Impl    &impl = *scene->impl;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  PetscCall(ContactSceneSetUp(scene));
+  PetscCall(PetscLogEventBegin(CONTACTSCENE_Solve, scene, 0, 0, 0));
+  PetscCall(PetscTime(&t0));
+  PetscCall(ContactModelSolve(impl.cm));
+  PetscCall(PetscTime(&t1));
+  PetscCall(PetscLogEventEnd(CONTACTSCENE_Solve, scene, 0, 0, 0));
+  impl.time_solve = t1 - t0;
+  impl.solved     = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneView - Describe the scene: bodies, supports, loads, contact zones (and the model after setup).
+
+  Collective
+
+  Input Parameters:
++ scene  - the scene
+- viewer - an ASCII viewer (NULL: stdout)
+
+  Options Database Key:
+. -scene_view - view after `ContactSceneSetUp()`
+
+  Level: beginner
+
+.seealso: `ContactSceneSetFromOptions()`
+@*/
+PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
+{
+  Scene_Impl &impl = *scene->impl;
+  PetscBool   ascii;
+  PetscMPIInt size;
+  std::string text;
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)scene), &viewer));
+  PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
+  if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)scene), &size));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
+  /* the lines are formatted here (C printf: plain %g) and printed whole */
+  text = Format("ContactScene Object: %s%s%s%d MPI process%s\n", prefix ? "(" : "", prefix ? prefix : "", prefix ? ") " : "", (int)size, size > 1 ? "es" : "");
+  text += Format("  scene \"%s\": %d bod%s, %d contact zone%s, refinement %d\n", impl.name.c_str(), (int)impl.bodies.size(), impl.bodies.size() == 1 ? "y" : "ies", (int)impl.zones.size(),
+                 impl.zones.size() == 1 ? "" : "s", (int)impl.refine);
+  for (size_t b = 0; b < impl.bodies.size(); b++) {
+    const SceneBody &body = impl.bodies[b];
+    text += Format("  body %d: box [%g,%g]x[%g,%g]x[%g,%g], %dx%dx%d cells, E %g, nu %g", (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1],
+                   (double)body.lower[2], (double)body.upper[2], (int)(body.cells[0] * impl.refine), (int)(body.cells[1] * impl.refine), (int)(body.cells[2] * impl.refine), (double)body.E,
+                   (double)body.nu);
+    if (body.decompositionset) {
+      if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED) text += Format(", structured %dx%dx%d subdomains", (int)body.parts[0], (int)body.parts[1], (int)body.parts[2]);
+      else text += Format(", METIS %d subdomains", (int)body.parts[0]);
+    }
+    text += "\n";
+    for (const SceneSupport &sp : body.supports)
+      text += Format("    support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : "");
+    for (const SceneTraction &t : body.tractions) text += Format("    traction on %s: (%g, %g, %g)\n", t.selector.text.c_str(), (double)t.value[0], (double)t.value[1], (double)t.value[2]);
+    if (body.hasforce) text += Format("    volume force (%g, %g, %g)\n", (double)body.force[0], (double)body.force[1], (double)body.force[2]);
+  }
+  for (size_t z = 0; z < impl.zones.size(); z++) {
+    const ContactZone &zn  = impl.zones[z].zone;
+    const std::string  law = zn.law == CONTACT_FRICTIONLESS ? std::string("frictionless") : Format("%s %s %g", ContactLaws[zn.law], zn.law == CONTACT_TRESCA ? "slip bound" : "F", (double)zn.coef);
+    if (zn.type == CONTACT_ZONE_FOUNDATION)
+      text += Format("  zone %d: body %d face %s on the rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (double)zn.point[0],
+                     (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], law.c_str());
+    else
+      text += Format("  zone %d: body %d face %s against body %d face %s (node to node), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (int)zn.other_body,
+                     impl.zones[z].other.text.c_str(), law.c_str());
+  }
+  for (size_t start = 0, end; start < text.size(); start = end + 1) { /* line by line: the viewer's tab applies to each */
+    end = text.find('\n', start);
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", text.substr(start, end - start).c_str()));
+  }
+  if (impl.setup) {
+    PetscCall(PetscViewerASCIIPushTab(viewer));
+    PetscCall(FEMView(impl.fem, viewer));
+    PetscCall(ContactModelView(impl.cm, viewer));
+    PetscCall(PetscViewerASCIIPopTab(viewer));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneGetName - The scene's name (-scene_name).
+
+  Not Collective
+
+  Input Parameter:
+. scene - the scene
+
+  Output Parameter:
+. name - the name (do not free)
+
+  Level: beginner
+
+.seealso: `ContactSceneSetFromOptions()`
+@*/
+PetscErrorCode ContactSceneGetName(ContactScene scene, const char **name)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  *name = scene->impl->name.c_str();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneGetFEM - The scene's finite element model (after `ContactSceneSetUp()`).
+
+  Not Collective
+
+  Input Parameter:
+. scene - the scene
+
+  Output Parameter:
+. fem - the model (do not destroy)
+
+  Level: beginner
+
+.seealso: `ContactSceneGetContactModel()`
+@*/
+PetscErrorCode ContactSceneGetFEM(ContactScene scene, FEM *fem)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  PetscCheck(scene->impl->setup, PetscObjectComm((PetscObject)scene), PETSC_ERR_ORDER, "Call ContactSceneSetUp() first");
+  *fem = scene->impl->fem;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneGetContactModel - The scene's contact model (after `ContactSceneSetUp()`; set up).
+
+  Not Collective
+
+  Input Parameter:
+. scene - the scene
+
+  Output Parameter:
+. cm - the contact model (do not destroy)
+
+  Level: beginner
+
+.seealso: `ContactSceneGetFEM()`
+@*/
+PetscErrorCode ContactSceneGetContactModel(ContactScene scene, ContactModel *cm)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  PetscCheck(scene->impl->setup, PetscObjectComm((PetscObject)scene), PETSC_ERR_ORDER, "Call ContactSceneSetUp() first");
+  *cm = scene->impl->cm;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneGetBodyMaterial - The material of a body of the scene.
+
+  Not Collective
+
+  Input Parameters:
++ scene - the scene
+- body  - the body
+
+  Output Parameters:
++ E  - Young's modulus
+- nu - Poisson's ratio
+
+  Level: intermediate
+
+.seealso: `ContactSceneSetFromOptions()`
+@*/
+PetscErrorCode ContactSceneGetBodyMaterial(ContactScene scene, PetscInt body, PetscReal *E, PetscReal *nu)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  PetscCheck(body >= 0 && body < (PetscInt)scene->impl->bodies.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Body %" PetscInt_FMT " does not exist (the scene has %d)", body,
+             (int)scene->impl->bodies.size());
+  if (E) *E = scene->impl->bodies[body].E;
+  if (nu) *nu = scene->impl->bodies[body].nu;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,468 @@
+/* The summary of a solved scene: the pipeline, the counts of the seed paper's tables, times, the
+   mechanical residuals; printed as a human table and as one JSON line (docs/output.md). */
+#include "ioimpl.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+/* the type of a TAO once it has one; else keep the default given */
+static PetscErrorCode TaoTypeOr(Tao tao, TaoType *type)
+{
+  TaoType t;
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetType(tao, &t));
+  if (t) *type = t;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The Coulomb algorithm the contact problem will run, before its first solve. ContactProblem has no
+   getter for it (its default is the contact layer's choice), so read it from ContactProblemView(): rank 0
+   views into memory, finds "algorithm <name>", and tells the others. found is false if the view has no
+   such line. */
+static PetscErrorCode ViewedAlgorithm(ContactProblem cp, ContactCoulombAlgorithm *alg, PetscBool *found)
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)cp);
+  PetscMPIInt rank;
+  char       *buf = NULL;
+  size_t      len = 0;
+  FILE       *fp;
+  PetscViewer v;
+  int         value = -1;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  fp = open_memstream(&buf, &len);
+  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_MEM, "open_memstream() failed");
+  PetscCall(PetscViewerASCIIOpenWithFILE(comm, fp, &v));
+  PetscCall(ContactProblemView(cp, v));
+  PetscCall(PetscViewerDestroy(&v));
+  fclose(fp);
+  if (!rank && buf) {
+    const char *at = strstr(buf, ", algorithm ");
+    if (at) {
+      at += strlen(", algorithm ");
+      for (int i = 0; i < 3; i++) {
+        const size_t n = strlen(ContactCoulombAlgorithms[i]);
+        if (!strncmp(at, ContactCoulombAlgorithms[i], n) && (at[n] == '\n' || at[n] == ' ' || at[n] == ',' || at[n] == 0)) value = i;
+      }
+    }
+  }
+  free(buf);
+  PetscCallMPI(MPI_Bcast(&value, 1, MPI_INT, 0, comm));
+  *found = value >= 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (value >= 0) *alg = (ContactCoulombAlgorithm)value;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneGetPipelineDescription - The pipeline the scene's zones call for and the solvers it runs (after `ContactSceneSetUp()`).
+
+  Collective
+
+  Input Parameters:
++ scene - the scene, set up
+- len   - size of description
+
+  Output Parameters:
++ pipeline    - linear, frictionless, tresca or coulomb (or NULL)
+. algorithm   - the Coulomb algorithm that will run (or NULL)
+- description - one line naming the pipeline and its solvers (or NULL)
+
+  Level: beginner
+
+.seealso: `ContactSceneSetUp()`, `ContactModelGetPipeline()`
+@*/
+PetscErrorCode ContactSceneGetPipelineDescription(ContactScene scene, ContactPipeline *pipeline, ContactCoulombAlgorithm *algorithm, char description[], size_t len)
+{
+  Scene_Impl             &impl = *scene->impl;
+  ContactPipeline         pipe;
+  ContactCoulombAlgorithm alg = CONTACT_COULOMB_MONOLITHIC;
+  char                    buf[256];
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  PetscCheck(impl.setup, PetscObjectComm((PetscObject)scene), PETSC_ERR_ORDER, "Call ContactSceneSetUp() first");
+  PetscCall(ContactModelGetPipeline(impl.cm, &pipe));
+  /* the algorithm: the solve's own statistics once it ran, else what the contact problem says it will run */
+  if (impl.solved) {
+    ContactStatistics st;
+    PetscCall(ContactModelGetStatistics(impl.cm, &st));
+    alg = st.algorithm;
+  } else if (pipe == CONTACT_PIPELINE_COULOMB) {
+    ContactProblem cp;
+    PetscBool      found;
+    PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
+    PetscCall(ViewedAlgorithm(cp, &alg, &found));
+    if (!found) {
+      const char *prefix;
+      PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
+      PetscCall(PetscOptionsGetEnum(NULL, prefix, "-contact_coulomb_algorithm", ContactCoulombAlgorithms, (PetscEnum *)&alg, NULL));
+    }
+  }
+  if (pipe == CONTACT_PIPELINE_LINEAR) {
+    FETI      feti;
+    KSP       ksp;
+    PC        pc;
+    KSPType   ktype;
+    PCType    ptype;
+    PetscBool iscg;
+    PetscCall(ContactModelGetFETI(impl.cm, &feti));
+    PetscCall(FETIGetKSP(feti, &ksp));
+    PetscCall(KSPGetType(ksp, &ktype));
+    PetscCall(KSPGetPC(ksp, &pc));
+    PetscCall(PCGetType(pc, &ptype));
+    PetscCall(PetscStrcmp(ktype, KSPCG, &iscg));
+    PetscCall(PetscSNPrintf(buf, sizeof(buf), "linear: no contact zone; FETI %s (KSP %s, preconditioner %s)", iscg ? "projected conjugate gradients" : "projected Krylov solve", ktype ? ktype : "?",
+                            ptype ? ptype : "none"));
+  } else {
+    ContactProblem cp;
+    Tao            tao, sub = NULL, sub0 = NULL, sub1 = NULL;
+    /* the inner solvers get their types at the first solve: until then, the ones smalxe picks for the
+       blocks' sets (mprgp for bounds, mpgp for disks), unless options chose others */
+    TaoType type = NULL, stype = pipe == CONTACT_PIPELINE_FRICTIONLESS ? TAOMPRGP : TAOMPGP, s0 = TAOMPRGP, s1 = TAOMPGP;
+    PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
+    PetscCall(ContactProblemGetTao(cp, &tao));
+    PetscCall(TaoGetType(tao, &type));
+    if (pipe == CONTACT_PIPELINE_COULOMB && alg == CONTACT_COULOMB_MERGED) {
+      PetscCall(TaoSMALXEGetBlockSubsolver(tao, 0, &sub0));
+      PetscCall(TaoSMALXEGetBlockSubsolver(tao, 1, &sub1));
+      if (sub0) PetscCall(TaoTypeOr(sub0, &s0));
+      if (sub1) PetscCall(TaoTypeOr(sub1, &s1));
+    } else {
+      PetscCall(TaoSMALXEGetSubsolver(tao, &sub));
+      if (sub) PetscCall(TaoTypeOr(sub, &stype));
+    }
+    switch (pipe) {
+    case CONTACT_PIPELINE_FRICTIONLESS:
+      PetscCall(PetscSNPrintf(buf, sizeof(buf), "frictionless: %s + %s on the normal multipliers (no tangential multipliers)", type ? type : "?", stype ? stype : "?"));
+      break;
+    case CONTACT_PIPELINE_TRESCA: PetscCall(PetscSNPrintf(buf, sizeof(buf), "tresca: one %s + %s solve (disks of the given slip bounds)", type ? type : "?", stype ? stype : "?")); break;
+    case CONTACT_PIPELINE_COULOMB:
+      if (alg == CONTACT_COULOMB_MSA)
+        PetscCall(
+            PetscSNPrintf(buf, sizeof(buf), "coulomb, Algorithm 1 (msa): successive approximations of the slip bounds, each a full %s + %s Tresca solve", type ? type : "?", stype ? stype : "?"));
+      else if (alg == CONTACT_COULOMB_MERGED)
+        PetscCall(PetscSNPrintf(buf, sizeof(buf), "coulomb, Algorithm 2 (merged): one %s loop, each step a block Gauss-Seidel sweep: %s on normal and gluing multipliers, %s on disks of radius F l_n",
+                                type ? type : "?", s0 ? s0 : "?", s1 ? s1 : "?"));
+      else
+        PetscCall(
+            PetscSNPrintf(buf, sizeof(buf), "coulomb, monolithic: one %s loop, one %s over all multipliers, disk radii F l_n updated before each inner solve", type ? type : "?", stype ? stype : "?"));
+      break;
+    default: PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s", ContactPipelines[pipe])); break;
+    }
+  }
+  if (pipeline) *pipeline = pipe;
+  if (algorithm) *algorithm = alg;
+  if (description) PetscCall(PetscStrncpy(description, buf, len));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneGetSummary - Collect the summary of the last solve: counts, times, the mechanical residuals (computed from u and lambda) and the node states.
+
+  Collective
+
+  Input Parameter:
+. scene - the scene, solved
+
+  Output Parameter:
+. s - the summary
+
+  Level: beginner
+
+.seealso: `ContactSceneSummary`, `ContactSceneSummaryView()`, `ContactSceneSummaryViewJSON()`
+@*/
+PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s)
+{
+  Scene_Impl        &impl = *scene->impl;
+  MPI_Comm           comm;
+  FETI               feti;
+  ContactProblem     cp;
+  ContactStatistics  st;
+  Mat                B;
+  Vec                c, lambda;
+  const FETIRowKind *kinds;
+  PetscInt           nlocal, counts[4] = {0, 0, 0, 0}, ndir;
+  IS                 dir;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  comm = PetscObjectComm((PetscObject)scene);
+  PetscCheck(impl.solved, comm, PETSC_ERR_ORDER, "Call ContactSceneSolve() before ContactSceneGetSummary()");
+  PetscCall(PetscLogEventBegin(CONTACTSCENE_Summary, scene, 0, 0, 0));
+  *s = ContactSceneSummary{};
+  PetscCall(PetscStrncpy(s->scene, impl.name.c_str(), sizeof(s->scene)));
+  PetscCallMPI(MPI_Comm_size(comm, &s->ranks));
+  PetscCall(ContactSceneGetPipelineDescription(scene, &s->pipeline, &s->algorithm, s->description, sizeof(s->description)));
+  /* sizes: n as the seed paper counts it (undecomposed mesh, Dirichlet dofs left out) */
+  for (size_t b = 0; b < impl.bodies.size(); b++) {
+    PetscInt nn;
+    PetscCall(FEMGetBodyNodes(impl.fem, (PetscInt)b, &nn, NULL));
+    s->n += 3 * nn;
+  }
+  PetscCall(FEMGetGlobalDirichletDofs(impl.fem, &dir));
+  PetscCall(ISGetSize(dir, &ndir));
+  PetscCall(ISDestroy(&dir));
+  s->n -= ndir;
+  PetscCall(ContactModelGetFETI(impl.cm, &feti));
+  PetscCall(FETIGetSizes(feti, &s->n_primal, &s->m, &s->rigid_modes));
+  PetscCall(FEMGetNumSubdomains(impl.fem, &s->subdomains, NULL, NULL));
+  PetscCall(FETIGetConstraints(feti, &B, &c, &kinds));
+  PetscCall(ContactModelGetSolution(impl.cm, &lambda, NULL));
+  PetscCall(VecGetLocalSize(lambda, &nlocal));
+  for (PetscInt i = 0; i < nlocal; i++) counts[kinds[i]]++;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 4, MPIU_INT, MPI_SUM, comm));
+  s->m_gluing     = counts[FETI_ROW_GLUING];
+  s->m_dirichlet  = counts[FETI_ROW_DIRICHLET];
+  s->m_normal     = counts[FETI_ROW_CONTACT_NORMAL];
+  s->m_tangential = counts[FETI_ROW_CONTACT_TANGENTIAL];
+  /* the solve */
+  PetscCall(ContactModelGetStatistics(impl.cm, &st));
+  s->iter         = st.outer_iterations;
+  s->al_iter      = st.al_iterations;
+  s->n_A_qpp      = st.products_qpp;
+  s->n_A_qpq      = st.products_qpq;
+  s->n_A          = st.products_qpp + st.products_qpq;
+  s->n_A_other    = st.products_other;
+  s->n_A_estimate = st.products_estimate;
+  s->fixed_point  = st.fixed_point;
+  s->feasibility  = st.feasibility;
+  s->time_setup   = impl.time_setup;
+  s->time_solve   = impl.time_solve;
+  PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
+  if (cp) {
+    Tao tao;
+    PetscCall(ContactProblemGetTao(cp, &tao));
+    PetscCall(TaoQPGetNormEstimate(tao, &s->norm_F));
+  }
+  /* the mechanical residuals, from u and lambda */
+  PetscCall(ContactModelComputeResiduals(impl.cm, &s->residuals));
+  s->contact_nodes = s->residuals.counts[0] + s->residuals.counts[1] + s->residuals.counts[2];
+  {
+    const ContactResiduals &r      = s->residuals;
+    const PetscReal         all[8] = {r.equilibrium, r.gluing, r.penetration, r.normal_sign, r.complementarity, r.friction_cone, r.slip_rule, r.max};
+    s->finite                      = PETSC_TRUE;
+    for (PetscReal v : all)
+      if (!std::isfinite((double)v)) s->finite = PETSC_FALSE;
+  }
+  s->converged = (st.converged && s->finite) ? PETSC_TRUE : PETSC_FALSE;
+  if (s->finite) PetscCall(PetscStrncpy(s->reason, st.reason, sizeof(s->reason)));
+  else PetscCall(PetscSNPrintf(s->reason, sizeof(s->reason), "not converged: the residuals of the solution are not finite numbers (%s)", st.reason));
+  PetscCall(PetscLogEventEnd(CONTACTSCENE_Summary, scene, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneSummaryView - Print the summary as a human-readable table (the layout of the seed paper's tables, then the details).
+
+  Collective
+
+  Input Parameters:
++ s      - the summary
+- viewer - an ASCII viewer (NULL: stdout of PETSC_COMM_WORLD)
+
+  Level: beginner
+
+.seealso: `ContactSceneSummaryViewJSON()`, `ContactSceneGetSummary()`
+@*/
+PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer viewer)
+{
+  const ContactResiduals &r = s->residuals;
+
+  PetscFunctionBegin;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PETSC_COMM_WORLD, &viewer));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "scene \"%s\" on %d MPI process%s: %" PetscInt_FMT " subdomains, %" PetscInt_FMT " rigid modes\n", s->scene, (int)s->ranks, s->ranks > 1 ? "es" : "",
+                                   s->subdomains, s->rigid_modes));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "pipeline: %s\n", s->description));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%10s %8s %6s %8s %8s %8s %8s %11s %10s %10s\n", "n", "m", "Iter", "n_A", "QPP", "QPQ", "other", "||F||", "setup [s]", "solve [s]"));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "%10" PetscInt_FMT " %8" PetscInt_FMT " %6" PetscInt_FMT " %8" PetscInt_FMT " %8" PetscInt_FMT " %8" PetscInt_FMT " %8" PetscInt_FMT " %11.4e %10.3f %10.3f\n", s->n,
+                                   s->m, s->iter, s->n_A, s->n_A_qpp, s->n_A_qpq, s->n_A_other, (double)s->norm_F, (double)s->time_setup, (double)s->time_solve));
+  PetscCall(PetscViewerASCIIPrintf(viewer,
+                                   "multipliers: %" PetscInt_FMT " gluing + %" PetscInt_FMT " Dirichlet + %" PetscInt_FMT " normal + %" PetscInt_FMT " tangential; FETI primal dimension %" PetscInt_FMT
+                                   "; ||F|| estimate: %" PetscInt_FMT " products (not in n_A)\n",
+                                   s->m_gluing, s->m_dirichlet, s->m_normal, s->m_tangential, s->n_primal, s->n_A_estimate));
+  if (s->pipeline != CONTACT_PIPELINE_LINEAR)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "contact nodes: %" PetscInt_FMT " = %" PetscInt_FMT " separated + %" PetscInt_FMT " stick + %" PetscInt_FMT " slip\n", s->contact_nodes, r.counts[0],
+                                     r.counts[1], r.counts[2]));
+  {
+    /* a residual that is not a finite number is said so, not printed as nan */
+    auto E = [](PetscReal v) {
+      char buf[32];
+      if (std::isfinite((double)v)) snprintf(buf, sizeof(buf), "%.1e", (double)v);
+      else snprintf(buf, sizeof(buf), "NOT FINITE");
+      return std::string(buf);
+    };
+    std::string line = "residuals (relative): equilibrium " + E(r.equilibrium) + ", gluing " + E(r.gluing);
+    if (s->pipeline != CONTACT_PIPELINE_LINEAR)
+      line += ", non-penetration " + E(r.penetration) + ", normal sign " + E(r.normal_sign) + ", complementarity " + E(r.complementarity) + ", friction cone " + E(r.friction_cone) + ", slip rule " +
+              E(r.slip_rule);
+    line += "; max " + E(r.max);
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", line.c_str()));
+    if (s->pipeline == CONTACT_PIPELINE_COULOMB) PetscCall(PetscViewerASCIIPrintf(viewer, "Coulomb fixed point: |g - F l_n| / |F l_n| = %s\n", E(s->fixed_point).c_str()));
+  }
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s: %s\n", s->converged ? "CONVERGED" : "NOT CONVERGED", s->reason));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+namespace {
+
+void AppendString(std::string &out, const char *s)
+{
+  out += '"';
+  for (const char *p = s; *p; p++) {
+    const unsigned char ch = (unsigned char)*p;
+    if (ch == '"') out += "\\\"";
+    else if (ch == '\\') out += "\\\\";
+    else if (ch == '\n') out += "\\n";
+    else if (ch == '\t') out += "\\t";
+    else if (ch < 0x20) {
+      char buf[8];
+      snprintf(buf, sizeof(buf), "\\u%04x", ch);
+      out += buf;
+    } else out += (char)ch;
+  }
+  out += '"';
+}
+
+void Key(std::string &out, const char *key)
+{
+  if (out.size() > 1 && out.back() != '{') out += ',';
+  AppendString(out, key);
+  out += ':';
+}
+
+void Int(std::string &out, const char *key, PetscInt v)
+{
+  Key(out, key);
+  out += std::to_string((long long)v);
+}
+
+void Real(std::string &out, const char *key, PetscReal v)
+{
+  char buf[64];
+  Key(out, key);
+  if (std::isfinite((double)v)) {
+    snprintf(buf, sizeof(buf), "%.6e", (double)v);
+    out += buf;
+  } else out += "null"; /* JSON has no NaN or infinity */
+}
+
+void Str(std::string &out, const char *key, const char *v)
+{
+  Key(out, key);
+  if (v) AppendString(out, v);
+  else out += "null";
+}
+
+void Bool(std::string &out, const char *key, PetscBool v)
+{
+  Key(out, key);
+  out += v ? "true" : "false";
+}
+
+} // namespace
+
+/*@C
+  ContactSceneSummaryToJSON - The summary as one line of JSON: an object whose first key is "conefeti" (the version).
+
+  Not Collective
+
+  Input Parameters:
++ s   - the summary
+- len - size of json
+
+  Output Parameter:
+. json - the line (no newline)
+
+  Notes:
+  The fields are listed in docs/output.md. Non-finite numbers are written as null.
+
+  Level: intermediate
+
+.seealso: `ContactSceneSummaryViewJSON()`
+@*/
+PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json[], size_t len)
+{
+  std::string             out = "{";
+  const ContactResiduals &r   = s->residuals;
+  char                    version[32];
+
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(version, sizeof(version), "%d.%d.%d", CONEFETI_VERSION_MAJOR, CONEFETI_VERSION_MINOR, CONEFETI_VERSION_PATCH));
+  Str(out, "conefeti", version);
+  Str(out, "scene", s->scene);
+  Int(out, "ranks", s->ranks);
+  Str(out, "pipeline", ContactPipelines[s->pipeline]);
+  Str(out, "algorithm", s->pipeline == CONTACT_PIPELINE_COULOMB ? ContactCoulombAlgorithms[s->algorithm] : NULL);
+  Str(out, "description", s->description);
+  Bool(out, "converged", s->converged);
+  Str(out, "reason", s->reason);
+  Int(out, "n", s->n);
+  Int(out, "n_primal", s->n_primal);
+  Int(out, "m", s->m);
+  Int(out, "m_gluing", s->m_gluing);
+  Int(out, "m_dirichlet", s->m_dirichlet);
+  Int(out, "m_normal", s->m_normal);
+  Int(out, "m_tangential", s->m_tangential);
+  Int(out, "subdomains", s->subdomains);
+  Int(out, "rigid_modes", s->rigid_modes);
+  Int(out, "iter", s->iter);
+  Int(out, "al_iter", s->al_iter);
+  Int(out, "n_A", s->n_A);
+  Int(out, "n_A_qpp", s->n_A_qpp);
+  Int(out, "n_A_qpq", s->n_A_qpq);
+  Int(out, "n_A_other", s->n_A_other);
+  Int(out, "n_A_estimate", s->n_A_estimate);
+  Real(out, "norm_F", s->norm_F);
+  Real(out, "time_setup", s->time_setup);
+  Real(out, "time_solve", s->time_solve);
+  Int(out, "contact_nodes", s->contact_nodes);
+  Int(out, "separated", r.counts[0]);
+  Int(out, "stick", r.counts[1]);
+  Int(out, "slip", r.counts[2]);
+  Real(out, "fixed_point", s->fixed_point);
+  Real(out, "feasibility", s->feasibility);
+  Key(out, "residuals");
+  out += "{";
+  Real(out, "equilibrium", r.equilibrium);
+  Real(out, "gluing", r.gluing);
+  Real(out, "penetration", r.penetration);
+  Real(out, "normal_sign", r.normal_sign);
+  Real(out, "complementarity", r.complementarity);
+  Real(out, "friction_cone", r.friction_cone);
+  Real(out, "slip_rule", r.slip_rule);
+  Real(out, "max", r.max);
+  out += "}}";
+  PetscCheck(out.size() < len, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "ContactSceneSummaryToJSON: the line needs %d characters, the buffer has %d", (int)out.size() + 1, (int)len);
+  PetscCall(PetscStrncpy(json, out.c_str(), len));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneSummaryViewJSON - Print the summary as one JSON line (starting with {"conefeti":).
+
+  Collective
+
+  Input Parameters:
++ s      - the summary
+- viewer - an ASCII viewer (NULL: stdout of PETSC_COMM_WORLD)
+
+  Level: beginner
+
+.seealso: `ContactSceneSummaryToJSON()`, `ContactSceneSummaryView()`
+@*/
+PetscErrorCode ContactSceneSummaryViewJSON(const ContactSceneSummary *s, PetscViewer viewer)
+{
+  char json[4096];
+
+  PetscFunctionBegin;
+  if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PETSC_COMM_WORLD, &viewer));
+  PetscCall(ContactSceneSummaryToJSON(s, json, sizeof(json)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", json));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# usage: expect-error.sh REGEX [NOFILE...] -- command...
+# Bad input must end the run with an error: the command must exit non-zero, its output must match the
+# extended REGEX (the message naming the option, file or value), and must not show a crash (a signal,
+# a segmentation violation) -- and every NOFILE path must not exist afterwards.
+set -uo pipefail
+regex=$1; shift
+nofiles=()
+while [ $# -gt 0 ] && [ "$1" != "--" ]; do nofiles+=("$1"); shift; done
+shift
+out=$(mktemp); trap 'rm -f "$out"' EXIT
+"$@" >"$out" 2>&1; rc=$?
+grep -v "Configure options" "$out"
+fail=0
+if [ $rc -eq 0 ]; then echo "expect-error.sh: the command succeeded, expected an error"; fail=1; fi
+grep -Eq -- "$regex" "$out" || { echo "expect-error.sh: no line matches: $regex"; fail=1; }
+grep -Eq -- "Segmentation Violation|Caught signal|SIGSEGV|SIGABRT|\b[Nn]a[Nn]\b" "$out" && { echo "expect-error.sh: a crash or NaN"; fail=1; }
+for f in ${nofiles[@]+"${nofiles[@]}"}; do
+  if [ -e "$f" ]; then echo "expect-error.sh: $f exists, expected no file"; fail=1; fi
+done
+[ $fail -eq 0 ] && echo "expect-error.sh: failed as expected with a clear message"
+exit $fail
