@@ -125,6 +125,7 @@ PETSC_EXTERN PetscErrorCode ContactProblemSetUp(ContactProblem);
 PETSC_EXTERN PetscErrorCode ContactProblemSolve(ContactProblem, Vec);
 PETSC_EXTERN PetscErrorCode ContactProblemView(ContactProblem, PetscViewer);
 PETSC_EXTERN PetscErrorCode ContactProblemGetPipeline(ContactProblem, ContactPipeline *);
+PETSC_EXTERN PetscErrorCode ContactProblemGetCoulombAlgorithm(ContactProblem, ContactCoulombAlgorithm *);
 PETSC_EXTERN PetscErrorCode ContactProblemGetStatistics(ContactProblem, ContactStatistics *);
 PETSC_EXTERN PetscErrorCode ContactProblemGetEqualityMultiplier(ContactProblem, Vec);
 PETSC_EXTERN PetscErrorCode ContactProblemGetNodes(ContactProblem, PetscInt *, const PetscInt **, const PetscInt **, const PetscInt **, const ContactLaw **, const PetscReal **);

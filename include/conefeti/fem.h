@@ -95,6 +95,7 @@ PETSC_EXTERN PetscErrorCode FEMCreate(MPI_Comm, FEM *);
 PETSC_EXTERN PetscErrorCode FEMDestroy(FEM *);
 PETSC_EXTERN PetscErrorCode FEMAddBox(FEM, const PetscReal[3], const PetscReal[3], const PetscInt[3], PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMSetMaterial(FEM, PetscInt, PetscReal, PetscReal);
+PETSC_EXTERN PetscErrorCode FEMGetMaterial(FEM, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FEMTagFaces(FEM, PetscInt, const char[], FEMFacePredicate, void *);
 PETSC_EXTERN PetscErrorCode FEMSetDirichlet(FEM, PetscInt, const char[], const PetscBool[3]);
 PETSC_EXTERN PetscErrorCode FEMSetTraction(FEM, PetscInt, const char[], const PetscReal[3]);

@@ -427,3 +427,26 @@ PetscErrorCode ContactProblemView(ContactProblem cp, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/*@C
+  ContactProblemGetCoulombAlgorithm - The algorithm of the Coulomb friction loop (set by `-contact_coulomb_algorithm`).
+
+  Not Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Output Parameter:
+. algorithm - msa, merged or monolithic (meaningful for the Coulomb pipeline)
+
+  Level: intermediate
+
+.seealso: `ContactCoulombAlgorithm`, `ContactProblemGetPipeline()`
+@*/
+PetscErrorCode ContactProblemGetCoulombAlgorithm(ContactProblem cp, ContactCoulombAlgorithm *algorithm)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  *algorithm = cp->data->algorithm;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -999,3 +999,31 @@ PetscErrorCode FEMGetGlobalDirichletDofs(FEM fem, IS *is)
   PetscCall(ISCreateGeneral(comm, (PetscInt)dofs.size(), dofs.data(), PETSC_COPY_VALUES, is));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/*@C
+  FEMGetMaterial - The elastic constants of a body.
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model
+- body - the body
+
+  Output Parameters:
++ E  - Young's modulus (or NULL)
+- nu - Poisson's ratio (or NULL)
+
+  Level: intermediate
+
+.seealso: `FEMSetMaterial()`
+@*/
+PetscErrorCode FEMGetMaterial(FEM fem, PetscInt body, PetscReal *E, PetscReal *nu)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscCheck(fem->impl->bodies[body].materialset, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONGSTATE, "FEMGetMaterial: body %" PetscInt_FMT " has no material (FEMSetMaterial())", body);
+  if (E) *E = fem->impl->bodies[body].E;
+  if (nu) *nu = fem->impl->bodies[body].nu;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

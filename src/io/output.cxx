@@ -141,7 +141,7 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
       PetscCall(FEMGetBodyNodes(impl.fem, b, NULL, &X));
       PetscCall(FETIGetSubdomainOffset(feti, s, &primal, &coarse));
       PetscCheck(primal - ustart == 3 * node, PETSC_COMM_SELF, PETSC_ERR_PLIB, "ContactSceneWriteOutput: subdomain %" PetscInt_FMT " is not where the nodes are counted", firstsub + s);
-      PetscCall(ContactSceneGetBodyMaterial(scene, b, &E, &nu));
+      PetscCall(FEMGetMaterial(impl.fem, b, &E, &nu)); /* -fem_E, -fem_nu may have overridden the scene */
       for (PetscInt l = 0; l < n; l++)
         for (PetscInt d = 0; d < 3; d++) {
           coords[3 * (node + l) + d] = X[3 * nodes[l] + d];

@@ -19,45 +19,6 @@ static PetscErrorCode TaoTypeOr(Tao tao, TaoType *type)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The Coulomb algorithm the contact problem will run, before its first solve. ContactProblem has no
-   getter for it (its default is the contact layer's choice), so read it from ContactProblemView(): rank 0
-   views into memory, finds "algorithm <name>", and tells the others. found is false if the view has no
-   such line. */
-static PetscErrorCode ViewedAlgorithm(ContactProblem cp, ContactCoulombAlgorithm *alg, PetscBool *found)
-{
-  MPI_Comm    comm = PetscObjectComm((PetscObject)cp);
-  PetscMPIInt rank;
-  char       *buf = NULL;
-  size_t      len = 0;
-  FILE       *fp;
-  PetscViewer v;
-  int         value = -1;
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  fp = open_memstream(&buf, &len);
-  PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_MEM, "open_memstream() failed");
-  PetscCall(PetscViewerASCIIOpenWithFILE(comm, fp, &v));
-  PetscCall(ContactProblemView(cp, v));
-  PetscCall(PetscViewerDestroy(&v));
-  fclose(fp);
-  if (!rank && buf) {
-    const char *at = strstr(buf, ", algorithm ");
-    if (at) {
-      at += strlen(", algorithm ");
-      for (int i = 0; i < 3; i++) {
-        const size_t n = strlen(ContactCoulombAlgorithms[i]);
-        if (!strncmp(at, ContactCoulombAlgorithms[i], n) && (at[n] == '\n' || at[n] == ' ' || at[n] == ',' || at[n] == 0)) value = i;
-      }
-    }
-  }
-  free(buf);
-  PetscCallMPI(MPI_Bcast(&value, 1, MPI_INT, 0, comm));
-  *found = value >= 0 ? PETSC_TRUE : PETSC_FALSE;
-  if (value >= 0) *alg = (ContactCoulombAlgorithm)value;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 /*@C
   ContactSceneGetPipelineDescription - The pipeline the scene's zones call for and the solvers it runs (after `ContactSceneSetUp()`).
 
@@ -94,14 +55,8 @@ PetscErrorCode ContactSceneGetPipelineDescription(ContactScene scene, ContactPip
     alg = st.algorithm;
   } else if (pipe == CONTACT_PIPELINE_COULOMB) {
     ContactProblem cp;
-    PetscBool      found;
     PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
-    PetscCall(ViewedAlgorithm(cp, &alg, &found));
-    if (!found) {
-      const char *prefix;
-      PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
-      PetscCall(PetscOptionsGetEnum(NULL, prefix, "-contact_coulomb_algorithm", ContactCoulombAlgorithms, (PetscEnum *)&alg, NULL));
-    }
+    PetscCall(ContactProblemGetCoulombAlgorithm(cp, &alg));
   }
   if (pipe == CONTACT_PIPELINE_LINEAR) {
     FETI      feti;

@@ -605,7 +605,9 @@ PetscErrorCode SeparableSetCreateSubset(SeparableSet set, IS is, SeparableSet *s
     PetscCheck(i >= 0 && i < d->n, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "SeparableSetCreateSubset: index %" PetscInt_FMT " is not owned by this rank", idx[k]);
     where[i] = start + k;
   }
-  if (d->has_bounds) {
+  PetscInt any_bounds = d->has_bounds ? 1 : 0; /* collective below: every rank must take the same branch */
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &any_bounds, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)set)));
+  if (any_bounds) {
     PetscScalar *l, *u;
     PetscCall(VecCreateMPI(PetscObjectComm((PetscObject)set), n, PETSC_DETERMINE, &lb));
     PetscCall(VecDuplicate(lb, &ub));

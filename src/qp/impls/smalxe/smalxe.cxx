@@ -83,7 +83,7 @@ struct TaoSMALXE {
   void *consistent_ctx                                        = nullptr;
 
   /* feasibility history: an equality that cannot be met over the set makes |Cx - d| level off */
-  std::vector<PetscReal> feas_history;
+  std::vector<PetscReal> feas_history, mult_history; /* |Cx - d| and |C'mu| per outer iteration */
   PetscInt               stagnation_its = 30;
   PetscBool              stagnated      = PETSC_FALSE;
 
@@ -274,8 +274,11 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
     if (s->consistent) PetscCall(s->consistent(tao, tao->solution, &consistent, s->consistent_ctx));
     if (consistent) PetscCall(TaoSetConvergedReason(tao, tao->gttol * s->beff >= tao->gatol ? TAO_CONVERGED_GTTOL : TAO_CONVERGED_GATOL));
   }
-  if (tao->reason == TAO_CONTINUE_ITERATING && s->stagnation_its > 0 && k >= s->stagnation_its && tao->cnorm > tol_e && s->feas_history[k] > 0.99 * s->feas_history[k - s->stagnation_its]) {
-    /* |Cx - d| did not fall by 1% in stagnation_its outer iterations */
+  if (tao->reason == TAO_CONTINUE_ITERATING && s->stagnation_its > 0 && k >= s->stagnation_its && tao->cnorm > tol_e && s->feas_history[k] > 0.99 * s->feas_history[k - s->stagnation_its] &&
+      s->mult_history[k] > 1.25 * s->mult_history[k - s->stagnation_its]) {
+    /* |Cx - d| did not fall by 1% in stagnation_its outer iterations while the multiplier kept growing
+       (by a quarter at least): the signature of an equality that cannot be met, where the multiplier
+       grows without bound; a slowly converging loop has a settling multiplier instead */
     s->stagnated = PETSC_TRUE;
     PetscCall(PetscInfo(tao, "TAO smalxe: |Cx - d| = %g stagnates (%" PetscInt_FMT " iterations without 1%% progress): C x = d cannot be met over the set, or rho is far too small\n",
                         (double)tao->cnorm, s->stagnation_its));
@@ -624,6 +627,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
   tao->reason = TAO_CONTINUE_ITERATING;
   s->counters.solves++;
   s->feas_history.clear();
+  s->mult_history.clear();
   s->stagnated = PETSC_FALSE;
   for (PetscInt k = 0;; k++) {
     PetscReal gp, e, L;
@@ -648,6 +652,11 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     /* the multiplier update comes before the test: the returned multiplier is the updated one */
     if (s->projector) PetscCall(ReproducibleAXPY(s->nu, s->rho, s->wf)); /* wf = Qx - x~ from Feasibility() */
     else PetscCall(ReproducibleAXPY(s->mu, s->rho, s->r));               /* r = Cx - d */
+    {
+      PetscReal mn;
+      PetscCall(Norm(s->projector ? s->nu : s->mu, &mn));
+      PetscCallCXX(s->mult_history.push_back(mn));
+    }
     PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
     if (tao->reason != TAO_CONTINUE_ITERATING) break;
     /* semi-monotonicity: if L did not grow enough, tighten the inner precision (M) or raise rho.
@@ -702,8 +711,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
   PetscCall(PetscOptionsEnum("-tao_smalxe_norm_method", "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)s->norm_method, (PetscEnum *)&s->norm_method, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_norm_margin", "Relative safety margin of the norm estimate", "MatQPEstimateNorm", s->norm_margin, &s->norm_margin, NULL));
-  PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its", "Stop (infeasible) when |Cx - d| falls by less than 1% in this many outer iterations (0: never)", "TaoSMALXEGetStagnated", s->stagnation_its,
-                            &s->stagnation_its, NULL));
+  PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its", "Stop (infeasible) when |Cx - d| falls by less than 1% and the multiplier grows by a quarter in this many outer iterations (0: never)",
+                            "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_counters_view", "Print the counters as one JSON line after each solve", "QPCountersViewJSON", s->counters_view, &s->counters_view, NULL));
   PetscOptionsHeadEnd();
   PetscCheck(s->rho_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_rho must be positive, got %g", (double)s->rho_rel);
