@@ -1021,7 +1021,8 @@ PetscErrorCode FEMGetMaterial(FEM fem, PetscInt body, PetscReal *E, PetscReal *n
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
-  PetscCall(CheckBody(fem, body));
+  PetscCheck(body >= 0 && body < (PetscInt)fem->impl->bodies.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "FEMGetMaterial: body %" PetscInt_FMT " does not exist (%zu bodies)", body,
+             fem->impl->bodies.size());
   PetscCheck(fem->impl->bodies[body].materialset, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONGSTATE, "FEMGetMaterial: body %" PetscInt_FMT " has no material (FEMSetMaterial())", body);
   if (E) *E = fem->impl->bodies[body].E;
   if (nu) *nu = fem->impl->bodies[body].nu;
