@@ -100,13 +100,13 @@ def bench_one(prog, base, label, opts, rtol, timeout, log):
 
 def fmt_row(label, rec, err, qref):
     if rec is None:
-        return "| %s | - | - | - | - | **no** | - | - | error: %s |" % (label, err.replace("|", "/"))
+        return "| %s | - | - | - | - | - | **no** | - | - | error: %s |" % (label, err.replace("|", "/"))
     est = " (%d)" % rec["estimate_products"] if rec["estimate_products"] else ""
     gap = (rec["objective"] - qref) / abs(qref) if qref else float("nan")
     its = str(rec["iterations"]) + (" / %d" % rec["ksp_iterations"] if rec["ksp_iterations"] else "")
     src = {"counters": "", "log_matmult": "", "objective_gradient_calls": " f+g"}[rec["products_source"]]
-    return "| %s | %s | %d%s%s | %.2f | %.1e | %s | %g | %.0e | %s |" % (
-        label, its, rec["hessian_products"], est, src, rec["time"], rec["gp_rel"], "yes" if rec["met"] else "**no**", rec["own_factor"], gap,
+    return "| %s | %s | %d%s%s | %.2f | %.2f | %.1e | %s | %g | %.0e | %s |" % (
+        label, its, rec["hessian_products"], est, src, rec["cpu_time"], rec["time"], rec["gp_rel"], "yes" if rec["met"] else "**no**", rec["own_factor"], gap,
         rec["reason"] + ("; " + err.replace("|", "/") if err else ""))
 
 
@@ -137,13 +137,14 @@ def main():
                         continue
                     rec, err, cmd = bench_one(prog, base, label, opts, args.rtol, min(args.timeout, extra.get("timeout", args.timeout)), log)
                     rows.append((label, rec, err, cmd))
-                    sys.stderr.write("  %s %s %s: %s\n" % (pname, size, label, "error " + err if rec is None else "%d products, %.2f s, met %s" % (rec["hessian_products"], rec["time"], rec["met"])))
+                    sys.stderr.write("  %s %s %s: %s\n" % (pname, size, label, "error " + err if rec is None else "%d products, %.2f s CPU, %.2f s wall, met %s" % (rec["hessian_products"], rec["cpu_time"], rec["time"], rec["met"])))
                 met = [r for _, r, _, _ in rows if r and r["met"]]
                 qref = min(r["objective"] for r in met) if met else None
                 n = next((r["n"] for _, r, _, _ in rows if r), 0)
-                print("\n### %s, n = %d unknowns (%s -n %s, time: best of %d solve%s)\n" % (pname, n, prog, nopt, repeat, "s" if repeat > 1 else ""))
-                print("| solver | iterations (/ inner KSP) | Hessian products (norm estimate) | time [s] | final \\|gP\\|/\\|b\\| | target met | own tol factor | objective gap | reason |")
-                print("|---|---|---|---|---|---|---|---|---|")
+                print("\n### %s, n = %d unknowns (%s -n %s, times: best of %d solve%s)\n" % (pname, n, prog, nopt, repeat, "s" if repeat > 1 else ""))
+                sys.stdout.flush()
+                print("| solver | iterations (/ inner KSP) | Hessian products (norm estimate) | CPU time [s] | wall time [s] | final \\|gP\\|/\\|b\\| | target met | own tol factor | objective gap | reason |")
+                print("|---|---|---|---|---|---|---|---|---|---|")
                 for label, rec, err, _ in rows:
                     print(fmt_row(label, rec, err, qref))
                 print("\nCommands (build/tutorials/qp/...):\n")
