@@ -59,8 +59,9 @@ struct AppCtx {
   ProblemType  problem = PROBLEM_OBSTACLE;
   PetscInt     N       = 99;
   PetscReal    ecc = 0.1, bearing_b = 10.0;
-  DM           da = nullptr;
-  Mat          A  = nullptr; /* used by the objective and the measurement */
+  PetscReal    upper = PETSC_INFINITY; /* upper bound of every entry (an inactive finite one helps bqpip) */
+  DM           da    = nullptr;
+  Mat          A     = nullptr; /* used by the objective and the measurement */
   Vec          b = nullptr, lb = nullptr, ub = nullptr;
   BenchCounts *counts = nullptr;
 };
@@ -95,7 +96,7 @@ PetscErrorCode BuildProblem(AppCtx *app)
   PetscCall(DMCreateGlobalVector(app->da, &app->b));
   PetscCall(VecDuplicate(app->b, &app->lb));
   PetscCall(VecDuplicate(app->b, &app->ub));
-  PetscCall(VecSet(app->ub, PETSC_INFINITY));
+  PetscCall(VecSet(app->ub, app->upper));
   PetscCall(DMDAGetLocalInfo(app->da, &info));
   PetscCall(DMDAVecGetArray(app->da, app->b, &bb));
   PetscCall(DMDAVecGetArray(app->da, app->lb, &ll));
@@ -294,6 +295,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsInt("-n", "Interior grid nodes per direction (n^2 unknowns)", "obstacle", app.N, &app.N, NULL));
   PetscCall(PetscOptionsReal("-bearing_ecc", "Journal bearing: eccentricity e", "obstacle", app.ecc, &app.ecc, NULL));
   PetscCall(PetscOptionsReal("-bearing_b", "Journal bearing: half width b of the domain (0,2pi) x (0,2b)", "obstacle", app.bearing_b, &app.bearing_b, NULL));
+  PetscCall(PetscOptionsReal("-upper", "Upper bound of every entry (default: none); a large inactive one changes nothing but helps bqpip", "obstacle", app.upper, &app.upper, NULL));
   PetscCall(PetscOptionsReal("-bench_rtol", "Target: |projected gradient| <= rtol |b|, measured by this program", "obstacle", rtol, &rtol, NULL));
   PetscCall(PetscOptionsReal("-bench_own_factor", "The solver's own tolerance is factor * rtol (|b|-relative, or absolute times |b| for TAO's solvers)", "obstacle", factor, &factor, NULL));
   PetscCall(PetscOptionsReal("-bench_snap", "Entries within snap * max|u| of a bound count as on it when measuring", "obstacle", snap, &snap, NULL));
