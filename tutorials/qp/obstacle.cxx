@@ -18,6 +18,8 @@
      int 1/2 w_q |grad v|^2 - w_l v with w_q = (1 + e cos x)^3, w_l = e sin x, v >= 0, v = 0 on the
      boundary (options -bearing_ecc e = 0.1, -bearing_b b = 10).
 
+   There is no upper bound unless -upper U is given (a finite U above the solution changes nothing
+   but lets bqpip converge: it replaces infinite bounds by 1e20 and then stalls on the bearing).
    The initial guess is the projection of 0 onto the set, for every solver. For mprgp/mpgp the
    linear term is given by TaoQPSetLinearTerm(); TAO's own solvers get the objective and gradient
    (one product with A each) and the Hessian (a copy of A, since bqpip shifts its diagonal in place).
@@ -32,7 +34,7 @@
      obstacle -n 99 -tao_type mprgp
      obstacle -n 319 -tao_type mprgp -bench_rtol 1e-8                 # 101761 unknowns
      obstacle -n 319 -tao_type blmvm                                  # TAO's L-BFGS-B-like solver
-     obstacle -n 319 -tao_type bqpip -bench_own_factor 1e-2           # tighter own tolerance
+     obstacle -n 319 -tao_type bqpip -upper 100 -bench_own_factor 1e-2   # tighter own tolerance
      obstacle -problem bearing -n 199 -tao_type gpcg
      mpiexec -n 2 obstacle -n 319 -tao_type mpgp -tao_view
 
