@@ -1,0 +1,11 @@
+/* The QP setters keep their arguments on the Tao/KSP too (PetscObjectCompose), so that a type
+   created later (-tao_type mpgp after TaoSetType(tao, TAOMPRGP), -ksp_type mpgp after KSPMPRGP)
+   adopts them instead of silently solving without its constraints. */
+#pragma once
+
+#include <conefeti/qp.h>
+#include <conefeti/private/compat.h>
+
+/* called at the end of each QP type's create function */
+PETSC_INTERN PetscErrorCode TaoQPAdoptComposed_Private(Tao);
+PETSC_INTERN PetscErrorCode KSPQPAdoptComposed_Private(KSP);
