@@ -20,11 +20,21 @@ struct DoubleDouble {
     hi              = s;
     lo += e;
   }
-  /* add the exact product a*b (TwoProd with fma) */
+  /* add the exact product a*b (TwoProd). With a hardware FMA known at compile time it is one
+     instruction; otherwise std::fma is a call into libm for every term (x86-64 baseline builds), which
+     made the solvers' reductions cost several matrix products per iteration, so Dekker's product
+     (Veltkamp splitting, exact without FMA barring overflow) is used instead: the same error term. */
   inline void addProduct(double a, double b)
   {
     const double p = a * b;
-    const double e = std::fma(a, b, -p);
+#if defined(__FMA__) || defined(__aarch64__)
+    const double e = __builtin_fma(a, b, -p);
+#else
+    constexpr double split = 134217729.0; /* 2^27 + 1 */
+    const double     ta = split * a, ah = ta - (ta - a), al = a - ah;
+    const double     tb = split * b, bh = tb - (tb - b), bl = b - bh;
+    const double     e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+#endif
     add(p);
     lo += e;
   }
