@@ -6,7 +6,7 @@
    - expansion step otherwise in the proportional case: to the boundary by the largest feasible step
      along p, then a projected step of fixed length alpha along the free gradient, and CG restarts;
    - proportioning step when not proportional: along the chopped gradient with exact line search
-     (MPRGP: it stays feasible for bounds), or a projected gradient step (MPGP, which is what curved
+     (MPRGP; cut at the opposite bound of a box), or a projected gradient step (MPGP, which is what curved
      boundaries need), of Kucera's fixed length alpha. With -tao_mpgp_bb the proportioning step
      first tries the Barzilai-Borwein length s's/s'(As) of the last step (free: As = g - g_prev for
      a QP) and keeps it only if q decreased. Measured: BB shortens long runs of proportioning steps
@@ -177,7 +177,11 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
           c->status = PetscIsInfOrNanReal(bAb) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
           break;
         }
-        step = gb / bAb;
+        /* the exact line search step leaves lower bounds inward, but with both bounds on an entry it
+           can cross the opposite one: stop there (q still decreases, the step is shorter) */
+        PetscReal af;
+        PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->beta, &af));
+        step = PetscMin(gb / bAb, af);
         PetscCall(ReproducibleAXPY(x, -step, c->beta));
         PetscCall(ReproducibleAXPY(c->g, -step, c->Ap));
       } else {
