@@ -1,6 +1,7 @@
 /* Public setters/getters of the KSP QP types (mprgp, mpgp), dispatched to the type. */
 #include <conefeti/qp.h>
 #include <conefeti/private/compat.h>
+#include <conefeti/private/qpadopt.h>
 #include <petsc/private/kspimpl.h>
 
 /*@C
@@ -14,6 +15,10 @@
 
   Level: beginner
 
+  Notes:
+  Ignored by other KSP types, but kept on the KSP: a QP type set later (e.g. `-ksp_type mpgp` read by
+  `KSPSetFromOptions()`) uses it; so do `KSPMPRGPSetBounds()`'s bounds.
+
 .seealso: `SeparableSet`, `KSPMPRGPSetBounds()`, `TaoQPSetConstraints()`
 @*/
 PetscErrorCode KSPQPSetConstraints(KSP ksp, SeparableSet set)
@@ -21,6 +26,7 @@ PetscErrorCode KSPQPSetConstraints(KSP ksp, SeparableSet set)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(ksp, KSP_CLASSID, 1);
   PetscValidHeaderSpecific(set, SEPARABLESET_CLASSID, 2);
+  PetscCall(PetscObjectCompose((PetscObject)ksp, "KSPQPConstraints", (PetscObject)set));
   PetscTryMethod(ksp, "KSPQPSetConstraints_C", (KSP, SeparableSet), (ksp, set));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -73,6 +79,8 @@ PetscErrorCode KSPMPRGPSetBounds(KSP ksp, Vec lb, Vec ub)
   PetscValidHeaderSpecific(ksp, KSP_CLASSID, 1);
   if (lb) PetscValidHeaderSpecific(lb, VEC_CLASSID, 2);
   if (ub) PetscValidHeaderSpecific(ub, VEC_CLASSID, 3);
+  PetscCall(PetscObjectCompose((PetscObject)ksp, "KSPMPRGPLowerBounds", (PetscObject)lb));
+  PetscCall(PetscObjectCompose((PetscObject)ksp, "KSPMPRGPUpperBounds", (PetscObject)ub));
   PetscTryMethod(ksp, "KSPMPRGPSetBounds_C", (KSP, Vec, Vec), (ksp, lb, ub));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -140,5 +148,20 @@ PetscErrorCode KSPQPResetCounters(KSP ksp)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(ksp, KSP_CLASSID, 1);
   PetscTryMethod(ksp, "KSPQPResetCounters_C", (KSP), (ksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Called at the end of each KSP QP type's create function: adopts the set and bounds given while the
+   KSP had another type (the setters keep them on the KSP, see qpadopt.h). */
+PetscErrorCode KSPQPAdoptComposed_Private(KSP ksp)
+{
+  PetscObject set, lb, ub;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectQuery((PetscObject)ksp, "KSPQPConstraints", &set));
+  PetscCall(PetscObjectQuery((PetscObject)ksp, "KSPMPRGPLowerBounds", &lb));
+  PetscCall(PetscObjectQuery((PetscObject)ksp, "KSPMPRGPUpperBounds", &ub));
+  if (set) PetscTryMethod(ksp, "KSPQPSetConstraints_C", (KSP, SeparableSet), (ksp, (SeparableSet)set));
+  if (lb || ub) PetscTryMethod(ksp, "KSPMPRGPSetBounds_C", (KSP, Vec, Vec), (ksp, (Vec)lb, (Vec)ub));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,6 +1,7 @@
 /* Public setters/getters of the TAO QP types (mprgp, mpgp, smalxe), dispatched to the type. */
 #include <conefeti/qp.h>
 #include <conefeti/private/compat.h>
+#include <conefeti/private/qpadopt.h>
 #include <petsc/private/taoimpl.h>
 
 /*@C
@@ -14,7 +15,8 @@
 
   Notes:
   Without a set the solvers use the variable bounds (`TaoSetVariableBounds()`). `TAOMPRGP` accepts
-  only sets without disks and cones. Ignored by other TAO types.
+  only sets without disks and cones. Ignored by other TAO types, but kept on the Tao: a QP type set
+  later (e.g. `-tao_type mpgp` read by `TaoSetFromOptions()`) uses it.
 
   Level: beginner
 
@@ -25,6 +27,8 @@ PetscErrorCode TaoQPSetConstraints(Tao tao, SeparableSet set)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
   PetscValidHeaderSpecific(set, SEPARABLESET_CLASSID, 2);
+  /* kept on the Tao too, so that a later change of type (-tao_type mpgp after TaoSetType(tao, TAOMPRGP)) keeps the set */
+  PetscCall(PetscObjectCompose((PetscObject)tao, "TaoQPConstraints", (PetscObject)set));
   PetscTryMethod(tao, "TaoQPSetConstraints_C", (Tao, SeparableSet), (tao, set));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -74,6 +78,7 @@ PetscErrorCode TaoQPSetLinearTerm(Tao tao, Vec b)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
   if (b) PetscValidHeaderSpecific(b, VEC_CLASSID, 2);
+  PetscCall(PetscObjectCompose((PetscObject)tao, "TaoQPLinearTerm", (PetscObject)b));
   PetscTryMethod(tao, "TaoQPSetLinearTerm_C", (Tao, Vec), (tao, b));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -171,5 +176,19 @@ PetscErrorCode TaoQPResetCounters(Tao tao)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
   PetscTryMethod(tao, "TaoQPResetCounters_C", (Tao), (tao));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Called at the end of each QP type's TaoCreate_XXX(): adopts the set and the linear term given
+   while the Tao had another type (TaoQPSetConstraints() and TaoQPSetLinearTerm() keep them on the Tao). */
+PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
+{
+  PetscObject set, b;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPConstraints", &set));
+  PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPLinearTerm", &b));
+  if (set) PetscTryMethod(tao, "TaoQPSetConstraints_C", (Tao, SeparableSet), (tao, (SeparableSet)set));
+  if (b) PetscTryMethod(tao, "TaoQPSetLinearTerm_C", (Tao, Vec), (tao, (Vec)b));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

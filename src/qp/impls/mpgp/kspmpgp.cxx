@@ -2,6 +2,7 @@
    by the shared MPGP core. Without constraints the iterates are those of CG (PCG with a PC). */
 #include <conefeti.h>
 #include <conefeti/private/mpgpcore.h>
+#include <conefeti/private/qpadopt.h>
 #include <petsc/private/kspimpl.h>
 
 namespace {
@@ -277,6 +278,7 @@ PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name
   PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPSetNormEstimate_C", KSPQPSetNormEstimate_QP));
   PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPGetCounters_C", KSPQPGetCounters_QP));
   PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPResetCounters_C", KSPQPResetCounters_QP));
+  PetscCall(KSPQPAdoptComposed_Private(ksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

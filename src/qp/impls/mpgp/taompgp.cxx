@@ -2,6 +2,7 @@
 #include <conefeti.h>
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/private/reproduciblesum.h>
+#include <conefeti/private/qpadopt.h>
 #include <petsc/private/taoimpl.h>
 
 namespace {
@@ -353,6 +354,7 @@ PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetNormEstimate_C", TaoQPGetNormEstimate_QP));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetCounters_C", TaoQPGetCounters_QP));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPResetCounters_C", TaoQPResetCounters_QP));
+  PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

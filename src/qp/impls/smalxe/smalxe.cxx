@@ -18,6 +18,7 @@
    loop updates disk radii there). Math: ../shared/ALGORITHMS.md section 3. */
 #include <conefeti.h>
 #include <conefeti/private/mpgpcore.h>
+#include <conefeti/private/qpadopt.h>
 #include <conefeti/private/reproduciblesum.h>
 #include <petsc/private/taoimpl.h>
 #include <vector>
@@ -1064,5 +1065,6 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetFeasibility_C", GetFeasibility_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetConsistencyCheck_C", SetConsistencyCheck_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStagnated_C", GetStagnated_SMALXE));
+  PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
