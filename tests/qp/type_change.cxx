@@ -29,11 +29,11 @@ int main(int argc, char **argv)
 {
   Mat          A;
   Vec          x, b, lb = NULL, ub = NULL;
-  SeparableSet set = NULL;
-  PetscInt     idx[2] = {0, 1};
-  PetscReal    r      = 0.1, e[2];
+  SeparableSet set     = NULL;
+  PetscInt     idx[2]  = {0, 1};
+  PetscReal    r       = 0.1, e[2];
   char         api[16] = "tao", initial[32] = "none";
-  PetscBool    bounds  = PETSC_FALSE;
+  PetscBool    bounds = PETSC_FALSE;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(ConeFETIInitializePackage());
