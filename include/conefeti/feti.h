@@ -89,6 +89,7 @@ PETSC_EXTERN PetscErrorCode FETIApplyCoarseInverse(FETI, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIComputeAlpha(FETI, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIRecoverPrimal(FETI, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIGetKSP(FETI, KSP *);
+PETSC_EXTERN PetscErrorCode FETISetKplusExplicit(FETI, PetscBool);
 PETSC_EXTERN PetscErrorCode FETISolveLinear(FETI, Vec, Vec);
 
 PETSC_EXTERN PetscErrorCode FETIWrite(FETI, PetscViewer);

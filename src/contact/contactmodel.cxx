@@ -402,6 +402,8 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
              "the contact zones have no admissible node (all fixed, or no matching nodes between bodies)");
   PetscCall(AppendRows(cm));
   PetscCall(FEMCreateFETI(d->fem, &d->feti));
+  /* contact needs hundreds of F products: dense K+ blocks on the interface pay for their setup (-feti_kplus_explicit) */
+  if (!d->zones.empty()) PetscCall(FETISetKplusExplicit(d->feti, PETSC_TRUE));
   PetscCall(FETISetFromOptions(d->feti));
   PetscCall(FETISetUp(d->feti));
   PetscCall(FETICreateVecs(d->feti, &d->u, &d->lambda, &d->alpha));

@@ -1,5 +1,6 @@
 /* The FETI object: creation, input, options, viewing, queries. */
 #include <conefeti/private/fetiimpl.h>
+#include <conefeti/qp.h>
 
 #include <algorithm>
 
@@ -378,7 +379,9 @@ static PetscErrorCode FETICreateKSP(FETI feti)
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
   PetscCall(PetscSNPrintf(kspprefix, sizeof(kspprefix), "%sfeti_", prefix ? prefix : ""));
   PetscCall(KSPSetOptionsPrefix(impl.ksp, kspprefix));
-  PetscCall(KSPSetType(impl.ksp, KSPCG));
+  /* KSPMPRGP without bounds is CG with reproducible (rank-count independent) inner products, so the iteration
+     count does not depend on the number of MPI ranks; KSPCG's MPI_Allreduce of BLAS partial sums can move it by one */
+  PetscCall(KSPSetType(impl.ksp, KSPMPRGP));
   PetscCall(KSPSetNormType(impl.ksp, KSP_NORM_UNPRECONDITIONED));
   PetscCall(KSPSetTolerances(impl.ksp, 1e-8, PETSC_DEFAULT, PETSC_DEFAULT, 1000));
   PetscCall(KSPGetPC(impl.ksp, &pc));
@@ -399,8 +402,10 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_check <true>           - check K_s R_s = 0 and K_s K_s+ K_s = K_s at setup (one solve per subdomain)
 . -feti_check_tol <1e-6>       - relative tolerance of these checks
 . -feti_fixing_nodes <8>       - well-separated candidate nodes among which the fixing dofs are pivoted
+. -feti_kplus_explicit <false> - F products with dense blocks of K+ on the dofs B touches (`FETISetKplusExplicit()`)
+. -feti_kplus_explicit_schur <true> - build those blocks from a MUMPS Schur complement (when MUMPS is there); false: by solves with the subdomain factor
 . -feti_view                   - view the problem after setup
-. -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of `FETISolveLinear()` (default CG, rtol 1e-8, unpreconditioned norm)
+. -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of `FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8, unpreconditioned norm)
 . -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
 . -feti_sub_pc_factor_mat_solver_type <cholmod,mumps,petsc> - the sparse Cholesky of the subdomains
 - -feti_coarse_ksp_type, -feti_coarse_pc_type ... - the coarse solver of G G' (default: direct, redundant on every rank)
@@ -411,7 +416,8 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 @*/
 PetscErrorCode FETISetFromOptions(FETI feti)
 {
-  FETI_Impl &impl = *feti->impl;
+  FETI_Impl &impl          = *feti->impl;
+  PetscBool  kplusexplicit = impl.kplusexplicit;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
@@ -420,13 +426,57 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscCall(PetscOptionsBool("-feti_check", "Check K R = 0 and K K+ K = K at setup", "FETISetUp", impl.check, &impl.check, NULL));
   PetscCall(PetscOptionsReal("-feti_check_tol", "Relative tolerance of the setup checks", "FETISetUp", impl.checktol, &impl.checktol, NULL));
   PetscCall(PetscOptionsInt("-feti_fixing_nodes", "Candidate nodes for the fixing dofs of K+", "FETISetUp", impl.nfixingcandidates, &impl.nfixingcandidates, NULL));
+  PetscCall(PetscOptionsBool("-feti_kplus_explicit",
+                             "Apply K+ in F = B K+ B' as a dense block on the dofs B touches (cheaper products when they are few; |b|^2 memory and |b| solves at setup per subdomain)", "FETISetUp",
+                             impl.kplusexplicit, &kplusexplicit, NULL));
+  PetscCall(PetscOptionsBool("-feti_kplus_explicit_schur", "Build the explicit K+ blocks from a MUMPS Schur complement (false: by solves with the subdomain factor)", "FETISetKplusExplicit",
+                             impl.kplusschur, &impl.kplusschur, NULL));
   PetscCall(PetscOptionsName("-feti_view", "View the FETI problem after setup", "FETIView", NULL));
   PetscOptionsEnd();
+  PetscCall(FETISetKplusExplicit(feti, kplusexplicit));
   PetscCheck(impl.kerneltol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_kernel_tol %g must be positive", (double)impl.kerneltol);
   PetscCheck(impl.checktol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_check_tol %g must be positive", (double)impl.checktol);
   PetscCheck(impl.nfixingcandidates >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_fixing_nodes %" PetscInt_FMT " must be non-negative", impl.nfixingcandidates);
   PetscCall(FETICreateKSP(feti));
   PetscCall(KSPSetFromOptions(impl.ksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETISetKplusExplicit - Apply K+ inside F = B K+ B' as a dense block on the dofs B touches, instead of two
+  sparse triangular solves per subdomain.
+
+  Logically Collective
+
+  Input Parameters:
++ feti - the FETI problem
+- flg  - `PETSC_TRUE` to build the dense blocks at setup
+
+  Options Database Key:
+. -feti_kplus_explicit <bool> - the same; read by `FETISetFromOptions()`, overrides this call
+
+  Notes:
+  Each local subdomain keeps a dense |b| x |b| block, b the dofs B touches (gluing, Dirichlet and contact
+  dofs), computed at setup from the Schur complement of the regularized K_s on b (one more sparse
+  factorization with MUMPS and a dense inversion; without MUMPS by |b| solves with the existing factor).
+  Every F product then reads |b|^2 numbers per subdomain instead of twice the Cholesky factor. Worth it
+  when an F product is needed many times (contact and friction: hundreds of products) and |b| is small
+  against the subdomain; a linear FETI solve (tens of products) rarely recovers the setup. The contact
+  layer turns it on; the default of a bare FETI object is off. Products with K+ itself (`FETIGetGeneralizedInverse()`)
+  always use the factor.
+
+  Level: intermediate
+
+.seealso: `FETISetUp()`, `FETIGetOperators()`
+@*/
+PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(feti, flg, 2);
+  PetscCheck(!feti->impl->setupcalled || feti->impl->kplusexplicit == flg, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
+             "FETISetKplusExplicit() (-feti_kplus_explicit) must come before FETISetUp()");
+  feti->impl->kplusexplicit = flg;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -520,6 +570,12 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
       PetscCall(PetscViewerASCIIPrintf(viewer, "generalized inverse: Cholesky (%s) with fixing dofs; first local subdomain: %" PetscInt_FMT " fixing dofs\n", type ? type : "petsc",
                                        (PetscInt)impl.sub[0].fixing.size()));
     }
+    if (impl.kplusexplicit) {
+      PetscInt nbmax = 0;
+      for (const FETISubdomain &sd : impl.sub) nbmax = std::max(nbmax, (PetscInt)sd.kb.size());
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
+      PetscCall(PetscViewerASCIIPrintf(viewer, "F products: explicit dense K+ on the dofs B touches (at most %" PetscInt_FMT " per subdomain)\n", nbmax));
+    } else PetscCall(PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain\n"));
     if (impl.coarse) {
       PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solver (G G'):\n"));
       PetscCall(PetscViewerASCIIPushTab(viewer));

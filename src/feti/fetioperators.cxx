@@ -163,7 +163,8 @@ static PetscErrorCode MatMult_F(Mat A, Vec x, Vec y)
   FETI_Impl &impl = *feti->impl;
   PetscCall(PetscLogEventBegin(FETI_MultF, feti, 0, 0, 0));
   PetscCall(MatMultTranspose(impl.B, x, impl.wp1));
-  PetscCall(FETIApplyKplus(feti, impl.wp1, impl.wp2));
+  if (impl.kplusexplicit) PetscCall(FETIApplyKplusOnBoundary(feti, impl.wp1, impl.wp2)); /* B' x lives on the dofs B touches */
+  else PetscCall(FETIApplyKplus(feti, impl.wp1, impl.wp2));
   PetscCall(MatMult(impl.B, impl.wp2, y));
   PetscCall(PetscLogEventEnd(FETI_MultF, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -423,6 +424,11 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCall(VecDuplicate(impl.wc1, &impl.wc2));
   PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
   if (impl.ncoarse) PetscCall(SetUpCoarse(feti));
+  if (impl.kplusexplicit) {
+    PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
+    PetscCall(FETISetUpExplicitKplus(feti));
+    PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+  }
 
   PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_F, "F", &impl.F));
   PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_P, "P", &impl.P));

@@ -16,29 +16,38 @@ struct PC_FETI {
   Vec       wd, wp1, wp2;
 };
 
+/* The primal mask of the dofs touched by B (1 there, 0 elsewhere); built once */
+PetscErrorCode FETISetUpBoundaryMask(FETI feti)
+{
+  FETI_Impl &impl = *feti->impl;
+  PetscInt   rstart, rend;
+
+  PetscFunctionBegin;
+  if (impl.boundarymask) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecDuplicate(impl.wp1, &impl.boundarymask));
+  PetscCall(VecSet(impl.boundarymask, 0.0));
+  PetscCall(MatGetOwnershipRange(impl.B, &rstart, &rend));
+  for (PetscInt r = rstart; r < rend; r++) {
+    const PetscInt    *cols;
+    const PetscScalar *vals;
+    PetscInt           ncols;
+    PetscCall(MatGetRow(impl.B, r, &ncols, &cols, &vals));
+    for (PetscInt j = 0; j < ncols; j++)
+      if (vals[j] != 0.0) PetscCall(VecSetValue(impl.boundarymask, cols[j], 1.0, INSERT_VALUES));
+    PetscCall(MatRestoreRow(impl.B, r, &ncols, &cols, &vals));
+  }
+  PetscCall(VecAssemblyBegin(impl.boundarymask));
+  PetscCall(VecAssemblyEnd(impl.boundarymask));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Boundary dofs (touched by B, not Dirichlet in the primal) and interior dofs of each subdomain, and
    the blocks of K_V on them; for the Dirichlet preconditioner also the factored K_ii. Built once. */
 PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet, const char interiorsolver[])
 {
   FETI_Impl &impl = *feti->impl;
   PetscFunctionBegin;
-  if (!impl.boundarymask) {
-    PetscInt rstart, rend;
-    PetscCall(VecDuplicate(impl.wp1, &impl.boundarymask));
-    PetscCall(VecSet(impl.boundarymask, 0.0));
-    PetscCall(MatGetOwnershipRange(impl.B, &rstart, &rend));
-    for (PetscInt r = rstart; r < rend; r++) {
-      const PetscInt    *cols;
-      const PetscScalar *vals;
-      PetscInt           ncols;
-      PetscCall(MatGetRow(impl.B, r, &ncols, &cols, &vals));
-      for (PetscInt j = 0; j < ncols; j++)
-        if (vals[j] != 0.0) PetscCall(VecSetValue(impl.boundarymask, cols[j], 1.0, INSERT_VALUES));
-      PetscCall(MatRestoreRow(impl.B, r, &ncols, &cols, &vals));
-    }
-    PetscCall(VecAssemblyBegin(impl.boundarymask));
-    PetscCall(VecAssemblyEnd(impl.boundarymask));
-  }
+  PetscCall(FETISetUpBoundaryMask(feti));
   const char        *solver = interiorsolver && interiorsolver[0] ? interiorsolver : impl.subsolver;
   const PetscScalar *mask;
   PetscCall(VecGetArrayRead(impl.boundarymask, &mask));

@@ -333,5 +333,8 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(VecDestroy(&sd.yb));
   PetscCall(VecDestroy(&sd.xi));
   PetscCall(VecDestroy(&sd.yi));
+  PetscCall(MatDestroy(&sd.Kplusbb));
+  PetscCall(VecDestroy(&sd.kx));
+  PetscCall(VecDestroy(&sd.ky));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -6,6 +6,7 @@
      x'K_p y = (Ex)'K (Ey)         (subdomain matrices consistent with the assembled global matrix,
                                     E copies global nodal values to the subdomain copies)
      B B' = I                      (Helmert gluing and identity Dirichlet rows are orthonormal)
+     F x = B (K+ (B' x))           (F's own product, e.g. with -feti_kplus_explicit, against the factor's K+)
    Each relative error must be below 1e-10 (roundoff of well-scaled products). */
 #include "scene.h"
 
@@ -89,6 +90,14 @@ int main(int argc, char **argv)
   PetscCall(Report("F symmetric: |y'Fx - x'Fy| / ||Fx|| ||y||", PetscAbsScalar(s1 - s2) / (a * b), tol, &ok));
   PetscCall(VecDot(Fx, x, &s1));
   PetscCall(Report("F positive semidefinite: -min(x'Fx, 0)", PetscMax(0.0, -PetscRealPart(s1)), 0, &ok));
+  /* F = B K+ B' with the factored K+ (the F product may use explicit blocks of K+ instead) */
+  PetscCall(MatMultTranspose(B, x, p1));
+  PetscCall(MatMult(Kplus, p1, p2));
+  PetscCall(MatMult(B, p2, d1));
+  PetscCall(VecAXPY(d1, -1.0, Fx));
+  PetscCall(VecNorm(d1, NORM_2, &a));
+  PetscCall(VecNorm(Fx, NORM_2, &b));
+  PetscCall(Report("F x = B K+ B' x", a / b, tol, &ok));
   /* P projector, symmetric, onto Ker G */
   PetscCall(MatMult(P, x, d1));
   PetscCall(MatMult(P, d1, d2));

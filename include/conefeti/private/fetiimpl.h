@@ -36,6 +36,11 @@ struct FETISubdomain {
   Mat Kbb = nullptr, Kbi = nullptr; /* K_ib = K_bi' is applied as a transpose product */
   Mat Fii = nullptr;                /* Cholesky factor of K_ii (K_ii itself is not kept) */
   Vec xb = nullptr, yb = nullptr, xi = nullptr, yi = nullptr;
+
+  /* explicit K+ on the dofs touched by B (-feti_kplus_explicit) */
+  std::vector<PetscInt> kb;                         /* those dofs, without the removed ones */
+  Mat                   Kplusbb = nullptr;          /* dense (K+)_bb */
+  Vec                   kx = nullptr, ky = nullptr; /* work vectors of length |kb| */
 };
 
 struct FETI_Impl {
@@ -54,6 +59,8 @@ struct FETI_Impl {
   PetscBool check             = PETSC_TRUE; /* -feti_check */
   PetscInt  nfixingcandidates = 8;          /* -feti_fixing_nodes */
   char      subsolver[64]     = "";
+  PetscBool kplusexplicit     = PETSC_FALSE; /* -feti_kplus_explicit */
+  PetscBool kplusschur        = PETSC_TRUE;  /* -feti_kplus_explicit_schur */
 
   /* global objects */
   Vec f      = nullptr; /* primal load */
@@ -99,7 +106,12 @@ PETSC_INTERN PetscErrorCode FETIApplyP(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETICreateCoarseKSP(FETI, Mat, KSP *, PetscBool *);
 PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscBool *);
 
+/* fetiexplicitkplus.cxx */
+PETSC_INTERN PetscErrorCode FETISetUpExplicitKplus(FETI);
+PETSC_INTERN PetscErrorCode FETIApplyKplusOnBoundary(FETI, Vec, Vec);
+
 /* fetipc.cxx */
+PETSC_INTERN PetscErrorCode FETISetUpBoundaryMask(FETI);
 PETSC_INTERN PetscErrorCode FETISetUpPreconditionerData(FETI, PetscBool, const char[]);
 PETSC_INTERN PetscErrorCode PCCreate_FETILumped(PC);
 PETSC_INTERN PetscErrorCode PCCreate_FETIDirichlet(PC);
