@@ -10,6 +10,11 @@
 #include <conefeti/private/fetiimpl.h>
 
 #include <algorithm>
+#include <type_traits>
+
+/* BLAS dsymv reads one triangle: half the memory traffic of a general product (the product is memory bound) */
+extern "C" void dsymv_(const char *, const PetscBLASInt *, const double *, const double *, const PetscBLASInt *, const double *, const PetscBLASInt *, const double *, double *, const PetscBLASInt *);
+static_assert(std::is_same<PetscScalar, double>::value, "the explicit K+ blocks call BLAS dsymv: real double precision PETSc only");
 
 /* The dofs of sd that B touches and that K+ does not zero (removed dofs are fixed to zero) */
 static PetscErrorCode BoundaryDofs(FETISubdomain &sd, const PetscScalar *mask, std::vector<PetscInt> &kb)
@@ -21,6 +26,86 @@ static PetscErrorCode BoundaryDofs(FETISubdomain &sd, const PetscScalar *mask, s
   kb.clear();
   for (PetscInt k = 0; k < sd.n; k++)
     if (mask[sd.localoffset + k] != 0.0 && !removed[k]) PetscCallCXX(kb.push_back(k));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Before the subdomain's factorization: when it is MUMPS, ask it to keep the Schur complement on the
+   dofs B touches (Dirichlet dofs excluded; fixing dofs included, their rows are zeroed afterwards) */
+PetscErrorCode FETISubdomainSetSchurDofs(FETI feti, FETISubdomain &sd)
+{
+  FETI_Impl         &impl = *feti->impl;
+  PC                 pc;
+  Mat                factor;
+  MatSolverType      type;
+  PetscBool          mumps;
+  IS                 is;
+  const PetscScalar *mask;
+  std::vector<char>  isD(sd.n, 0);
+
+  PetscFunctionBegin;
+  sd.schurfactor = PETSC_FALSE;
+  if (!impl.kplusexplicit || !impl.kplusschur) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(KSPGetPC(sd.ksp, &pc));
+  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
+  if (!mumps) PetscFunctionReturn(PETSC_SUCCESS); /* FETISetUpExplicitKplus() builds the blocks later */
+  for (PetscInt d : sd.dirichletdofs) isD[d] = 1;
+  sd.kb.clear();
+  PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
+  for (PetscInt k = 0; k < sd.n; k++)
+    if (mask[sd.localoffset + k] != 0.0 && !isD[k]) PetscCallCXX(sd.kb.push_back(k));
+  PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
+  if (sd.kb.empty() || (PetscInt)sd.kb.size() == sd.n) PetscFunctionReturn(PETSC_SUCCESS); /* MUMPS wants a Schur complement smaller than the matrix */
+  PetscCall(PCFactorSetUpMatSolverType(pc));
+  PetscCall(PCFactorGetMatrix(pc, &factor));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)sd.kb.size(), sd.kb.data(), PETSC_COPY_VALUES, &is));
+  PetscCall(MatFactorSetSchurIS(factor, is));
+  PetscCall(ISDestroy(&is));
+  sd.schurfactor = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Symmetrize (K+)_bb exactly (so that F is) and zero the rows and columns of removed dofs (K+ is zero there) */
+static PetscErrorCode FinishBlock(FETISubdomain &sd)
+{
+  const PetscInt    nb = (PetscInt)sd.kb.size();
+  std::vector<char> removed(sd.n, 0);
+  PetscScalar      *s;
+  PetscInt          lda;
+
+  PetscFunctionBegin;
+  for (PetscInt r : sd.removed) removed[r] = 1;
+  PetscCall(MatDenseGetLDA(sd.Kplusbb, &lda));
+  PetscCall(MatDenseGetArray(sd.Kplusbb, &s));
+  for (PetscInt j = 0; j < nb; j++)
+    for (PetscInt i = j + 1; i < nb; i++) {
+      const PetscScalar a    = 0.5 * (s[(size_t)j * lda + i] + s[(size_t)i * lda + j]);
+      s[(size_t)j * lda + i] = s[(size_t)i * lda + j] = a;
+    }
+  for (PetscInt j = 0; j < nb; j++)
+    if (removed[sd.kb[j]])
+      for (PetscInt i = 0; i < nb; i++) s[(size_t)j * lda + i] = s[(size_t)i * lda + j] = 0;
+  PetscCall(MatDenseRestoreArray(sd.Kplusbb, &s));
+  PetscCall(MatCreateVecs(sd.Kplusbb, &sd.kx, &sd.ky));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* After the factorization kept the Schur complement S on kb: (K+)_bb = S^-1 (the factor's solves then use the inverse too) */
+PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &sd)
+{
+  PC  pc;
+  Mat factor, S;
+
+  PetscFunctionBegin;
+  if (!sd.schurfactor) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(KSPGetPC(sd.ksp, &pc));
+  PetscCall(PCFactorGetMatrix(pc, &factor));
+  PetscCall(MatFactorInvertSchurComplement(factor));
+  PetscCall(MatFactorCreateSchurComplement(factor, &S, NULL));
+  PetscCall(MatDestroy(&sd.Kplusbb));
+  PetscCall(MatConvert(S, MATSEQDENSE, MAT_INITIAL_MATRIX, &sd.Kplusbb));
+  PetscCall(MatDestroy(&S));
+  PetscCall(FinishBlock(sd));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -61,28 +146,21 @@ static PetscErrorCode SubdomainExplicitKplusBySolves(FETISubdomain &sd)
       for (PetscInt i = 0; i < nb; i++) s[(size_t)(j0 + j) * nb + i] = x[(size_t)j * sd.n + sd.kb[i]];
     PetscCall(MatDenseRestoreArrayRead(X, &x));
   }
-  /* exactly symmetric, so that F is */
-  for (PetscInt j = 0; j < nb; j++)
-    for (PetscInt i = j + 1; i < nb; i++) {
-      const PetscScalar a   = 0.5 * (s[(size_t)j * nb + i] + s[(size_t)i * nb + j]);
-      s[(size_t)j * nb + i] = s[(size_t)i * nb + j] = a;
-    }
   PetscCall(MatDenseRestoreArrayWrite(sd.Kplusbb, &s));
   PetscCall(MatDestroy(&E));
   PetscCall(MatDestroy(&X));
-  PetscCall(MatCreateVecs(sd.Kplusbb, &sd.kx, &sd.ky));
+  PetscCall(FinishBlock(sd));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* (K+)_bb = S^-1, S = the Schur complement of Kreg on the dofs b: one MUMPS factorization that eliminates
-   everything else and keeps S dense, then a dense inversion; cheaper than |b| solves with the factor */
+/* When the subdomain factor is not MUMPS: (K+)_bb = S^-1 from a second, MUMPS, factorization that keeps
+   the Schur complement S on b, and a dense inversion; cheaper than |b| solves with the factor */
 static PetscErrorCode SubdomainExplicitKplusBySchur(FETISubdomain &sd)
 {
   const PetscInt nb = (PetscInt)sd.kb.size();
   Mat            factor, S;
   IS             isb, rperm, cperm;
   MatFactorInfo  info;
-  PetscScalar   *s;
 
   PetscFunctionBegin;
   PetscCall(MatDestroy(&sd.Kplusbb));
@@ -104,14 +182,7 @@ static PetscErrorCode SubdomainExplicitKplusBySchur(FETISubdomain &sd)
   PetscCall(ISDestroy(&isb));
   PetscCall(ISDestroy(&rperm));
   PetscCall(ISDestroy(&cperm));
-  PetscCall(MatDenseGetArray(sd.Kplusbb, &s));
-  for (PetscInt j = 0; j < nb; j++)
-    for (PetscInt i = j + 1; i < nb; i++) {
-      const PetscScalar a   = 0.5 * (s[(size_t)j * nb + i] + s[(size_t)i * nb + j]);
-      s[(size_t)j * nb + i] = s[(size_t)i * nb + j] = a;
-    }
-  PetscCall(MatDenseRestoreArray(sd.Kplusbb, &s));
-  PetscCall(MatCreateVecs(sd.Kplusbb, &sd.kx, &sd.ky));
+  PetscCall(FinishBlock(sd));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -126,8 +197,9 @@ PetscErrorCode FETISetUpExplicitKplus(FETI feti)
   PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
   for (FETISubdomain &sd : impl.sub) {
     PetscBool mumps = PETSC_FALSE;
+    if (sd.schurfactor) continue; /* built with the subdomain's factorization */
     PetscCall(BoundaryDofs(sd, mask, sd.kb));
-    if (impl.kplusschur) PetscCall(MatGetFactorAvailable(sd.Kreg, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &mumps));
+    if (impl.kplusschur && (PetscInt)sd.kb.size() < sd.n) PetscCall(MatGetFactorAvailable(sd.Kreg, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &mumps));
     if (mumps) PetscCall(SubdomainExplicitKplusBySchur(sd));
     else PetscCall(SubdomainExplicitKplusBySolves(sd));
   }
@@ -148,16 +220,26 @@ PetscErrorCode FETIApplyKplusOnBoundary(FETI feti, Vec x, Vec y)
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArray(y, &ya));
   for (FETISubdomain &sd : impl.sub) {
-    const PetscInt nb = (PetscInt)sd.kb.size();
-    PetscScalar   *a;
+    const PetscInt     nb  = (PetscInt)sd.kb.size();
+    const PetscScalar  one = 1.0, zero = 0.0;
+    const PetscScalar *k;
+    PetscScalar       *a, *b;
+    PetscBLASInt       bn, blda, inc = 1;
+    PetscInt           lda;
     if (!nb) continue;
+    PetscCall(PetscBLASIntCast(nb, &bn));
+    PetscCall(MatDenseGetLDA(sd.Kplusbb, &lda));
+    PetscCall(PetscBLASIntCast(lda, &blda));
     PetscCall(VecGetArrayWrite(sd.kx, &a));
+    PetscCall(VecGetArrayWrite(sd.ky, &b));
     for (PetscInt i = 0; i < nb; i++) a[i] = xa[sd.localoffset + sd.kb[i]];
+    PetscCall(MatDenseGetArrayRead(sd.Kplusbb, &k));
+    dsymv_("L", &bn, &one, k, &blda, a, &inc, &zero, b, &inc);
+    PetscCall(MatDenseRestoreArrayRead(sd.Kplusbb, &k));
+    PetscCall(PetscLogFlops(2.0 * nb * nb));
+    for (PetscInt i = 0; i < nb; i++) ya[sd.localoffset + sd.kb[i]] = b[i];
     PetscCall(VecRestoreArrayWrite(sd.kx, &a));
-    PetscCall(MatMult(sd.Kplusbb, sd.kx, sd.ky));
-    PetscCall(VecGetArrayRead(sd.ky, (const PetscScalar **)&a));
-    for (PetscInt i = 0; i < nb; i++) ya[sd.localoffset + sd.kb[i]] = a[i];
-    PetscCall(VecRestoreArrayRead(sd.ky, (const PetscScalar **)&a));
+    PetscCall(VecRestoreArrayWrite(sd.ky, &b));
   }
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(VecRestoreArrayRead(x, &xa));

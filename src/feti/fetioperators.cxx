@@ -359,6 +359,8 @@ PetscErrorCode FETISetUp(FETI feti)
              "B has %" PetscInt_FMT " local columns on rank %d but the rank's subdomains have %" PetscInt_FMT " dofs; create B with MatSetSizes(B, m, %" PetscInt_FMT ", M, N)", nlocalcols, rank,
              impl.nlocalprimal, impl.nlocalprimal);
 
+  PetscCall(MatCreateVecs(impl.B, &impl.wp1, &impl.wd1));
+  if (impl.kplusexplicit) PetscCall(FETISetUpBoundaryMask(feti)); /* the subdomain factorizations may keep a Schur complement on it */
   for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUp(feti, impl.sub[s], impl.firstsub + s));
 
   /* coarse layout */
@@ -374,7 +376,6 @@ PetscErrorCode FETISetUp(FETI feti)
 
   PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
   /* global load; the subdomain loads are not needed any more */
-  PetscCall(MatCreateVecs(impl.B, &impl.wp1, &impl.wd1));
   PetscCall(VecDuplicate(impl.wp1, &impl.f));
   PetscCall(VecDuplicate(impl.wp1, &impl.wp2));
   PetscCall(VecDuplicate(impl.wd1, &impl.wd2));

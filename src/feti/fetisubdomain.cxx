@@ -282,8 +282,10 @@ PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
   PetscCall(KSPSetType(sd.ksp, KSPPREONLY));
   PetscCall(KSPGetPC(sd.ksp, &pc));
   PetscCall(PCSetType(pc, PCCHOLESKY));
-  PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
+  /* with explicit K+ blocks, MUMPS factors K_s once and keeps the Schur complement on the dofs B touches */
+  PetscCall(PCFactorSetMatSolverType(pc, impl.kplusexplicit && impl.kplusschur ? MATSOLVERMUMPS : impl.subsolver));
   PetscCall(KSPSetFromOptions(sd.ksp));
+  PetscCall(FETISubdomainSetSchurDofs(feti, sd));
   {
     PetscBool failed;
     PetscCall(FETIKSPSetUpFactorization(feti, sd.ksp, &failed));
@@ -292,6 +294,7 @@ PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
                " (a disconnected subdomain, a mechanism, wrong coordinates?)",
                s, sd.nkernel);
   }
+  PetscCall(FETISubdomainExplicitKplusFromSchur(sd));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &sd.x));
   PetscCall(VecDuplicate(sd.x, &sd.y));
   PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, sd.n, NULL, &sd.xa));

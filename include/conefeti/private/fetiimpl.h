@@ -41,6 +41,7 @@ struct FETISubdomain {
   std::vector<PetscInt> kb;                         /* those dofs, without the removed ones */
   Mat                   Kplusbb = nullptr;          /* dense (K+)_bb */
   Vec                   kx = nullptr, ky = nullptr; /* work vectors of length |kb| */
+  PetscBool             schurfactor = PETSC_FALSE;  /* the subdomain's MUMPS factor holds the Schur complement on kb */
 };
 
 struct FETI_Impl {
@@ -109,6 +110,8 @@ PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscBool *);
 /* fetiexplicitkplus.cxx */
 PETSC_INTERN PetscErrorCode FETISetUpExplicitKplus(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplusOnBoundary(FETI, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETISubdomainSetSchurDofs(FETI, FETISubdomain &);
+PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &);
 
 /* fetipc.cxx */
 PETSC_INTERN PetscErrorCode FETISetUpBoundaryMask(FETI);
