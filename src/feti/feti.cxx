@@ -457,9 +457,11 @@ PetscErrorCode FETISetFromOptions(FETI feti)
 
   Notes:
   Each local subdomain keeps a dense |b| x |b| block, b the dofs B touches (gluing, Dirichlet and contact
-  dofs), computed at setup from the Schur complement of the regularized K_s on b (one more sparse
-  factorization with MUMPS and a dense inversion; without MUMPS by |b| solves with the existing factor).
-  Every F product then reads |b|^2 numbers per subdomain instead of twice the Cholesky factor. Worth it
+  dofs): the inverse of the Schur complement of the regularized K_s on b, which the subdomain's MUMPS
+  factorization keeps (the subdomain solver becomes MUMPS unless -feti_sub_pc_factor_mat_solver_type names
+  another package, which then costs a second, MUMPS, factorization; without MUMPS, |b| solves with the factor).
+  Every F product then reads one triangle of the |b|^2 block (BLAS dsymv) per subdomain instead of twice the
+  Cholesky factor. Worth it
   when an F product is needed many times (contact and friction: hundreds of products) and |b| is small
   against the subdomain; a linear FETI solve (tens of products) rarely recovers the setup. The contact
   layer turns it on; the default of a bare FETI object is off. Products with K+ itself (`FETIGetGeneralizedInverse()`)
