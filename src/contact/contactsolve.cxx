@@ -92,6 +92,7 @@ PetscErrorCode Consistent(Tao, Vec lambda, PetscBool *ok, void *ctx)
   PetscCall(TargetRadii(cp, lambda, target));
   PetscCall(RelativeChange(PetscObjectComm((PetscObject)cp), target, d->radius, &rel));
   *ok = rel <= (d->fixed_point_rtol > 0 ? d->fixed_point_rtol : d->rtol) ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscInfo(cp, "Coulomb radii used vs F l_n of the result: relative change %g (%s)\n", (double)rel, *ok ? "consistent" : "not yet"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -269,6 +269,8 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
   PetscFunctionBegin;
   if (tao->reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
+  PetscCall(PetscInfo(tao, "TAO smalxe outer %" PetscInt_FMT ": |gP| = %g (tol %g), |Cx - d| = %g (tol %g), M = %g, rho = %g\n", tao->niter, (double)tao->residual, (double)tol_g, (double)tao->cnorm,
+                      (double)tol_e, (double)s->M, (double)s->rho));
   if (PetscIsInfOrNanReal(tao->residual) || PetscIsInfOrNanReal(tao->cnorm) || PetscIsInfOrNanReal(tao->fc)) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
   else if (tao->residual <= tol_g && tao->cnorm <= tol_e) {
     PetscBool consistent = PETSC_TRUE;
