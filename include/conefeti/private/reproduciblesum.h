@@ -8,6 +8,26 @@
 #include <petscvec.h>
 #include <cmath>
 
+/* FMA in every function (the build's baseline has it) or only in run-time dispatched clones: an
+   x86-64 baseline build has no FMA, but nearly every x86-64 CPU in use does. The library is compiled
+   with -ffp-contract=off, so an FMA clone fuses nothing but the explicit __builtin_fma calls and
+   computes bitwise what the baseline code computes. */
+#if defined(__FMA__) || defined(__aarch64__)
+#  define CONEFETI_FMA_BASELINE true
+#else
+#  define CONEFETI_FMA_BASELINE false
+#endif
+#if !defined(__FMA__) && defined(__x86_64__) && defined(__GNUC__)
+#  define CONEFETI_FMA_DISPATCH 1
+#  define CONEFETI_TARGET_FMA   __attribute__((target("avx,fma")))
+/* a kernel template must be inlined into its FMA clone: compiled on its own it has the baseline
+   target, where __builtin_fma is a libm call */
+#  define CONEFETI_INLINE_KERNEL inline __attribute__((always_inline))
+#else
+#  define CONEFETI_FMA_DISPATCH  0
+#  define CONEFETI_INLINE_KERNEL inline
+#endif
+
 struct DoubleDouble {
   double hi = 0, lo = 0;
 
@@ -20,24 +40,28 @@ struct DoubleDouble {
     hi              = s;
     lo += e;
   }
-  /* add the exact product a*b (TwoProd). With a hardware FMA known at compile time it is one
-     instruction; otherwise std::fma is a call into libm for every term (x86-64 baseline builds), which
-     made the solvers' reductions cost several matrix products per iteration, so Dekker's product
-     (Veltkamp splitting, exact without FMA barring overflow) is used instead: the same error term. */
-  inline void addProduct(double a, double b)
+  /* add the exact product a*b (TwoProd): the rounded product plus its exact error term. With a
+     fused multiply-add the error is one instruction; without it, Dekker's product (Veltkamp
+     splitting, exact barring overflow) gives the same error term in about 17 operations. Both are
+     exact, so the two variants return bitwise the same sums; which one runs is chosen at compile
+     time (addProduct) or, for the kernels that have an FMA clone, at run time (see
+     ReproducibleSumUseFMA()). Fused = true only inside code compiled for FMA (CONEFETI_TARGET_FMA
+     or an FMA baseline): elsewhere __builtin_fma is a call into libm. */
+  template <bool Fused> inline void addProductT(double a, double b)
   {
     const double p = a * b;
-#if defined(__FMA__) || defined(__aarch64__)
-    const double e = __builtin_fma(a, b, -p);
-#else
-    constexpr double split = 134217729.0; /* 2^27 + 1 */
-    const double     ta = split * a, ah = ta - (ta - a), al = a - ah;
-    const double     tb = split * b, bh = tb - (tb - b), bl = b - bh;
-    const double     e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-#endif
+    double       e;
+    if constexpr (Fused) e = __builtin_fma(a, b, -p);
+    else {
+      constexpr double split = 134217729.0; /* 2^27 + 1 */
+      const double     ta = split * a, ah = ta - (ta - a), al = a - ah;
+      const double     tb = split * b, bh = tb - (tb - b), bl = b - bh;
+      e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
+    }
     add(p);
     lo += e;
   }
+  inline void addProduct(double a, double b) { addProductT<CONEFETI_FMA_BASELINE>(a, b); }
   inline void add(const DoubleDouble &o)
   {
     add(o.hi);
@@ -52,6 +76,10 @@ PETSC_INTERN PetscErrorCode ReproducibleAllreduce(DoubleDouble *, PetscInt, MPI_
 PETSC_INTERN PetscErrorCode ReproducibleDot(Vec, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode ReproducibleDot2(Vec, Vec, Vec, Vec, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode ReproducibleSumInitialize(void);
+/* Whether the dispatched kernels run their FMA clones: the CPU has FMA and -qp_reproducible_fma was
+   not turned off (ReproducibleSumSetFromOptions(), called by the QP package initialization). */
+PETSC_INTERN PetscBool      ReproducibleSumUseFMA(void);
+PETSC_INTERN PetscErrorCode ReproducibleSumSetFromOptions(void);
 PETSC_INTERN PetscErrorCode ReproducibleSumFinalize(void);
 
 /* y += a x and y = x + a y with the same rounding for every entry. BLAS kernels use FMA in their

@@ -22,6 +22,7 @@ PetscErrorCode ConeFETIQPInitializePackage(void)
   PetscCall(PetscLogEventRegister("QPNormEstimate", qp_classid, &QP_NormEstimate));
   PetscCall(PetscLogEventRegister("QPProject", SEPARABLESET_CLASSID, &QP_Project));
   PetscCall(PetscLogEventRegister("QPSplitGradient", SEPARABLESET_CLASSID, &QP_Split));
+  PetscCall(ReproducibleSumSetFromOptions());
   PetscCall(TaoRegister(TAOMPRGP, TaoCreate_MPRGP));
   PetscCall(TaoRegister(TAOMPGP, TaoCreate_MPGP));
   PetscCall(TaoRegister(TAOSMALXE, TaoCreate_SMALXE));

@@ -6,6 +6,27 @@
 
 static MPI_Datatype dd_type = MPI_DATATYPE_NULL;
 static MPI_Op       dd_sum  = MPI_OP_NULL;
+static PetscBool    use_fma = PETSC_FALSE;
+
+PetscBool ReproducibleSumUseFMA(void) { return use_fma; }
+
+/* Reads -qp_reproducible_fma once per PetscInitialize (from the QP package initialization). */
+PetscErrorCode ReproducibleSumSetFromOptions(void)
+{
+  PetscBool cpu = PETSC_FALSE, want = PETSC_TRUE;
+
+  PetscFunctionBegin;
+#if CONEFETI_FMA_DISPATCH
+  cpu = (__builtin_cpu_supports("avx") && __builtin_cpu_supports("fma")) ? PETSC_TRUE : PETSC_FALSE;
+#endif
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "conefeti QP kernels", "TaoMPRGP");
+  PetscCall(
+      PetscOptionsBool("-qp_reproducible_fma", "Exact products of the rank-independent sums by the CPU's FMA instead of Dekker's product (the same sums, faster)", "TaoMPRGP", want, &want, NULL));
+  PetscOptionsEnd();
+  use_fma = (cpu && want) ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscInfo(NULL, "rank-independent sums: exact products by %s\n", use_fma ? "FMA (run-time dispatch)" : (CONEFETI_FMA_BASELINE ? "FMA (build baseline)" : "Dekker's product")));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 static void DoubleDoubleSum(void *in, void *inout, int *len, MPI_Datatype *)
 {
@@ -58,6 +79,21 @@ PetscErrorCode ReproducibleAllreduce(DoubleDouble *v, PetscInt count, MPI_Comm c
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+namespace {
+template <bool Fused> CONEFETI_INLINE_KERNEL void DotKernel(PetscInt n, const PetscScalar *a, const PetscScalar *b, const PetscScalar *c, const PetscScalar *e, DoubleDouble s[2])
+{
+  DoubleDouble s0, s1; /* locals: kept in registers, not stored back after every term */
+  for (PetscInt i = 0; i < n; i++) s0.addProductT<Fused>(PetscRealPart(a[i]), PetscRealPart(b[i]));
+  if (c)
+    for (PetscInt i = 0; i < n; i++) s1.addProductT<Fused>(PetscRealPart(c[i]), PetscRealPart(e[i]));
+  s[0] = s0;
+  s[1] = s1;
+}
+#if CONEFETI_FMA_DISPATCH
+CONEFETI_TARGET_FMA void DotKernelFMA(PetscInt n, const PetscScalar *a, const PetscScalar *b, const PetscScalar *c, const PetscScalar *e, DoubleDouble s[2]) { DotKernel<true>(n, a, b, c, e, s); }
+#endif
+} // namespace
+
 PetscErrorCode ReproducibleDot2(Vec x1, Vec y1, Vec x2, Vec y2, PetscReal *d1, PetscReal *d2)
 {
   const PetscScalar *a, *b, *c = NULL, *e = NULL;
@@ -72,9 +108,11 @@ PetscErrorCode ReproducibleDot2(Vec x1, Vec y1, Vec x2, Vec y2, PetscReal *d1, P
     PetscCall(VecGetArrayRead(x2, &c));
     PetscCall(VecGetArrayRead(y2, &e));
   }
-  for (PetscInt i = 0; i < n; i++) s[0].addProduct(PetscRealPart(a[i]), PetscRealPart(b[i]));
-  if (x2)
-    for (PetscInt i = 0; i < n; i++) s[1].addProduct(PetscRealPart(c[i]), PetscRealPart(e[i]));
+#if CONEFETI_FMA_DISPATCH
+  if (use_fma) DotKernelFMA(n, a, b, c, e, s);
+  else
+#endif
+    DotKernel<CONEFETI_FMA_BASELINE>(n, a, b, c, e, s);
   PetscCall(VecRestoreArrayRead(x1, &a));
   PetscCall(VecRestoreArrayRead(y1, &b));
   if (x2) {

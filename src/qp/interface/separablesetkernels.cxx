@@ -145,34 +145,32 @@ PetscErrorCode SeparableSetProjectedStep_Private(SeparableSet set, Vec x, PetscR
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* One pass: free gradient phi, chopped gradient beta, and the sums of SeparableSplit.
-   The reduced free gradient phi~ = (x - P(x - alpha phi))/alpha enters only through phi~.phi.
-   Ap (may be NULL) gives phi.Ap for the CG update; b (may be NULL) gives x.b for the objective. */
-PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g, PetscReal alpha, Vec phi, Vec beta, Vec Ap, Vec b, SeparableSplit *out)
-{
-  SeparableSetData  *d;
-  const PetscScalar *xa, *ga, *apa = NULL, *ba = NULL;
-  PetscScalar       *pa, *ba_;
-  DoubleDouble       sum[6]; /* gp2, beta2, phitphi, phiAp, xg, xb: rank-count independent */
+namespace {
+/* The arrays and sums of one split (sum: gp2, beta2, phitphi, phiAp, xg, xb). */
+struct SplitData {
+  const SeparableSetData *d;
+  const PetscScalar      *xa, *ga, *apa, *ba;
+  PetscScalar            *pa, *ba_;
+  PetscReal               alpha;
+  DoubleDouble            sum[6];
+};
 
-  PetscFunctionBegin;
-  PetscCall(SeparableSetSetUp_Private(set));
-  PetscCall(PetscLogEventBegin(QP_Split, 0, 0, 0, 0));
-  d = set->data;
-  PetscCall(VecGetArrayRead(x, &xa));
-  PetscCall(VecGetArrayRead(g, &ga));
-  if (Ap) PetscCall(VecGetArrayRead(Ap, &apa));
-  if (b) PetscCall(VecGetArrayRead(b, &ba));
-  PetscCall(VecGetArrayWrite(phi, &pa));
-  PetscCall(VecGetArrayWrite(beta, &ba_));
-  const PetscReal *lo = d->lo.data(), *hi = d->hi.data();
-  const PetscReal  tol = SEPARABLE_BOUNDARY_RTOL;
+template <bool Fused> CONEFETI_INLINE_KERNEL void SplitKernel(SplitData &sd)
+{
+  const SeparableSetData *d  = sd.d;
+  const PetscScalar      *xa = sd.xa, *ga = sd.ga, *apa = sd.apa, *ba = sd.ba;
+  PetscScalar            *pa = sd.pa, *ba_ = sd.ba_;
+  const PetscReal         alpha = sd.alpha;
+  DoubleDouble            sum[6]; /* local, so that the accumulators stay in registers (stores to pa, ba_ cannot alias them) */
+  const bool              b  = ba != nullptr;
+  const PetscReal        *lo = d->lo.data(), *hi = d->hi.data();
+  const PetscReal         tol = SEPARABLE_BOUNDARY_RTOL;
 
   /* scalars */
   for (PetscInt i = 0; i < d->n; i++) {
     const PetscReal xi = PetscRealPart(xa[i]), gi = PetscRealPart(ga[i]);
-    if (b) sum[5].addProduct(xi, PetscRealPart(ba[i]));
-    sum[4].addProduct(xi, gi);
+    if (b) sum[5].addProductT<Fused>(xi, PetscRealPart(ba[i]));
+    sum[4].addProductT<Fused>(xi, gi);
     if (d->kind[i] != SEPARABLE_SCALAR) continue;
     PetscReal f = 0, c = 0;
     if (lo[i] == hi[i]) { /* pinned */
@@ -181,7 +179,7 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
     else {
       f                 = gi;
       const PetscReal t = gi > 0 ? PetscMin(gi, (xi - lo[i]) / alpha) : PetscMax(gi, (xi - hi[i]) / alpha);
-      sum[2].addProduct(t, gi);
+      sum[2].addProductT<Fused>(t, gi);
     }
     pa[i]  = f;
     ba_[i] = c;
@@ -225,7 +223,7 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
       if (y[0] > 0) {
         f[0]              = gg[0];
         const PetscReal t = gg[0] > 0 ? PetscMin(gg[0], y[0] / alpha) : gg[0];
-        sum[2].addProduct(t, gg[0]);
+        sum[2].addProductT<Fused>(t, gg[0]);
       } else c[0] = PetscMin(gg[0], 0);
     } else if (y[0] <= 0) { /* apex: the tangent cone is K itself, -gP = P_K(-g) */
       PetscReal m[3] = {-gg[0], -gg[1], -gg[2]};
@@ -249,11 +247,45 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
 
   for (PetscInt i = 0; i < d->n; i++) {
     const PetscReal f = PetscRealPart(pa[i]), c = PetscRealPart(ba_[i]);
-    sum[0].addProduct(f, f);
-    sum[0].addProduct(c, c);
-    sum[1].addProduct(c, c);
-    if (apa) sum[3].addProduct(f, PetscRealPart(apa[i]));
+    sum[0].addProductT<Fused>(f, f);
+    sum[0].addProductT<Fused>(c, c);
+    sum[1].addProductT<Fused>(c, c);
+    if (apa) sum[3].addProductT<Fused>(f, PetscRealPart(apa[i]));
   }
+  for (int q = 0; q < 6; q++) sd.sum[q] = sum[q];
+}
+
+#if CONEFETI_FMA_DISPATCH
+CONEFETI_TARGET_FMA void SplitKernelFMA(SplitData &sd) { SplitKernel<true>(sd); }
+#endif
+} // namespace
+
+/* One pass: free gradient phi, chopped gradient beta, and the sums of SeparableSplit.
+   The reduced free gradient phi~ = (x - P(x - alpha phi))/alpha enters only through phi~.phi.
+   Ap (may be NULL) gives phi.Ap for the CG update; b (may be NULL) gives x.b for the objective. */
+PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g, PetscReal alpha, Vec phi, Vec beta, Vec Ap, Vec b, SeparableSplit *out)
+{
+  SeparableSetData  *d;
+  const PetscScalar *xa, *ga, *apa = NULL, *ba = NULL;
+  PetscScalar       *pa, *ba_;
+
+  PetscFunctionBegin;
+  PetscCall(SeparableSetSetUp_Private(set));
+  PetscCall(PetscLogEventBegin(QP_Split, 0, 0, 0, 0));
+  d = set->data;
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArrayRead(g, &ga));
+  if (Ap) PetscCall(VecGetArrayRead(Ap, &apa));
+  if (b) PetscCall(VecGetArrayRead(b, &ba));
+  PetscCall(VecGetArrayWrite(phi, &pa));
+  PetscCall(VecGetArrayWrite(beta, &ba_));
+  SplitData sd{d, xa, ga, apa, ba, pa, ba_, alpha, {}};
+#if CONEFETI_FMA_DISPATCH
+  if (ReproducibleSumUseFMA()) SplitKernelFMA(sd);
+  else
+#endif
+    SplitKernel<CONEFETI_FMA_BASELINE>(sd);
+  DoubleDouble *sum = sd.sum;
   PetscCall(VecRestoreArrayWrite(phi, &pa));
   PetscCall(VecRestoreArrayWrite(beta, &ba_));
   PetscCall(VecRestoreArrayRead(x, &xa));
