@@ -49,8 +49,11 @@ BOUND_SOLVERS = [
 ]
 DISK_SOLVERS = [
     ("mpgp", ["-tao_type", "mpgp"]),
-    ("mpgp, -tao_mpgp_bb 0", ["-tao_type", "mpgp", "-tao_mpgp_bb", "0"]),
+    # the default takes fixed steps 1.95/||A|| in its gradient projections; BB lengths and the shorter
+    # 1/||A|| are options (BB is off by default: it did not pay on the contact problems)
+    ("mpgp, -tao_mpgp_bb 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1"]),
     ("mpgp, -tao_mpgp_alpha 1", ["-tao_type", "mpgp", "-tao_mpgp_alpha", "1"]),
+    ("mpgp, -tao_mpgp_bb 1 -tao_mpgp_alpha 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1", "-tao_mpgp_alpha", "1"]),
     ("almm", ["-tao_type", "almm"], {"factors": [1.0, 1e-2, 1e-4]}),
     ("almm, -tao_almm_type classic", ["-tao_type", "almm", "-tao_almm_type", "classic"], {"timeout": 30, "sizes": ["small"]}),  # stalls
     ("pdipm", ["-tao_type", "pdipm", "-mat_mumps_icntl_14", "200"]),
