@@ -90,21 +90,30 @@ static PetscErrorCode FinishBlock(FETISubdomain &sd)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* After the factorization kept the Schur complement S on kb: (K+)_bb = S^-1 (the factor's solves then use the inverse too) */
+/* After the factorization kept the Schur complement S on kb: (K+)_bb = S^-1, inverted in place and shared
+   with the factor rather than copied (a copy of a block this size costs setup time in page faults alone).
+   The factor's own solves use it too; FinishBlock() changes nothing they see: symmetrizing moves entries
+   by rounding, and K+ zeroes the removed dofs of its input and output anyway. */
 PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &sd)
 {
-  PC  pc;
-  Mat factor, S;
+  PC                   pc;
+  Mat                  factor, S;
+  MatFactorSchurStatus status;
+  PetscBool            dense;
 
   PetscFunctionBegin;
   if (!sd.schurfactor) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(KSPGetPC(sd.ksp, &pc));
   PetscCall(PCFactorGetMatrix(pc, &factor));
   PetscCall(MatFactorInvertSchurComplement(factor));
-  PetscCall(MatFactorCreateSchurComplement(factor, &S, NULL));
   PetscCall(MatDestroy(&sd.Kplusbb));
-  PetscCall(MatConvert(S, MATSEQDENSE, MAT_INITIAL_MATRIX, &sd.Kplusbb));
-  PetscCall(MatDestroy(&S));
+  PetscCall(MatFactorGetSchurComplement(factor, &S, &status));
+  PetscCall(PetscObjectTypeCompare((PetscObject)S, MATSEQDENSE, &dense));
+  if (dense) {
+    PetscCall(PetscObjectReference((PetscObject)S));
+    sd.Kplusbb = S;
+  } else PetscCall(MatConvert(S, MATSEQDENSE, MAT_INITIAL_MATRIX, &sd.Kplusbb));
+  PetscCall(MatFactorRestoreSchurComplement(factor, &S, status));
   PetscCall(FinishBlock(sd));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
