@@ -11,17 +11,19 @@ With --check it also asserts what the tables are meant to show, and exits 1 othe
 converges, the largest mechanical residual is at most 10 * rtol, and it falls as the tolerance tightens.
 
 usage: scripts/bench-accuracy.py [--sizes 8,12] [--frictions 0.1,0.3] [--rtols 1e-2,...,1e-8]
-                                 [--algorithm monolithic] [--extra "-option value ..."] [--build build] [--check]
+                                 [--algorithm monolithic] [--extra "-option value ..."] [--build build] [--hugepages 1] [--check]
 """
 import argparse, os, re, subprocess, sys
+
+import hugepages
 
 RESIDUALS = ["equilibrium", "gluing", "penetration", "sign", "complementarity", "cone", "slip"]
 
 
-def run(build, k, F, algorithm, rtol, extra):
+def run(build, k, F, algorithm, rtol, extra, env):
     exe = os.path.join(build, "tutorials", "contact", "brick")
     cmd = [exe, "-k", str(k), "-friction", str(F), "-contact_coulomb_algorithm", algorithm, "-contact_rtol", str(rtol)] + extra
-    out = subprocess.run(cmd, capture_output=True, text=True, env=dict(os.environ, OMP_NUM_THREADS="1"))
+    out = subprocess.run(cmd, capture_output=True, text=True, env=env)
     text = out.stdout + out.stderr
     m = re.search(r"^n (\d+) m (\d+) Iter (\d+) n_A (\d+) .* setup ([\d.]+) s solve ([\d.]+) s", text, re.M)
     nodes = re.search(r"nodes: (\d+) separated, (\d+) stick, (\d+) slip", text)
@@ -42,16 +44,18 @@ def main():
     ap.add_argument("--algorithm", default="monolithic")
     ap.add_argument("--extra", default="")
     ap.add_argument("--build", default="build")
+    ap.add_argument("--hugepages", type=int, default=1, help="1: run with transparent huge pages (scripts/hugepages.py), 0: without")
     ap.add_argument("--check", action="store_true")
     a = ap.parse_args()
     rtols = [float(x) for x in a.rtols.split(",")]
+    env = hugepages.environment(a.hugepages)
     failures = []
-    print("# what accuracy costs: brick with Coulomb friction, algorithm %s, this machine (1 core)" % a.algorithm)
+    print("# what accuracy costs: brick with Coulomb friction, algorithm %s, this machine (1 core, %s)" % (a.algorithm, hugepages.describe(a.hugepages)))
     print("# command: %s" % " ".join(sys.argv))
     print("# residuals: relative, computed by brick from u and lambda (ALGORITHMS.md section 4); max = the largest of them")
     for F in [float(x) for x in a.frictions.split(",")]:
         for k in [int(x) for x in a.sizes.split(",")]:
-            rows = [(rtol, run(a.build, k, F, a.algorithm, rtol, a.extra.split())) for rtol in rtols]
+            rows = [(rtol, run(a.build, k, F, a.algorithm, rtol, a.extra.split(), env)) for rtol in rtols]
             print()
             print("F = %g, n = %d" % (F, rows[0][1]["n"]))
             print("| -contact_rtol | Iter | n_A | n_A / loosest | setup + solve [s] | max residual | " + " | ".join(RESIDUALS) + " | separated/stick/slip |")

@@ -6,9 +6,11 @@ coefficients and prints, per size: n, m, Iter, n_A (= QPP + QPQ + other) and the
 the paper's Iter and n_A. Iter and n_A are machine independent; times are this machine's.
 
 usage: scripts/bench-brick.py [--algorithms monolithic,merged,msa] [--sizes 4,6,8,10,12] [--rtol 1e-4]
-                              [--extra "-option value ..."] [--build build]
+                              [--extra "-option value ..."] [--build build] [--hugepages 1]
 """
 import argparse, os, re, subprocess, sys
+
+import hugepages
 
 PAPER = {  # n: (m, {F: (Iter, n_A, time)})
     900: (180, {0.1: (5, 102, 1), 0.3: (7, 140, 2)}),
@@ -18,10 +20,10 @@ PAPER = {  # n: (m, {F: (Iter, n_A, time)})
     18252: (1404, {0.1: (5, 155, 221), 0.3: (7, 176, 254)}),
 }
 
-def run(build, k, F, algorithm, rtol, extra):
+def run(build, k, F, algorithm, rtol, extra, env):
     exe = os.path.join(build, "tutorials", "contact", "brick")
     cmd = [exe, "-k", str(k), "-friction", str(F), "-contact_coulomb_algorithm", algorithm, "-contact_rtol", str(rtol)] + extra
-    out = subprocess.run(cmd, capture_output=True, text=True)
+    out = subprocess.run(cmd, capture_output=True, text=True, env=env)
     text = out.stdout + out.stderr
     m = re.search(r"^n (\d+) m (\d+) Iter (\d+) n_A (\d+) \(QPP (\d+) \+ QPQ (\d+) \+ other (\d+)\) estimate (\d+) setup ([\d.]+) s solve ([\d.]+) s", text, re.M)
     nodes = re.search(r"nodes: (\d+) separated, (\d+) stick, (\d+) slip", text)
@@ -41,9 +43,11 @@ def main():
     ap.add_argument("--rtol", default="1e-4")
     ap.add_argument("--extra", default="")
     ap.add_argument("--build", default="build")
+    ap.add_argument("--hugepages", type=int, default=1, help="1: run with transparent huge pages (scripts/hugepages.py), 0: without")
     a = ap.parse_args()
     extra = a.extra.split()
-    print("# brick with Coulomb friction: paper (Matlab 7, Pentium 4) vs conefeti (this machine, 1 core)")
+    env = hugepages.environment(a.hugepages)
+    print("# brick with Coulomb friction: paper (Matlab 7, Pentium 4) vs conefeti (this machine, 1 core, %s)" % hugepages.describe(a.hugepages))
     print("# command: %s" % " ".join(sys.argv))
     print("# stopping: projected gradient and |G l - e| relative to |h| <= %s; Coulomb fixed point to the same tolerance" % a.rtol)
     for F in [float(x) for x in a.frictions.split(",")]:
@@ -54,7 +58,7 @@ def main():
             print("|---|---|---|---|---|---|---|---|---|---|")
             first = None
             for k in [int(x) for x in a.sizes.split(",")]:
-                r = run(a.build, k, F, alg, a.rtol, extra)
+                r = run(a.build, k, F, alg, a.rtol, extra, env)
                 pm, pf = PAPER.get(r["n"], (None, {}))
                 pi, pa, pt = pf.get(F, ("-", "-", "-"))
                 first = first or r["nA"]

@@ -9,13 +9,22 @@
 # The contact tolerance is 1e-4 (-contact_rtol; docs/brick-benchmark.md states the same), where the
 # paper's iteration counts are comparable; the scenes' own default is 1e-6.
 # Environment: RTOL (default 1e-4), SCENES (default "petsc-options/brick-f01.opts petsc-options/brick.opts"),
-#              SIZES (default "4 6 8 10 12": -scene_refine values), RANKS (default 1), BUILD_DIR (default build).
+#              SIZES (default "4 6 8 10 12": -scene_refine values), RANKS (default 1), BUILD_DIR (default build),
+#              HUGEPAGES (default 1: glibc's large allocations on transparent huge pages, scripts/hugepages.py
+#              says why; 0: 4 KB pages; the results are the same, only the setup time changes).
 # Exit status: 0 when every run converged, else the last failing run's status (2: not converged).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 scripts/build.sh >/dev/null
 build=${BUILD_DIR:-build}
+export OMP_NUM_THREADS=1
+if [ "${HUGEPAGES:-1}" != 0 ]; then
+  case ":${GLIBC_TUNABLES:-}:" in
+    *glibc.malloc.hugetlb*) ;;
+    *) export GLIBC_TUNABLES="${GLIBC_TUNABLES:+$GLIBC_TUNABLES:}glibc.malloc.hugetlb=1" ;;
+  esac
+fi
 ranks=${RANKS:-1}
 run=("$build/conefeti")
 if [ "$ranks" -gt 1 ]; then run=(mpiexec --allow-run-as-root --oversubscribe -n "$ranks" "$build/conefeti"); fi

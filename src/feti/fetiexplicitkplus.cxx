@@ -87,6 +87,7 @@ static PetscErrorCode FinishBlock(FETISubdomain &sd)
       for (PetscInt i = 0; i < nb; i++) s[(size_t)j * lda + i] = s[(size_t)i * lda + j] = 0;
   PetscCall(MatDenseRestoreArray(sd.Kplusbb, &s));
   PetscCall(MatCreateVecs(sd.Kplusbb, &sd.kx, &sd.ky));
+  PetscCall(PetscInfo(NULL, "Explicit (K+)_bb on %" PetscInt_FMT " of the subdomain's %" PetscInt_FMT " dofs: %.1f MB\n", nb, sd.n, (double)nb * (double)lda * sizeof(PetscScalar) / 1048576.0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
