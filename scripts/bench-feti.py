@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """FETI benchmark: prints the Markdown tables of docs/feti-benchmark.md.
 
-usage: scripts/bench-feti.py [--build build] [--ranks 2] [--quick] [--parts factor,scaling,compare]
+usage: scripts/bench-feti.py [--build build] [--ranks 2] [--quick] [--parts factor,scaling,compare] [--hugepages 1]
 
   factor   sparse Cholesky of one subdomain (petsc / cholmod / mumps) on 1e3 - 1e5 dofs: factorization
            time, time of one K+ application (two triangular solves), peak memory; 1 rank
@@ -16,6 +16,8 @@ import os
 import re
 import subprocess
 import sys
+
+import hugepages
 
 ENV = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1",
            OMPI_MCA_btl_vader_single_copy_mechanism="none", OMPI_MCA_btl="self,vader", OMPI_MCA_pml="ob1", PETSC_OPTIONS="")
@@ -119,12 +121,14 @@ def main():
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--quick", action="store_true", help="small sizes only (a smoke test of the script)")
     ap.add_argument("--parts", default="factor,scaling,compare")
+    ap.add_argument("--hugepages", type=int, default=1, help="1: run with transparent huge pages (scripts/hugepages.py), 0: without")
     a = ap.parse_args()
+    ENV.update({k: v for k, v in hugepages.environment(a.hugepages).items() if k in ("OMP_NUM_THREADS", "GLIBC_TUNABLES")})
     exe = os.path.join(a.build, "tutorials", "feti", "feti_ex2_elasticity")
     if not os.path.exists(exe):
         sys.exit("no %s: build first (scripts/build.sh)" % exe)
     cpu = subprocess.run(["sh", "-c", "grep -m1 'model name' /proc/cpuinfo | cut -d: -f2"], capture_output=True, text=True).stdout.strip()
-    print("Machine: %s, %d cores; command: scripts/bench-feti.py %s\n" % (cpu, os.cpu_count(), " ".join(sys.argv[1:])))
+    print("Machine: %s, %d cores, %s; command: scripts/bench-feti.py %s\n" % (cpu, os.cpu_count(), hugepages.describe(a.hugepages), " ".join(sys.argv[1:])))
     parts = a.parts.split(",")
     if "factor" in parts:
         factor_table(exe, a.repeat)
