@@ -28,8 +28,8 @@ def run(build, k, F, algorithm, rtol, extra, env):
     m = re.search(r"^n (\d+) m (\d+) Iter (\d+) n_A (\d+) \(QPP (\d+) \+ QPQ (\d+) \+ other (\d+)\) estimate (\d+) setup ([\d.]+) s solve ([\d.]+) s", text, re.M)
     nodes = re.search(r"nodes: (\d+) separated, (\d+) stick, (\d+) slip", text)
     res = re.search(r"residuals: (.*)", text)
-    conv = "converged" in text.split("\n")[0] if text else False
-    if not m or out.returncode != 0:
+    conv = out.returncode == 0 and re.search(r"^pipeline \w+; converged \(", text, re.M) is not None
+    if not m or out.returncode not in (0, 2):  # 2: ran, did not converge (the table says so)
         sys.exit("brick failed (%s):\n%s" % (" ".join(cmd), text[-2000:]))
     v = [int(x) for x in m.groups()[:8]] + [float(m.group(9)), float(m.group(10))]
     return dict(n=v[0], m=v[1], iter=v[2], nA=v[3], qpp=v[4], qpq=v[5], other=v[6], est=v[7], setup=v[8], solve=v[9],
@@ -62,8 +62,8 @@ def main():
                 pm, pf = PAPER.get(r["n"], (None, {}))
                 pi, pa, pt = pf.get(F, ("-", "-", "-"))
                 first = first or r["nA"]
-                print("| %d | %s | %d | %s | %d | %s | %d = %d + %d + %d | %s s | %.2f + %.2f s | %d/%d/%d |" % (
-                    r["n"], pm if pm else "-", r["m"], pi, r["iter"], pa, r["nA"], r["qpp"], r["qpq"], r["other"], pt, r["setup"], r["solve"], *r["nodes"]))
+                print("| %d | %s | %d | %s | %s | %s | %d = %d + %d + %d | %s s | %.2f + %.2f s | %d/%d/%d |" % (
+                    r["n"], pm if pm else "-", r["m"], pi, "%d" % r["iter"] if r["converged"] else "%d (not converged)" % r["iter"], pa, r["nA"], r["qpp"], r["qpq"], r["other"], pt, r["setup"], r["solve"], *r["nodes"]))
             print("growth of n_A from the smallest to the largest size: %.2fx" % (r["nA"] / first))
 
 if __name__ == "__main__":

@@ -7,7 +7,8 @@
      brick -k 12 -friction 0.1 -contact_coulomb_algorithm msa
      brick -k 4 -law frictionless                   (no tangential multipliers, mprgp only)
    Prints the pipeline, the counts of the paper's tables (n, m, Iter, n_A = QPP + QPQ), the node
-   states and the mechanical residuals. */
+   states and the mechanical residuals. Exit status: 0 when the solve converged, 2 when it did not
+   (as the conefeti driver). */
 #include <conefeti.h>
 #include <conefeti/private/compat.h>
 
@@ -29,6 +30,7 @@ int main(int argc, char **argv)
   char              law[32] = "coulomb";
   Vec               lambda, u;
   PetscLogDouble    t0, t1, t2;
+  PetscBool         converged;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "The paper's brick"));
   PetscCall(ConeFETIInitializePackage());
@@ -90,8 +92,9 @@ int main(int argc, char **argv)
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "nodes: %" PetscInt_FMT " separated, %" PetscInt_FMT " stick, %" PetscInt_FMT " slip\n", r.counts[0], r.counts[1], r.counts[2]));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "residuals: equilibrium %.1e gluing %.1e penetration %.1e sign %.1e complementarity %.1e cone %.1e slip %.1e\n", (double)r.equilibrium, (double)r.gluing,
                         (double)r.penetration, (double)r.normal_sign, (double)r.complementarity, (double)r.friction_cone, (double)r.slip_rule));
+  converged = st.converged;
   PetscCall(ContactModelDestroy(&cm));
   PetscCall(FEMDestroy(&fem));
   PetscCall(PetscFinalize());
-  return 0;
+  return converged ? 0 : 2;
 }
