@@ -1,6 +1,9 @@
 /* Interchange round trip: the FETI problem of the test scene is solved, written with FETIWrite(),
    read back with FETILoad() into a fresh FETI object (which knows nothing of the mesh) and solved
-   again: the multipliers and the primal solution agree to 1e-10 and the iteration counts are equal. */
+   again: the multipliers and the primal solution agree to 1e-10 and the iteration counts differ by
+   at most one. FETILoad() distributes the rows of B differently, so the products with B' sum in
+   another order; at -feti_ksp_rtol 1e-12 that rounding can move the last iteration across the
+   tolerance (it does with OpenBLAS's auto-detected kernels on this project's machine: 27 and 28). */
 #include "scene.h"
 
 static PetscErrorCode Solve(FETI feti, Vec *lambda, Vec *u, PetscInt *its)
@@ -68,7 +71,7 @@ int main(int argc, char **argv)
   PetscCall(VecAXPY(u2, -1.0, u1));
   PetscCall(VecNorm(u2, NORM_2, &du));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "iterations %d and %d; relative differences: multipliers %.2e, displacements %.2e\n", (int)its1, (int)its2, (double)(dl / nl), (double)(du / nu)));
-  PetscCheck(its1 == its2 && dl <= 1e-10 * nl && du <= 1e-10 * nu, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "The loaded problem gives a different solution");
+  PetscCheck(PetscAbs(its1 - its2) <= 1 && dl <= 1e-10 * nl && du <= 1e-10 * nu, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "The loaded problem gives a different solution");
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "round trip gives the same solution\n"));
   PetscCall(VecDestroy(&l1));
   PetscCall(VecDestroy(&u1));
