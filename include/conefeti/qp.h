@@ -148,6 +148,7 @@ PETSC_EXTERN PetscErrorCode TaoSMALXEGetEqualityMultiplier(Tao, Vec);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetFeasibility(Tao, PetscReal *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetConsistencyCheck(Tao, PetscErrorCode (*)(Tao, Vec, PetscBool *, void *), void *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);
+PETSC_EXTERN PetscErrorCode TaoSMALXESetAnderson(Tao, PetscInt, PetscInt);
 
 /* ---------------------------------------------------------------------------------------------
    KSP types: the same algorithms through KSPSolve(A x = b), i.e. min 1/2 x'Ax - b'x

@@ -221,6 +221,7 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_msa_rtol <rtol>              - MSA: stop when the slip bounds change by less than this, relatively
 . -contact_msa_max_it <100>             - MSA: most successive approximations
 . -contact_fixed_point_rtol <rtol>      - monolithic: radii must agree with F l_n to this relative tolerance
+. -contact_tao_smalxe_anderson <-1>      - Anderson depth of the multiplier update (0: Dostal's plain update; -1: 3, and 0 for merged's blocks), see `TaoSMALXESetAnderson()`
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
 
   Level: beginner

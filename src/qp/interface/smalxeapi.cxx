@@ -267,3 +267,51 @@ PetscErrorCode TaoSMALXEGetStagnated(Tao tao, PetscBool *flag)
   PetscUseMethod(tao, "TaoSMALXEGetStagnated_C", (Tao, PetscBool *), (tao, flag));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/*@
+  TaoSMALXESetAnderson - Accelerates the augmented Lagrangian's multiplier update by Anderson mixing.
+
+  Logically Collective
+
+  Input Parameters:
++ tao   - the solver
+. depth - how many previous updates enter the mixing (0: the plain update mu += rho (Cx - d), Dostal's SMALBE;
+          `PETSC_DECIDE` (-1, the default): 3 with one inner solver, 0 with `TaoSMALXESetBlocks()`)
+- start - the first outer iteration (counted from 0, at least 1) whose update is accelerated
+
+  Options Database Keys:
++ -tao_smalxe_anderson <-1>      - the depth
+- -tao_smalxe_anderson_start <3> - the first accelerated outer iteration
+
+  Notes:
+  The outer loop is the fixed-point iteration mu <- mu + rho (C x(mu) - d), which converges linearly;
+  with contact and friction |Cx - d| typically falls by a factor 3-5 per outer iteration. The
+  multiplier lives in range(C'), whose dimension is the number of equality rows (the rigid modes in
+  FETI), so a short history captures the map well. Anderson mixing of depth m replaces the update by
+  mu + f - sum_j gamma_j (dmu_j + df_j), f = rho (Cx - d), with gamma minimizing |f - sum_j gamma_j df_j|
+  over the last m differences dmu_j, df_j of multipliers and updates. The history restarts when rho
+  changes or |Cx - d| grows, and a nearly singular mixing problem falls back to the plain update.
+  The first inner solves are loose (their precision follows |Cx - d|), which makes poor history;
+  hence `start`. The semi-monotonicity updates of M (or rho) are unchanged; the theory of SMALBE
+  (bounded outer iterations) covers the plain update only. All dot products are reproducible sums,
+  so the iterates do not depend on the number of ranks.
+
+  With Gauss-Seidel blocks the sweeps make the map from multiplier to residual too irregular, and
+  mixing costs outer iterations instead of saving them, hence no acceleration there by default. On
+  the brick (docs/brick-benchmark.md) depth 3 from outer iteration 3 takes the monolithic Coulomb
+  solve at F = 0.1 from 7-8 outer iterations to 6 and up to half the products, and MSA's products down
+  by 10-20%; frictionless and Tresca solves, which converge in 4-5 outer iterations, barely change.
+
+  Level: advanced
+
+.seealso: `TAOSMALXE`, `TaoSMALXEGetEqualityMultiplier()`
+@*/
+PetscErrorCode TaoSMALXESetAnderson(Tao tao, PetscInt depth, PetscInt start)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidLogicalCollectiveInt(tao, depth, 2);
+  PetscValidLogicalCollectiveInt(tao, start, 3);
+  PetscTryMethod(tao, "TaoSMALXESetAnderson_C", (Tao, PetscInt, PetscInt), (tao, depth, start));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

@@ -88,6 +88,14 @@ struct TaoSMALXE {
   PetscInt               stagnation_its = 30;
   PetscBool              stagnated      = PETSC_FALSE;
 
+  /* Anderson acceleration of the multiplier update (depth 0: the plain update mu += rho (Cx - d)) */
+  PetscInt         anderson = -1, anderson_start = 3; /* depth -1: automatic (AndersonDepth()) */
+  std::vector<Vec> aDX, aDF;                          /* differences of the multipliers and of the increments, oldest first */
+  Vec              aX = nullptr, aF = nullptr;        /* the previous multiplier and increment */
+  PetscInt         aCount = 0;                        /* how many of aDX, aDF hold history */
+  PetscReal        aRho = 0, aFeas = 0;               /* rho and |Cx - d| of the previous update */
+  PetscInt         aAccelerated = 0, aRestarts = 0;   /* over all solves, for TaoView */
+
   /* work: hq, hp, hr for products with H; bin, bout for block products; wf for feasibility; w for the rest */
   Vec hq = nullptr, hp = nullptr, hr = nullptr, r = nullptr, bin = nullptr, bout = nullptr, wf = nullptr, w = nullptr;
 
@@ -213,6 +221,143 @@ PetscErrorCode UpdateInnerLinearTerm(TaoSMALXE *s)
     PetscCall(VecScale(s->r, -1.0));
     PetscCall(ReproducibleAXPY(s->r, s->rho, s->d));
     PetscCall(MatMultTransposeAdd(s->C, s->r, s->b, s->bx));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Anderson acceleration of the multiplier update. The outer loop is the fixed-point iteration
+   mu <- mu + f(mu), f = rho (Cx(mu) - d); it converges linearly (|Cx - d| falls by a constant factor
+   per outer iteration, about 3-5 on the brick), and the multiplier lives in range(C'), a space of
+   dimension rank(C) (12 for the brick) however large the problem. Anderson mixing of depth m takes
+   mu+ = mu + f - sum_j gamma_j (dmu_j + df_j), gamma = argmin |f - sum_j gamma_j df_j|, over the last
+   m differences. Safeguards: the history restarts when rho changed or |Cx - d| grew, and the plain
+   update is taken when the small least-squares problem is ill conditioned. The dot products are
+   reproducible sums, so every rank solves the same small system and the iterates do not depend on
+   the number of ranks. */
+PetscErrorCode AndersonRestart(TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  s->aCount = 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Solves the m x m symmetric positive semidefinite system A g = c by Cholesky; *ok is false when a
+   pivot is below tol times the largest diagonal entry (the differences are nearly dependent). */
+void SmallCholeskySolve(PetscInt m, std::vector<PetscReal> &A, std::vector<PetscReal> &c, PetscReal tol, PetscBool *ok)
+{
+  PetscReal dmax = 0;
+  for (PetscInt i = 0; i < m; i++) dmax = PetscMax(dmax, A[i * m + i]);
+  *ok = dmax > 0 ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt j = 0; j < m && *ok; j++) {
+    PetscReal d = A[j * m + j];
+    for (PetscInt k = 0; k < j; k++) d -= A[j * m + k] * A[j * m + k];
+    if (d <= tol * dmax) {
+      *ok = PETSC_FALSE;
+      break;
+    }
+    A[j * m + j] = PetscSqrtReal(d);
+    for (PetscInt i = j + 1; i < m; i++) {
+      PetscReal v = A[i * m + j];
+      for (PetscInt k = 0; k < j; k++) v -= A[i * m + k] * A[j * m + k];
+      A[i * m + j] = v / A[j * m + j];
+    }
+  }
+  if (!*ok) return;
+  for (PetscInt i = 0; i < m; i++) { /* L y = c */
+    for (PetscInt k = 0; k < i; k++) c[i] -= A[i * m + k] * c[k];
+    c[i] /= A[i * m + i];
+  }
+  for (PetscInt i = m - 1; i >= 0; i--) { /* L' g = y */
+    for (PetscInt k = i + 1; k < m; k++) c[i] -= A[k * m + i] * c[k];
+    c[i] /= A[i * m + i];
+  }
+}
+
+/* The depth in effect: -1 (the default) is 3 with one inner solver and 0 with Gauss-Seidel blocks,
+   whose sweeps make the map from multiplier to residual too irregular for mixing (more outer
+   iterations, not fewer, on the tests' block problems and on the brick's merged algorithm). */
+PetscInt AndersonDepth(TaoSMALXE *s)
+{
+  if (s->anderson >= 0) return s->anderson;
+  return s->blocks.size() > 1 ? 0 : 3;
+}
+
+/* mu (projector form: nu = C'mu) += rho (Cx - d), accelerated when AndersonDepth() > 0.
+   Expects Feasibility() to have left Cx - d in r (Qx - x~ in wf); e = |Cx - d|. */
+PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
+{
+  Vec            mult = s->projector ? s->nu : s->mu, res = s->projector ? s->wf : s->r;
+  const PetscInt depth = AndersonDepth(s);
+
+  PetscFunctionBegin;
+  if (depth <= 0) {
+    PetscCall(ReproducibleAXPY(mult, s->rho, res));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (s->aX && (PetscInt)s->aDX.size() != depth) { /* the depth changed since the history was allocated */
+    for (Vec *v : {&s->aX, &s->aF}) PetscCall(VecDestroy(v));
+    for (auto &v : s->aDX) PetscCall(VecDestroy(&v));
+    for (auto &v : s->aDF) PetscCall(VecDestroy(&v));
+  }
+  if (!s->aX) {
+    PetscCall(VecDuplicate(mult, &s->aX));
+    PetscCall(VecDuplicate(mult, &s->aF));
+    s->aDX.assign(depth, nullptr);
+    s->aDF.assign(depth, nullptr);
+    for (PetscInt j = 0; j < depth; j++) {
+      PetscCall(VecDuplicate(mult, &s->aDX[j]));
+      PetscCall(VecDuplicate(mult, &s->aDF[j]));
+    }
+    s->aCount = 0;
+  }
+  /* the increment f = rho (Cx - d), kept in res (res is not used again before the next Feasibility()) */
+  PetscCall(VecScale(res, s->rho));
+  if (k < s->anderson_start || s->rho != s->aRho || e > s->aFeas) {
+    if (k >= s->anderson_start) s->aRestarts++;
+    PetscCall(AndersonRestart(s));
+  } else { /* append (mult - aX, res - aF), dropping the oldest pair when full */
+    if (s->aCount == depth) {
+      Vec dx = s->aDX[0], df = s->aDF[0];
+      for (PetscInt j = 1; j < depth; j++) {
+        s->aDX[j - 1] = s->aDX[j];
+        s->aDF[j - 1] = s->aDF[j];
+      }
+      s->aDX[depth - 1] = dx;
+      s->aDF[depth - 1] = df;
+      s->aCount--;
+    }
+    PetscCall(VecWAXPY(s->aDX[s->aCount], -1.0, s->aX, mult));
+    PetscCall(VecWAXPY(s->aDF[s->aCount], -1.0, s->aF, res));
+    s->aCount++;
+  }
+  PetscCall(VecCopy(mult, s->aX));
+  PetscCall(VecCopy(res, s->aF));
+  s->aRho  = s->rho;
+  s->aFeas = e;
+  PetscCall(ReproducibleAXPY(mult, 1.0, res)); /* the plain update; corrected below */
+  if (s->aCount > 0) {
+    const PetscInt         m = s->aCount;
+    std::vector<PetscReal> A(m * m), c(m);
+    PetscBool              ok;
+    for (PetscInt i = 0; i < m; i++) {
+      PetscCall(ReproducibleDot(s->aDF[i], res, &c[i]));
+      for (PetscInt j = 0; j <= i; j++) {
+        PetscCall(ReproducibleDot(s->aDF[i], s->aDF[j], &A[i * m + j]));
+        A[j * m + i] = A[i * m + j];
+      }
+    }
+    SmallCholeskySolve(m, A, c, 1e-12, &ok);
+    if (ok) {
+      for (PetscInt i = 0; i < m; i++) {
+        PetscCall(ReproducibleAXPY(mult, -c[i], s->aDX[i]));
+        PetscCall(ReproducibleAXPY(mult, -c[i], s->aDF[i]));
+      }
+      s->aAccelerated++;
+    } else {
+      PetscCall(PetscInfo(s->tao, "Anderson: nearly dependent differences, plain multiplier update and restart\n"));
+      s->aRestarts++;
+      PetscCall(AndersonRestart(s));
+    }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -653,8 +798,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     PetscCall(TaoLogConvergenceHistory(tao, L, gp, e, tao->ksp_its));
     PetscCall(TaoMonitor(tao, k, L, gp, e, 0.0));
     /* the multiplier update comes before the test: the returned multiplier is the updated one */
-    if (s->projector) PetscCall(ReproducibleAXPY(s->nu, s->rho, s->wf)); /* wf = Qx - x~ from Feasibility() */
-    else PetscCall(ReproducibleAXPY(s->mu, s->rho, s->r));               /* r = Cx - d */
+    PetscCall(UpdateMultiplier(s, k, e));
     {
       PetscReal mn;
       PetscCall(Norm(s->projector ? s->nu : s->mu, &mn));
@@ -714,6 +858,13 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
   PetscCall(PetscOptionsEnum("-tao_smalxe_norm_method", "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)s->norm_method, (PetscEnum *)&s->norm_method, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_norm_margin", "Relative safety margin of the norm estimate", "MatQPEstimateNorm", s->norm_margin, &s->norm_margin, NULL));
+  PetscCall(PetscOptionsInt("-tao_smalxe_anderson", "Anderson acceleration of the multiplier update: depth (0: the plain update mu += rho (Cx - d); -1: 3, or 0 with Gauss-Seidel blocks)",
+                            "TaoSMALXESetAnderson", s->anderson, &s->anderson, NULL));
+  PetscCheck(s->anderson >= -1 && s->anderson <= 20, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
+             "-tao_smalxe_anderson: the depth must be in [0, 20] (or -1: automatic), got %" PetscInt_FMT, s->anderson);
+  PetscCall(PetscOptionsInt("-tao_smalxe_anderson_start", "First outer iteration (from 0) whose multiplier update is accelerated (the first inner solves are loose and make poor history)",
+                            "TaoSMALXESetAnderson", s->anderson_start, &s->anderson_start, NULL));
+  PetscCheck(s->anderson_start >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_anderson_start: must be >= 1, got %" PetscInt_FMT, s->anderson_start);
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its", "Stop (infeasible) when |Cx - d| falls by less than 1% and the multiplier grows by a quarter in this many outer iterations (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_counters_view", "Print the counters as one JSON line after each solve", "QPCountersViewJSON", s->counters_view, &s->counters_view, NULL));
@@ -745,6 +896,11 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "smalxe: %s form, %s update (beta %g), rho %g, M %g, eta %g, ||%s|| %s %g\n", s->projector ? "projector" : "penalty", SMALXEUpdates[s->update],
                                    (double)s->beta, (double)s->rho, (double)s->M, (double)s->eta, s->projector ? "PAP" : "A", s->norm_user > 0 ? "given" : "estimated", (double)s->normA));
   PetscCall(PetscViewerASCIIPrintf(viewer, "last iterate: |projected gradient| %g, |Cx - d| %g\n", (double)s->gpnorm, (double)s->feas));
+  if (AndersonDepth(s) > 0)
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "Anderson acceleration of the multiplier, depth %" PetscInt_FMT " from outer iteration %" PetscInt_FMT ": %" PetscInt_FMT " accelerated updates, %" PetscInt_FMT " restarts\n",
+        AndersonDepth(s), s->anderson_start, s->aAccelerated, s->aRestarts));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "plain multiplier update (no Anderson acceleration)\n"));
   if (s->stagnated) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stagnated: the equality cannot be met over the set (or rho is far too small)\n"));
   PetscCall(QPCountersView(&s->counters, NULL, viewer));
   if (s->blocks.size() > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "inner solves: %zu blocks, %" PetscInt_FMT " Gauss-Seidel sweep(s) per outer iteration\n", s->blocks.size(), s->sweeps));
@@ -757,6 +913,11 @@ PetscErrorCode ResetWork(TaoSMALXE *s)
 {
   PetscFunctionBegin;
   for (Vec *v : {&s->mu, &s->nu, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w}) PetscCall(VecDestroy(v));
+  for (Vec *v : {&s->aX, &s->aF}) PetscCall(VecDestroy(v));
+  for (auto &v : s->aDX) PetscCall(VecDestroy(&v));
+  for (auto &v : s->aDF) PetscCall(VecDestroy(&v));
+  s->aDX.clear();
+  s->aDF.clear();
   PetscCall(MatDestroy(&s->H));
   if (s->Q_from_C) {
     PetscCall(MatDestroy(&s->Q));
@@ -767,14 +928,15 @@ PetscErrorCode ResetWork(TaoSMALXE *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-const char *const kComposed[] = {"TaoQPSetConstraints_C",    "TaoQPGetConstraints_C",
-                                 "TaoQPSetLinearTerm_C",     "TaoQPSetNormEstimate_C",
-                                 "TaoQPGetNormEstimate_C",   "TaoQPGetCounters_C",
-                                 "TaoQPResetCounters_C",     "TaoSMALXESetEqualityConstraints_C",
-                                 "TaoSMALXESetProjector_C",  "TaoSMALXEGetSubsolver_C",
-                                 "TaoSMALXESetBlocks_C",     "TaoSMALXEGetBlockSubsolver_C",
-                                 "TaoSMALXESetPreSolve_C",   "TaoSMALXEGetEqualityMultiplier_C",
-                                 "TaoSMALXEGetFeasibility_C"};
+const char *const kComposed[] = {"TaoQPSetConstraints_C",     "TaoQPGetConstraints_C",
+                                 "TaoQPSetLinearTerm_C",      "TaoQPSetNormEstimate_C",
+                                 "TaoQPGetNormEstimate_C",    "TaoQPGetCounters_C",
+                                 "TaoQPResetCounters_C",      "TaoSMALXESetEqualityConstraints_C",
+                                 "TaoSMALXESetProjector_C",   "TaoSMALXEGetSubsolver_C",
+                                 "TaoSMALXESetBlocks_C",      "TaoSMALXEGetBlockSubsolver_C",
+                                 "TaoSMALXESetPreSolve_C",    "TaoSMALXEGetEqualityMultiplier_C",
+                                 "TaoSMALXEGetFeasibility_C", "TaoSMALXESetConsistencyCheck_C",
+                                 "TaoSMALXEGetStagnated_C",   "TaoSMALXESetAnderson_C"};
 
 PetscErrorCode TaoDestroy_SMALXE(Tao tao)
 {
@@ -974,6 +1136,19 @@ PetscErrorCode SetConsistencyCheck_SMALXE(Tao tao, PetscErrorCode (*fn)(Tao, Vec
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SetAnderson_SMALXE(Tao tao, PetscInt depth, PetscInt start)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  PetscCheck(depth >= -1 && depth <= 20, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TaoSMALXESetAnderson: the depth must be in [0, 20] (or -1: automatic), got %" PetscInt_FMT,
+             depth);
+  PetscCheck(start >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TaoSMALXESetAnderson: the first accelerated outer iteration must be >= 1, got %" PetscInt_FMT, start);
+  s->anderson       = depth;
+  s->anderson_start = start;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GetStagnated_SMALXE(Tao tao, PetscBool *flag)
 {
   PetscFunctionBegin;
@@ -1008,6 +1183,8 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 . -tao_smalxe_norm <value>     - ||A|| (||PAP||) given, not estimated
 . -tao_smalxe_norm_method      - slepc or power
 . -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
+. -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
+. -tao_smalxe_anderson_start <3> - first outer iteration (from 0) whose update is accelerated
 . -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
 . -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner solves)
 - -tao_smalxe_block<k>_tao_*   - options of block k's nested solver
@@ -1067,6 +1244,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetFeasibility_C", GetFeasibility_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetConsistencyCheck_C", SetConsistencyCheck_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStagnated_C", GetStagnated_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetAnderson_C", SetAnderson_SMALXE));
   PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
