@@ -33,7 +33,7 @@ def run(build, k, F, algorithm, rtol, extra, env):
     values = dict(re.findall(r"(\w+) ([0-9.e+-]+)", res.group(1)))
     return dict(n=int(m.group(1)), iter=int(m.group(3)), nA=int(m.group(4)), setup=float(m.group(5)), solve=float(m.group(6)),
                 nodes=tuple(int(x) for x in nodes.groups()), res=[float(values[r]) for r in RESIDUALS],
-                converged=out.returncode == 0 and re.search(r"^pipeline \w+; converged \(", text, re.M) is not None)
+                converged=out.returncode == 0 and re.search(r"^pipeline \w+; converged\b", text, re.M) is not None)
 
 
 def main():

@@ -28,7 +28,7 @@ def run(build, k, F, algorithm, rtol, extra, env):
     m = re.search(r"^n (\d+) m (\d+) Iter (\d+) n_A (\d+) \(QPP (\d+) \+ QPQ (\d+) \+ other (\d+)\) estimate (\d+) setup ([\d.]+) s solve ([\d.]+) s", text, re.M)
     nodes = re.search(r"nodes: (\d+) separated, (\d+) stick, (\d+) slip", text)
     res = re.search(r"residuals: (.*)", text)
-    conv = out.returncode == 0 and re.search(r"^pipeline \w+; converged \(", text, re.M) is not None
+    conv = out.returncode == 0 and re.search(r"^pipeline \w+; converged\b", text, re.M) is not None
     if not m or out.returncode not in (0, 2):  # 2: ran, did not converge (the table says so)
         sys.exit("brick failed (%s):\n%s" % (" ".join(cmd), text[-2000:]))
     v = [int(x) for x in m.groups()[:8]] + [float(m.group(9)), float(m.group(10))]
