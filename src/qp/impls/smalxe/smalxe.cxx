@@ -432,7 +432,8 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
                         (double)tao->cnorm, s->stagnation_its));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   }
-  if (tao->reason == TAO_CONTINUE_ITERATING && tao->niter >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
+  /* niter counts from 0 (the first inner solve), so niter + 1 outer iterations are done: -tao_max_it N allows N */
+  if (tao->reason == TAO_CONTINUE_ITERATING && tao->niter + 1 >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
