@@ -297,10 +297,13 @@ PetscErrorCode TaoSMALXEGetStagnated(Tao tao, PetscBool *flag)
   so the iterates do not depend on the number of ranks.
 
   With Gauss-Seidel blocks the sweeps make the map from multiplier to residual too irregular, and
-  mixing costs outer iterations instead of saving them, hence no acceleration there by default. On
-  the brick (docs/brick-benchmark.md) depth 3 from outer iteration 3 takes the monolithic Coulomb
-  solve at F = 0.1 from 7-8 outer iterations to 6 and up to half the products, and MSA's products down
-  by 10-20%; frictionless and Tresca solves, which converge in 4-5 outer iterations, barely change.
+  mixing costs outer iterations instead of saving them, hence no acceleration there by default. When
+  something else changes the map between outer iterations (the friction radii of the monolithic
+  algorithm of `ContactProblemSolve()`), older history describes a different map and depth 1 is the
+  better choice; the contact solver sets it there. On the brick (docs/brick-benchmark.md) the
+  acceleration takes the monolithic Coulomb solve at F = 0.1 from 7-8 outer iterations to 6 and up to
+  half the products, and MSA's products down by 10-20%; frictionless and Tresca solves, which converge
+  in 4-5 outer iterations, barely change.
 
   Level: advanced
 
