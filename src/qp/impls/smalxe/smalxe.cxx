@@ -67,9 +67,10 @@ struct TaoSMALXE {
 
   /* parameters */
   PetscReal    rho_rel = 1.0, M_rel = 0.1, M_min_rel = 1e-4, eta_rel = 0.1, beta = 10.0;
-  SMALXEUpdate update     = SMALXE_UPDATE_M;
-  PetscInt     sweeps     = 1;
-  PetscReal    block_rtol = 0.0; /* > 0: a block solve of a sweep also stops at this reduction of its projected gradient */
+  SMALXEUpdate update      = SMALXE_UPDATE_M;
+  PetscInt     sweeps      = 1;
+  PetscReal    block_rtol  = 0.0; /* > 0: a block solve of a sweep also stops at this reduction of its projected gradient */
+  PetscReal    inner_floor = 0.5; /* inner solves stop at this fraction of the final |gP| tolerance (0: only the adaptive precision) */
   PetscReal    norm_user = 0, norm_margin = -1;
   QPNormMethod norm_method   = QP_NORM_SLEPC;
   PetscBool    counters_view = PETSC_FALSE;
@@ -396,8 +397,11 @@ PetscErrorCode InnerConvergenceTest(Tao sub, void *ctx)
   } else xfull = sub->solution;
   PetscCall(Feasibility(s, xfull, &e));
   PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
-  /* blocks of a Gauss-Seidel sweep are only worth a relative reduction: the next sweep moves their data */
-  if (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e) || (blk.is && s->block_rtol > 0 && sub->niter > 0 && gp <= s->block_rtol * sub->gnorm0))
+  /* blocks of a Gauss-Seidel sweep are only worth a relative reduction: the next sweep moves their data.
+     No inner solve needs to go below a fraction of the final gradient tolerance: the outer loop ends on
+     |gP| <= tol_g, which such an iterate meets, and the adaptive precision M |Cx - d| would otherwise
+     demand far more than that once M has been lowered (with friction the moving radii lower it often) */
+  if (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e) || gp <= s->inner_floor * tol_g || (blk.is && s->block_rtol > 0 && sub->niter > 0 && gp <= s->block_rtol * sub->gnorm0))
     PetscCall(TaoSetConvergedReason(sub, TAO_CONVERGED_USER));
   else if (sub->niter >= sub->max_it) PetscCall(TaoSetConvergedReason(sub, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -859,6 +863,9 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
   PetscCall(PetscOptionsEnum("-tao_smalxe_norm_method", "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)s->norm_method, (PetscEnum *)&s->norm_method, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_norm_margin", "Relative safety margin of the norm estimate", "MatQPEstimateNorm", s->norm_margin, &s->norm_margin, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_inner_floor", "Inner solves also stop when |gP| <= this fraction of the final tolerance max(gatol, gttol |b|) (0: never; at most 1)", "TaoSMALXE",
+                             s->inner_floor, &s->inner_floor, NULL));
+  PetscCheck(s->inner_floor >= 0 && s->inner_floor <= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_inner_floor must be in [0, 1], got %g", (double)s->inner_floor);
   PetscCall(PetscOptionsInt("-tao_smalxe_anderson", "Anderson acceleration of the multiplier update: depth (0: the plain update mu += rho (Cx - d); -1: 3, or 0 with Gauss-Seidel blocks)",
                             "TaoSMALXESetAnderson", s->anderson, &s->anderson, NULL));
   PetscCheck(s->anderson >= -1 && s->anderson <= 20, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
@@ -1184,6 +1191,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 . -tao_smalxe_norm <value>     - ||A|| (||PAP||) given, not estimated
 . -tao_smalxe_norm_method      - slepc or power
 . -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
+. -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance (0: only the adaptive precision)
 . -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
 . -tao_smalxe_anderson_start <3> - first outer iteration (from 0) whose update is accelerated
 . -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
