@@ -93,8 +93,8 @@ struct TaoSMALXE {
   PetscInt         anderson = -1, anderson_start = 3; /* depth -1: automatic (AndersonDepth()) */
   std::vector<Vec> aDX, aDF;                          /* differences of the multipliers and of the increments, oldest first */
   Vec              aX = nullptr, aF = nullptr;        /* the previous multiplier and increment */
-  PetscInt         aCount = 0;                        /* how many of aDX, aDF hold history */
-  PetscReal        aRho = 0, aFeas = 0;               /* rho and |Cx - d| of the previous update */
+  PetscInt         aCount       = 0;                  /* how many of aDX, aDF hold history */
+  PetscReal        aRho         = 0;                  /* rho of the previous update */
   PetscInt         aAccelerated = 0, aRestarts = 0;   /* over all solves, for TaoView */
 
   /* work: hq, hp, hr for products with H; bin, bout for block products; wf for feasibility; w for the rest */
@@ -235,9 +235,14 @@ PetscErrorCode UpdateInnerLinearTerm(TaoSMALXE *s)
    update is taken when the small least-squares problem is ill conditioned. The dot products are
    reproducible sums, so every rank solves the same small system and the iterates do not depend on
    the number of ranks. */
-PetscErrorCode AndersonRestart(TaoSMALXE *s)
+PetscErrorCode AndersonDestroyHistory(TaoSMALXE *s)
 {
   PetscFunctionBegin;
+  for (Vec *v : {&s->aX, &s->aF}) PetscCall(VecDestroy(v));
+  for (auto &v : s->aDX) PetscCall(VecDestroy(&v));
+  for (auto &v : s->aDF) PetscCall(VecDestroy(&v));
+  s->aDX.clear();
+  s->aDF.clear();
   s->aCount = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -284,7 +289,7 @@ PetscInt AndersonDepth(TaoSMALXE *s)
 }
 
 /* mu (projector form: nu = C'mu) += rho (Cx - d), accelerated when AndersonDepth() > 0.
-   Expects Feasibility() to have left Cx - d in r (Qx - x~ in wf); e = |Cx - d|. */
+   Expects Feasibility() to have left Cx - d in r (Qx - x~ in wf); e = |Cx - d| = feas_history[k]. */
 PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
 {
   Vec            mult = s->projector ? s->nu : s->mu, res = s->projector ? s->wf : s->r;
@@ -295,11 +300,7 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
     PetscCall(ReproducibleAXPY(mult, s->rho, res));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  if (s->aX && (PetscInt)s->aDX.size() != depth) { /* the depth changed since the history was allocated */
-    for (Vec *v : {&s->aX, &s->aF}) PetscCall(VecDestroy(v));
-    for (auto &v : s->aDX) PetscCall(VecDestroy(&v));
-    for (auto &v : s->aDF) PetscCall(VecDestroy(&v));
-  }
+  if (s->aX && (PetscInt)s->aDX.size() != depth) PetscCall(AndersonDestroyHistory(s)); /* the depth changed since the history was allocated */
   if (!s->aX) {
     PetscCall(VecDuplicate(mult, &s->aX));
     PetscCall(VecDuplicate(mult, &s->aF));
@@ -309,13 +310,12 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
       PetscCall(VecDuplicate(mult, &s->aDX[j]));
       PetscCall(VecDuplicate(mult, &s->aDF[j]));
     }
-    s->aCount = 0;
   }
   /* the increment f = rho (Cx - d), kept in res (res is not used again before the next Feasibility()) */
   PetscCall(VecScale(res, s->rho));
-  if (k < s->anderson_start || s->rho != s->aRho || e > s->aFeas) {
+  if (k < s->anderson_start || s->rho != s->aRho || e > s->feas_history[k - 1]) { /* restart */
     if (k >= s->anderson_start) s->aRestarts++;
-    PetscCall(AndersonRestart(s));
+    s->aCount = 0;
   } else { /* append (mult - aX, res - aF), dropping the oldest pair when full */
     if (s->aCount == depth) {
       Vec dx = s->aDX[0], df = s->aDF[0];
@@ -333,8 +333,7 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
   }
   PetscCall(VecCopy(mult, s->aX));
   PetscCall(VecCopy(res, s->aF));
-  s->aRho  = s->rho;
-  s->aFeas = e;
+  s->aRho = s->rho;
   PetscCall(ReproducibleAXPY(mult, 1.0, res)); /* the plain update; corrected below */
   if (s->aCount > 0) {
     const PetscInt         m = s->aCount;
@@ -357,7 +356,7 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
     } else {
       PetscCall(PetscInfo(s->tao, "Anderson: nearly dependent differences, plain multiplier update and restart\n"));
       s->aRestarts++;
-      PetscCall(AndersonRestart(s));
+      s->aCount = 0;
     }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -921,11 +920,7 @@ PetscErrorCode ResetWork(TaoSMALXE *s)
 {
   PetscFunctionBegin;
   for (Vec *v : {&s->mu, &s->nu, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w}) PetscCall(VecDestroy(v));
-  for (Vec *v : {&s->aX, &s->aF}) PetscCall(VecDestroy(v));
-  for (auto &v : s->aDX) PetscCall(VecDestroy(&v));
-  for (auto &v : s->aDF) PetscCall(VecDestroy(&v));
-  s->aDX.clear();
-  s->aDF.clear();
+  PetscCall(AndersonDestroyHistory(s));
   PetscCall(MatDestroy(&s->H));
   if (s->Q_from_C) {
     PetscCall(MatDestroy(&s->Q));
