@@ -12,6 +12,7 @@
 #include <conefeti/private/reproduciblesum.h>
 #include <conefeti/sys.h>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <tuple>
@@ -725,8 +726,11 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   Vec                cvec, Ku, f, Btl, Bu;
   const FETIRowKind *kinds;
   PetscReal          nf, nbl, nres, umax, glue = 0;
-  NodeValues         v;
-  MPI_Comm           comm;
+  /* floor of the scales: a zero scale (no load, no pressure) gives 0/tiny = 0, not 0/0 (PETSC_MIN_REAL
+     is the most negative real, not the smallest positive one) */
+  constexpr PetscReal tiny = std::numeric_limits<PetscReal>::min();
+  NodeValues          v;
+  MPI_Comm            comm;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
@@ -746,10 +750,10 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   PetscCall(VecAXPY(Ku, -1.0, f));
   PetscCall(VecAXPY(Ku, 1.0, Btl));
   PetscCall(VecNorm(Ku, NORM_2, &nres));
-  r->equilibrium = nres / PetscMax(PetscMax(nf, nbl), PETSC_MIN_REAL);
+  r->equilibrium = nres / PetscMax(PetscMax(nf, nbl), tiny);
   /* B u - c on gluing and Dirichlet rows */
   PetscCall(VecNorm(d->u, NORM_INFINITY, &umax));
-  umax = PetscMax(umax, PETSC_MIN_REAL);
+  umax = PetscMax(umax, tiny);
   PetscCall(VecDuplicate(d->lambda, &Bu));
   PetscCall(MatMult(B, d->u, Bu));
   {
@@ -766,11 +770,16 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &glue, 1, MPIU_REAL, MPIU_MAX, comm));
   r->gluing = glue / umax;
   if (d->cp) {
-    PetscReal lnmax = 0, pen = 0, sign = 0, comp = 0, cone = 0, slip = 0;
+    PetscReal lmax[2] = {0, 0}, pen = 0, sign = 0, comp = 0, cone = 0, slip = 0;
     PetscCall(EvaluateNodes(cm, Bu, v));
-    for (size_t j = 0; j < v.ln.size(); j++) lnmax = PetscMax(lnmax, v.ln[j]);
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lnmax, 1, MPIU_REAL, MPIU_MAX, comm));
-    const PetscReal lscale = PetscMax(lnmax, PETSC_MIN_REAL), k = lscale / umax;
+    for (size_t j = 0; j < v.ln.size(); j++) {
+      lmax[0] = PetscMax(lmax[0], v.ln[j]);
+      lmax[1] = PetscMax(lmax[1], PetscMax(PetscAbsReal(v.ln[j]), std::hypot(v.lt[2 * j], v.lt[2 * j + 1])));
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, lmax, 2, MPIU_REAL, MPIU_MAX, comm));
+    /* the scale of the contact stresses: the largest normal pressure, or (no pressure anywhere, e.g. a
+       run without equilibrium) the largest contact multiplier, so that the ratios stay finite */
+    const PetscReal lnmax = lmax[0], lscale = PetscMax(PetscMax(lnmax, lmax[1]), tiny), k = lscale / umax;
     for (size_t j = 0; j < v.ln.size(); j++) {
       const PetscReal ln = v.ln[j], *lt = &v.lt[2 * j], *tu = &v.tu[2 * j], g = v.g[j];
       pen  = PetscMax(pen, v.gapres[j]);
@@ -790,7 +799,7 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, r->counts, 3, MPIU_INT, MPI_SUM, comm));
     r->penetration     = m[0] / umax;
     r->normal_sign     = m[1] / lscale;
-    r->complementarity = m[2] / (lscale * umax);
+    r->complementarity = m[2] / lscale / umax;
     r->friction_cone   = PetscMax(m[3], 0) / lscale;
     r->slip_rule       = m[4] / lscale;
   }
