@@ -792,9 +792,12 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     PetscCall(ReproducibleDot2(tao->solution, s->g, tao->solution, s->bx, &xg, &xb));
     if (s->projector) PetscCall(ReproducibleDot(s->nu, s->xt, &md));
     else PetscCall(ReproducibleDot(s->mu, s->d, &md));
-    L         = 0.5 * (xg - xb) - md + 0.5 * s->rho * s->dnorm2 + s->qxt;
-    s->gpnorm = gp;
-    s->feas   = e;
+    L = 0.5 * (xg - xb) - md + 0.5 * s->rho * s->dnorm2 + s->qxt;
+    /* L sums terms that cancel: a change of L below their rounding says nothing (late in a solve
+       the semi-monotonicity test would otherwise decide by rounding, differently for A and 1e12 A) */
+    const PetscReal Lnoise = 1e-12 * (0.5 * (PetscAbsReal(xg) + PetscAbsReal(xb)) + PetscAbsReal(md) + 0.5 * s->rho * s->dnorm2 + PetscAbsReal(s->qxt));
+    s->gpnorm              = gp;
+    s->feas                = e;
     PetscCallCXX(s->feas_history.push_back(e));
     PetscCall(VecCopy(s->g, tao->gradient));
     tao->niter = k;
@@ -814,7 +817,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
        M stops at a floor: when a pre-solve hook moves the set (the radii of a friction law), L may
        drop for that reason alone, and without a floor M would collapse and with it the inner
        tolerances (thousands of useless inner iterations) */
-    if (k > 0 && L < Lprev + 0.5 * s->rho * e * e) {
+    if (k > 0 && L < Lprev + 0.5 * s->rho * e * e - Lnoise) {
       if (s->update == SMALXE_UPDATE_M) s->M = PetscMax(s->M / s->beta, s->M_min_rel * s->normH);
       else if (s->update == SMALXE_UPDATE_RHO) {
         s->rho *= s->beta;
