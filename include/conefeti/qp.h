@@ -71,7 +71,8 @@ PETSC_EXTERN PetscErrorCode SeparableSetCreateSubset(SeparableSet, IS, Separable
 . estimate_mults        - products spent estimating ||A|| (reported apart, as SLEPc's)
 . cg_steps              - conjugate gradient steps
 . expansion_steps       - expansion steps (feasible half step, then projected step)
-- proportioning_steps   - proportioning steps
+. proportioning_steps   - proportioning steps
+- pc_applications       - preconditioner applications (preconditioning in face, `TaoQPGetPC()`)
 
   Level: intermediate
 
@@ -91,6 +92,7 @@ typedef struct {
   PetscInt cg_steps;
   PetscInt expansion_steps;
   PetscInt proportioning_steps;
+  PetscInt pc_applications;
 } QPCounters;
 
 PETSC_EXTERN PetscErrorCode QPCountersView(const QPCounters *, const char[], PetscViewer);
@@ -135,6 +137,8 @@ PETSC_EXTERN PetscErrorCode TaoQPSetLinearTerm(Tao, Vec);
 PETSC_EXTERN PetscErrorCode TaoQPSetNormEstimate(Tao, PetscReal);
 PETSC_EXTERN PetscErrorCode TaoQPGetNormEstimate(Tao, PetscReal *);
 PETSC_EXTERN PetscErrorCode TaoQPGetCounters(Tao, QPCounters *);
+PETSC_EXTERN PetscErrorCode TaoQPGetPC(Tao, PC *);
+PETSC_EXTERN PetscErrorCode TaoQPSetExpansionProjCG(Tao, PetscBool);
 PETSC_EXTERN PetscErrorCode TaoQPResetCounters(Tao);
 PETSC_EXTERN PetscErrorCode TaoQPSetTolerance(Tao, PetscReal);
 

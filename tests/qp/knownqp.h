@@ -81,6 +81,22 @@ static inline PetscErrorCode RowOrderedMult(Mat M, Vec x, Vec y)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* the diagonal, for PCJACOBI (preconditioning in face) */
+static inline PetscErrorCode RowOrderedGetDiagonal(Mat M, Vec v)
+{
+  RowOrderedDense *d;
+  PetscScalar     *va;
+  PetscInt         rstart;
+
+  PetscFunctionBegin;
+  PetscCall(MatShellGetContext(M, &d));
+  PetscCall(MatGetOwnershipRange(M, &rstart, NULL));
+  PetscCall(VecGetArrayWrite(v, &va));
+  for (PetscInt i = 0; i < d->nlocal; i++) va[i] = d->rows[i * d->N + rstart + i];
+  PetscCall(VecRestoreArrayWrite(v, &va));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static inline PetscErrorCode RowOrderedDestroy(Mat M)
 {
   RowOrderedDense *d;
@@ -345,6 +361,7 @@ static inline PetscErrorCode KnownQPCreate(MPI_Comm comm, const std::string &kin
     PetscCall(MatCreateShell(comm, nlocal, nlocal, N, N, d, &qp->A));
     PetscCall(MatShellSetOperation(qp->A, MATOP_MULT, (void (*)(void))RowOrderedMult));
     PetscCall(MatShellSetOperation(qp->A, MATOP_DESTROY, (void (*)(void))RowOrderedDestroy));
+    PetscCall(MatShellSetOperation(qp->A, MATOP_GET_DIAGONAL, (void (*)(void))RowOrderedGetDiagonal));
     PetscCall(VecCreateMPI(comm, nlocal, N, &tmp));
     PetscCall(VecScatterCreateToAll(tmp, &d->toall, &d->xall));
     PetscCall(VecDestroy(&tmp));

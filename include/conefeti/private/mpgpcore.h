@@ -16,7 +16,9 @@ enum class MPGPStatus {
 
 /* Called at iteration 0 and after every iteration; sets *stop to end the solve. */
 typedef PetscErrorCode (*MPGPReportFn)(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm, PetscReal step, PetscBool *stop);
-/* z = M^{-1} g; only used when the set is unconstrained (then the solver is PCG). */
+/* z = M^{-1} g. The core restricts z to the free entries (preconditioning in face: [M^-1]_FF, a
+   principal submatrix of an SPD matrix, so an SPD preconditioner of the face's A_FF); without
+   constraints every entry is free and the solver is PCG. */
 typedef PetscErrorCode (*MPGPPreconditionFn)(void *ctx, Vec g, Vec z);
 
 struct MPGPCore {
@@ -25,6 +27,7 @@ struct MPGPCore {
   PetscReal   alpha_scale = 1.95;        /* fixed step alpha = alpha_scale / ||A||, in (0, 2] */
   PetscReal   normA       = 0;           /* estimate of ||A||, provided by the owner before the solve */
   PetscBool   bb          = PETSC_FALSE; /* MPGP: try Barzilai-Borwein lengths in gradient projection steps */
+  PetscBool   projcg      = PETSC_FALSE; /* expansion: first try the projected full CG step P(x - a_cg p) (see MPGPCoreSolve) */
 
   Mat          A   = nullptr; /* not owned */
   Vec          b   = nullptr; /* not owned */
@@ -37,8 +40,10 @@ struct MPGPCore {
   QPCounters        *counters         = nullptr; /* owner's counters, updated in place */
 
   Vec      g = nullptr, p = nullptr, Ap = nullptr, phi = nullptr, beta = nullptr, z = nullptr; /* work */
+  Vec      dx    = nullptr;                                                                    /* the step of a projected CG expansion */
   Vec      xprev = nullptr, gprev = nullptr;                                                   /* the previous iterate and gradient (Barzilai-Borwein lengths) */
-  PetscInt bb_rejected = 0;                                                                    /* BB steps that did not decrease q and fell back to the fixed length */
+  PetscInt bb_rejected     = 0;                                                                /* BB steps that did not decrease q and fell back to the fixed length */
+  PetscInt projcg_rejected = 0;                                                                /* projected CG steps not kept (q above the feasible half step's) */
 
   /* state after a solve: g = A x - b is valid for the returned x */
   PetscInt   its    = 0;
@@ -64,4 +69,5 @@ struct QPNormSettings {
 /* Options -<kind>_<name>_{gamma,alpha,bb,norm,norm_method,norm_margin,counters_view} (kind tao or ksp). */
 PETSC_INTERN PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS, MPI_Comm, const char *, const char *, MPGPCore *, QPNormSettings *, PetscBool *);
 /* ||A|| for a solve: the given value, or the cached or new estimate (products added to the counters). */
+PETSC_INTERN PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *, PetscViewer);
 PETSC_INTERN PetscErrorCode QPNormSettingsApply(QPNormSettings *, Mat, const char *, const char *, const char *, QPCounters *);

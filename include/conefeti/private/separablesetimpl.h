@@ -35,11 +35,13 @@ struct SeparableSetData {
 
   /* Effective data with the shift folded in, so that projections land exactly on bounds:
      scalar bounds lb - shift, ub - shift; disk centers c - shift; cone apexes -shift. */
-  std::vector<PetscReal> lo, hi;     /* n entries; +-infinity when absent */
-  std::vector<PetscReal> eff_center; /* 2 per disk */
-  std::vector<PetscReal> cone_apex;  /* 3 per cone */
-  bool                   has_bounds = false;
-  bool                   dirty      = true;
+  std::vector<PetscReal>     lo, hi;     /* n entries; +-infinity when absent */
+  std::vector<PetscReal>     eff_center; /* 2 per disk */
+  std::vector<PetscReal>     cone_apex;  /* 3 per cone */
+  std::vector<PetscReal>     split_work; /* n entries, scratch of SeparableSetSplitGradient_Private() */
+  std::vector<unsigned char> split_free; /* n entries: 1 where the last split found the entry's block free (interior) */
+  bool                       has_bounds = false;
+  bool                       dirty      = true;
 };
 
 struct _p_SeparableSet {
@@ -62,6 +64,7 @@ struct SeparableSplit {
 PETSC_INTERN PetscErrorCode SeparableSetSetUp_Private(SeparableSet);
 PETSC_INTERN PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet, Vec, Vec, PetscReal, Vec, Vec, Vec, Vec, SeparableSplit *);
 PETSC_INTERN PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet, Vec, Vec, PetscReal *);
+PETSC_INTERN PetscErrorCode SeparableSetMaskFree_Private(SeparableSet, Vec);
 PETSC_INTERN PetscErrorCode SeparableSetProjectedStep_Private(SeparableSet, Vec, PetscReal, Vec, Vec);
 PETSC_INTERN PetscErrorCode SeparableSetCheckCompatible_Private(SeparableSet, Vec);
 

@@ -24,6 +24,7 @@ PetscErrorCode QPCountersView(const QPCounters *c, const char name[], PetscViewe
   PetscCall(PetscViewerASCIIPrintf(
       viewer, "%s%ssolves %" PetscInt_FMT ", iterations %" PetscInt_FMT " (nested %" PetscInt_FMT "): CG %" PetscInt_FMT ", expansion %" PetscInt_FMT ", proportioning %" PetscInt_FMT "\n",
       name ? name : "", name ? " " : "", c->solves, c->iterations, c->nested_iterations, c->cg_steps, c->expansion_steps, c->proportioning_steps));
+  if (c->pc_applications) PetscCall(PetscViewerASCIIPrintf(viewer, "%s%spreconditioner applications: %" PetscInt_FMT "\n", name ? name : "", name ? " " : "", c->pc_applications));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -39,7 +40,7 @@ PetscErrorCode QPCountersView(const QPCounters *c, const char name[], PetscViewe
 
   Notes:
   Fields: solver, solves, iterations, hessian_mults, nested_iterations, nested_hessian_mults,
-  total_hessian_mults, estimate_mults, cg_steps, expansion_steps, proportioning_steps.
+  total_hessian_mults, estimate_mults, cg_steps, expansion_steps, proportioning_steps, pc_applications.
 
   Level: intermediate
 
@@ -51,8 +52,8 @@ PetscErrorCode QPCountersViewJSON(const QPCounters *c, const char name[], PetscV
   PetscCall(PetscViewerASCIIPrintf(viewer,
                                    "{\"solver\": \"%s\", \"solves\": %" PetscInt_FMT ", \"iterations\": %" PetscInt_FMT ", \"hessian_mults\": %" PetscInt_FMT ", \"nested_iterations\": %" PetscInt_FMT
                                    ", \"nested_hessian_mults\": %" PetscInt_FMT ", \"total_hessian_mults\": %" PetscInt_FMT ", \"estimate_mults\": %" PetscInt_FMT ", \"cg_steps\": %" PetscInt_FMT
-                                   ", \"expansion_steps\": %" PetscInt_FMT ", \"proportioning_steps\": %" PetscInt_FMT "}\n",
+                                   ", \"expansion_steps\": %" PetscInt_FMT ", \"proportioning_steps\": %" PetscInt_FMT ", \"pc_applications\": %" PetscInt_FMT "}\n",
                                    name ? name : "", c->solves, c->iterations, c->hessian_mults, c->nested_iterations, c->nested_hessian_mults, c->hessian_mults + c->nested_hessian_mults,
-                                   c->estimate_mults, c->cg_steps, c->expansion_steps, c->proportioning_steps));
+                                   c->estimate_mults, c->cg_steps, c->expansion_steps, c->proportioning_steps, c->pc_applications));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -82,12 +82,12 @@ PetscErrorCode ReproducibleAllreduce(DoubleDouble *v, PetscInt count, MPI_Comm c
 namespace {
 template <bool Fused> CONEFETI_INLINE_KERNEL void DotKernel(PetscInt n, const PetscScalar *a, const PetscScalar *b, const PetscScalar *c, const PetscScalar *e, DoubleDouble s[2])
 {
-  DoubleDouble s0, s1; /* locals: kept in registers, not stored back after every term */
-  for (PetscInt i = 0; i < n; i++) s0.addProductT<Fused>(PetscRealPart(a[i]), PetscRealPart(b[i]));
+  DoubleDouble4 s0, s1; /* locals: kept in registers, not stored back after every term */
+  for (PetscInt i = 0; i < n; i += 4) s0.addProductT<Fused>(LoadLanes(a, i, n), LoadLanes(b, i, n));
   if (c)
-    for (PetscInt i = 0; i < n; i++) s1.addProductT<Fused>(PetscRealPart(c[i]), PetscRealPart(e[i]));
-  s[0] = s0;
-  s[1] = s1;
+    for (PetscInt i = 0; i < n; i += 4) s1.addProductT<Fused>(LoadLanes(c, i, n), LoadLanes(e, i, n));
+  s[0] = s0.total();
+  s[1] = s1.total();
 }
 #if CONEFETI_FMA_DISPATCH
 CONEFETI_TARGET_FMA void DotKernelFMA(PetscInt n, const PetscScalar *a, const PetscScalar *b, const PetscScalar *c, const PetscScalar *e, DoubleDouble s[2]) { DotKernel<true>(n, a, b, c, e, s); }

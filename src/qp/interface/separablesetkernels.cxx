@@ -151,38 +151,52 @@ struct SplitData {
   const SeparableSetData *d;
   const PetscScalar      *xa, *ga, *apa, *ba;
   PetscScalar            *pa, *ba_;
+  PetscReal              *ta; /* scalar entries' terms of phi~ (zero elsewhere), summed against g in the second pass */
+  unsigned char          *fr; /* 1 where the block is free (interior), for SeparableSetMaskFree_Private() */
   PetscReal               alpha;
   DoubleDouble            sum[6];
 };
 
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+/* Two passes: the first classifies the entries and blocks and writes phi and beta (branches, no
+   sums but the curved blocks' phi~ terms), the second, branch-free, accumulates all six sums in
+   SIMD lanes (DoubleDouble4). */
 template <bool Fused> CONEFETI_INLINE_KERNEL void SplitKernel(SplitData &sd)
 {
   const SeparableSetData *d  = sd.d;
   const PetscScalar      *xa = sd.xa, *ga = sd.ga, *apa = sd.apa, *ba = sd.ba;
   PetscScalar            *pa = sd.pa, *ba_ = sd.ba_;
-  const PetscReal         alpha = sd.alpha;
-  DoubleDouble            sum[6]; /* local, so that the accumulators stay in registers (stores to pa, ba_ cannot alias them) */
-  const bool              b  = ba != nullptr;
+  PetscReal              *ta    = sd.ta;
+  unsigned char          *fr    = sd.fr;
+  const PetscReal         alpha = sd.alpha, ialpha = 1 / alpha;
+  DoubleDouble            curved; /* phi~.phi of the disk and cone blocks */
   const PetscReal        *lo = d->lo.data(), *hi = d->hi.data();
   const PetscReal         tol = SEPARABLE_BOUNDARY_RTOL;
+  const PetscInt          n   = d->n;
 
   /* scalars */
-  for (PetscInt i = 0; i < d->n; i++) {
+  for (PetscInt i = 0; i < n; i++) {
     const PetscReal xi = PetscRealPart(xa[i]), gi = PetscRealPart(ga[i]);
-    if (b) sum[5].addProductT<Fused>(xi, PetscRealPart(ba[i]));
-    sum[4].addProductT<Fused>(xi, gi);
-    if (d->kind[i] != SEPARABLE_SCALAR) continue;
-    PetscReal f = 0, c = 0;
+    PetscReal       f = 0, c = 0, t = 0;
+    if (d->kind[i] != SEPARABLE_SCALAR) {
+      ta[i] = 0;
+      continue;
+    }
+    fr[i] = 0;
     if (lo[i] == hi[i]) { /* pinned */
     } else if (xi <= lo[i]) c = PetscMin(gi, 0);
     else if (xi >= hi[i]) c = PetscMax(gi, 0);
     else {
-      f                 = gi;
-      const PetscReal t = gi > 0 ? PetscMin(gi, (xi - lo[i]) / alpha) : PetscMax(gi, (xi - hi[i]) / alpha);
-      sum[2].addProductT<Fused>(t, gi);
+      fr[i] = 1;
+      /* min(g, (x - l)/alpha) for g > 0, max(g, (x - u)/alpha) otherwise, without a branch on the sign
+         of g (a coin toss for the branch predictor): the first bound is >= 0, the second <= 0 */
+      f = gi;
+      t = PetscMax(PetscMin(gi, (xi - lo[i]) * ialpha), (xi - hi[i]) * ialpha);
     }
     pa[i]  = f;
     ba_[i] = c;
+    ta[i]  = t;
   }
 
   /* disks: interior unless within the relative tolerance of the circle */
@@ -193,13 +207,15 @@ template <bool Fused> CONEFETI_INLINE_KERNEL void SplitKernel(SplitData &sd)
     const PetscReal gg[2] = {PetscRealPart(ga[i]), PetscRealPart(ga[j])};
     PetscReal       f[2] = {0, 0}, c[2] = {0, 0};
     const PetscReal nz = std::hypot(z[0], z[1]);
+    fr[i] = fr[j] = 0;
     if (r == 0) { /* pinned at the center */
     } else if (nz < r * (1 - tol)) {
-      f[0]         = gg[0];
-      f[1]         = gg[1];
+      fr[i] = fr[j] = 1;
+      f[0]          = gg[0];
+      f[1]          = gg[1];
       PetscReal w0 = z[0] - alpha * gg[0], w1 = z[1] - alpha * gg[1];
       ProjectDisk(w0, w1, r);
-      sum[2].add(((z[0] - w0) * gg[0] + (z[1] - w1) * gg[1]) / alpha);
+      curved.add(((z[0] - w0) * gg[0] + (z[1] - w1) * gg[1]) / alpha);
     } else {
       const PetscReal nu[2] = {z[0] / nz, z[1] / nz};
       BoundaryProjectedGradient<2>(gg, nu, c);
@@ -218,22 +234,25 @@ template <bool Fused> CONEFETI_INLINE_KERNEL void SplitKernel(SplitData &sd)
     const PetscReal  y[3]  = {PetscRealPart(xa[id[0]]) - v[0], PetscRealPart(xa[id[1]]) - v[1], PetscRealPart(xa[id[2]]) - v[2]};
     const PetscReal  gg[3] = {PetscRealPart(ga[id[0]]), PetscRealPart(ga[id[1]]), PetscRealPart(ga[id[2]])};
     PetscReal        f[3] = {0, 0, 0}, c[3] = {0, 0, 0};
-    const PetscReal  st = std::hypot(y[1], y[2]);
+    const PetscReal  st   = std::hypot(y[1], y[2]);
+    bool             free = false;
     if (mu == 0) { /* {y_t = 0, y_n >= 0}: y_n is a scalar with lower bound */
       if (y[0] > 0) {
+        free              = true; /* y_n only: the tangential entries are pinned */
         f[0]              = gg[0];
         const PetscReal t = gg[0] > 0 ? PetscMin(gg[0], y[0] / alpha) : gg[0];
-        sum[2].addProductT<Fused>(t, gg[0]);
+        curved.addProductT<Fused>(t, gg[0]);
       } else c[0] = PetscMin(gg[0], 0);
     } else if (y[0] <= 0) { /* apex: the tangent cone is K itself, -gP = P_K(-g) */
       PetscReal m[3] = {-gg[0], -gg[1], -gg[2]};
       ProjectCone(m[0], m[1], m[2], mu);
       for (int q = 0; q < 3; q++) c[q] = -m[q];
     } else if (st < mu * y[0] * (1 - tol)) {
+      free = true;
       for (int q = 0; q < 3; q++) f[q] = gg[q];
       PetscReal w[3] = {y[0] - alpha * gg[0], y[1] - alpha * gg[1], y[2] - alpha * gg[2]};
       ProjectCone(w[0], w[1], w[2], mu);
-      sum[2].add(((y[0] - w[0]) * gg[0] + (y[1] - w[1]) * gg[1] + (y[2] - w[2]) * gg[2]) / alpha);
+      curved.add(((y[0] - w[0]) * gg[0] + (y[1] - w[1]) * gg[1] + (y[2] - w[2]) * gg[2]) / alpha);
     } else {
       const PetscReal s     = 1 / std::sqrt(1 + mu * mu);
       const PetscReal nu[3] = {-mu * s, s * y[1] / st, s * y[2] / st};
@@ -242,18 +261,25 @@ template <bool Fused> CONEFETI_INLINE_KERNEL void SplitKernel(SplitData &sd)
     for (int q = 0; q < 3; q++) {
       pa[id[q]]  = f[q];
       ba_[id[q]] = c[q];
+      fr[id[q]]  = free && (mu > 0 || q == 0);
     }
   }
 
-  for (PetscInt i = 0; i < d->n; i++) {
-    const PetscReal f = PetscRealPart(pa[i]), c = PetscRealPart(ba_[i]);
+  DoubleDouble4 sum[6]; /* locals, so that the accumulators stay in registers */
+  for (PetscInt i = 0; i < n; i += 4) {
+    const DoubleDoubleLanes f = LoadLanes(pa, i, n), c = LoadLanes(ba_, i, n), x = LoadLanes(xa, i, n), g = LoadLanes(ga, i, n);
     sum[0].addProductT<Fused>(f, f);
     sum[0].addProductT<Fused>(c, c);
     sum[1].addProductT<Fused>(c, c);
-    if (apa) sum[3].addProductT<Fused>(f, PetscRealPart(apa[i]));
+    sum[2].addProductT<Fused>(LoadLanes(ta, i, n), g);
+    if (apa) sum[3].addProductT<Fused>(f, LoadLanes(apa, i, n));
+    sum[4].addProductT<Fused>(x, g);
+    if (ba) sum[5].addProductT<Fused>(x, LoadLanes(ba, i, n));
   }
-  for (int q = 0; q < 6; q++) sd.sum[q] = sum[q];
+  for (int q = 0; q < 6; q++) sd.sum[q] = sum[q].total();
+  sd.sum[2].add(curved);
 }
+#pragma GCC diagnostic pop
 
 #if CONEFETI_FMA_DISPATCH
 CONEFETI_TARGET_FMA void SplitKernelFMA(SplitData &sd) { SplitKernel<true>(sd); }
@@ -279,7 +305,9 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
   if (b) PetscCall(VecGetArrayRead(b, &ba));
   PetscCall(VecGetArrayWrite(phi, &pa));
   PetscCall(VecGetArrayWrite(beta, &ba_));
-  SplitData sd{d, xa, ga, apa, ba, pa, ba_, alpha, {}};
+  PetscCallCXX(d->split_work.resize(d->n));
+  PetscCallCXX(d->split_free.resize(d->n));
+  SplitData sd{d, xa, ga, apa, ba, pa, ba_, d->split_work.data(), d->split_free.data(), alpha, {}};
 #if CONEFETI_FMA_DISPATCH
   if (ReproducibleSumUseFMA()) SplitKernelFMA(sd);
   else
@@ -303,6 +331,22 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* z_i = 0 where the last split found the entry's block not free (on the boundary, pinned): a
+   preconditioned free gradient restricted to the face, M^-1 phi -> [M^-1]_FF phi_F. */
+PetscErrorCode SeparableSetMaskFree_Private(SeparableSet set, Vec z)
+{
+  SeparableSetData *d = set->data;
+  PetscScalar      *za;
+
+  PetscFunctionBegin;
+  PetscCheck((PetscInt)d->split_free.size() == d->n, PetscObjectComm((PetscObject)set), PETSC_ERR_ORDER, "SeparableSetMaskFree_Private() before a split");
+  PetscCall(VecGetArray(z, &za));
+  for (PetscInt i = 0; i < d->n; i++)
+    if (!d->split_free[i]) za[i] = 0;
+  PetscCall(VecRestoreArray(z, &za));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Largest alpha >= 0 such that x - alpha p stays in the set (infinity if unbounded). */
 PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet set, Vec x, Vec p, PetscReal *alpha_f)
 {
@@ -316,11 +360,14 @@ PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet set, Vec x, Vec p, 
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArrayRead(p, &pa));
   const PetscReal *lo = d->lo.data(), *hi = d->hi.data();
+  /* branch-free (the sign of p is a coin toss for the branch predictor): absent bounds are infinite,
+     so their ratio is too; p = 0 and the entries of other blocks are masked */
+  const unsigned char *kind = d->kind.data();
   for (PetscInt i = 0; i < d->n; i++) {
-    if (d->kind[i] != SEPARABLE_SCALAR) continue;
     const PetscReal pi = PetscRealPart(pa[i]), xi = PetscRealPart(xa[i]);
-    if (pi > 0 && lo[i] > PETSC_NINFINITY) amin = PetscMin(amin, PetscMax(xi - lo[i], 0) / pi);
-    else if (pi < 0 && hi[i] < PETSC_INFINITY) amin = PetscMin(amin, PetscMin(xi - hi[i], 0) / pi);
+    const PetscReal r = pi > 0 ? PetscMax(xi - lo[i], 0) : PetscMin(xi - hi[i], 0);
+    const PetscReal a = (pi != 0 && kind[i] == SEPARABLE_SCALAR) ? r / pi : kInf;
+    amin              = PetscMin(amin, a);
   }
   for (size_t k = 0; k < d->disk_radius.size(); k++) {
     const PetscInt  i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];

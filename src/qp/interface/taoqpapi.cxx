@@ -183,12 +183,98 @@ PetscErrorCode TaoQPResetCounters(Tao tao)
    while the Tao had another type (TaoQPSetConstraints() and TaoQPSetLinearTerm() keep them on the Tao). */
 PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
 {
-  PetscObject set, b;
+  PetscObject set, b, projcg;
 
   PetscFunctionBegin;
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPConstraints", &set));
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPLinearTerm", &b));
+  PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPExpansionProjCG", &projcg));
   if (set) PetscTryMethod(tao, "TaoQPSetConstraints_C", (Tao, SeparableSet), (tao, (SeparableSet)set));
   if (b) PetscTryMethod(tao, "TaoQPSetLinearTerm_C", (Tao, Vec), (tao, (Vec)b));
+  if (projcg) {
+    void *flg;
+    PetscCall(PetscContainerGetPointer((PetscContainer)projcg, &flg));
+    PetscTryMethod(tao, "TaoQPSetExpansionProjCG_C", (Tao, PetscBool), (tao, *static_cast<PetscBool *>(flg)));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPSetExpansionProjCG - Whether the expansion steps of TAO `mprgp` / `mpgp` first try the projected
+  full conjugate gradient step P(x - a_cg p).
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver (of any type: a QP type chosen later adopts the setting)
+- flg - `PETSC_TRUE` to try the projected CG step, `PETSC_FALSE` for Dostal's expansion only (the default)
+
+  Options Database Key:
+. -tao_mprgp_expansion_projcg <bool> - (or -tao_mpgp_expansion_projcg) overrides the setting
+
+  Notes:
+  An expansion step starts when the CG step would leave the set. Dostal's expansion goes to the
+  boundary along p (the feasible half step) and then takes a projected gradient step of fixed
+  length; it adds a few constraints at a time, and its R-linear rate of convergence is proven. The
+  projected full CG step is kept when q there is no higher than at the feasible half step (else the
+  fixed-length step follows, one Hessian product later); it adds many constraints at once. Measured
+  (docs/qp-benchmark.md, docs/brick-benchmark.md): fewer products on discretized PDE problems (the
+  obstacle, the journal bearing, the friction disks, the brick's dual contact problems), up to twice
+  as many on random ill-conditioned QPs. The contact layer turns it on for its inner solvers.
+
+  Level: intermediate
+
+.seealso: `TAOMPRGP`, `TAOMPGP`, `TaoQPGetPC()`
+@*/
+PetscErrorCode TaoQPSetExpansionProjCG(Tao tao, PetscBool flg)
+{
+  PetscContainer container;
+  PetscBool     *value;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(tao, flg, 2);
+  PetscCall(PetscNew(&value));
+  *value = flg;
+  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)tao), &container));
+  PetscCall(PetscContainerSetPointer(container, value));
+  PetscCall(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
+  PetscCall(PetscObjectCompose((PetscObject)tao, "TaoQPExpansionProjCG", (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscTryMethod(tao, "TaoQPSetExpansionProjCG_C", (Tao, PetscBool), (tao, flg));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPGetPC - The preconditioner of a TAO `mprgp` or `mpgp` solver's CG steps (preconditioning in face).
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. pc - the preconditioner (NULL for a TAO type that is not mprgp or mpgp)
+
+  Notes:
+  The PC has the options prefix of the solver followed by `tao_mprgp_` or `tao_mpgp_` (so
+  `-tao_mprgp_pc_type icc`) and type `PCNONE` by default. At each solve it gets the Hessian and the
+  Hessian's preconditioning matrix as operators. A CG step uses z = [M^-1]_FF g_F, the preconditioned
+  free gradient restricted to the free entries (interior blocks): a principal submatrix of M^-1, hence
+  a symmetric positive definite preconditioner of the face's Hessian A_FF. Other steps and the
+  stopping test are unpreconditioned, so the result and its accuracy do not depend on M. A PC that
+  needs an assembled matrix does not work with a MATSHELL Hessian.
+
+  Level: intermediate
+
+.seealso: `TAOMPRGP`, `TAOMPGP`, `QPCounters`
+@*/
+PetscErrorCode TaoQPGetPC(Tao tao, PC *pc)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidPointer(pc, 2);
+  *pc = NULL;
+  PetscTryMethod(tao, "TaoQPGetPC_C", (Tao, PC *), (tao, pc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -106,7 +106,6 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   }
   PetscCall(PCGetType(ksp->pc, &pctype));
   PetscCall(PetscStrcmp(pctype, PCNONE, &pcnone));
-  PetscCheck(pcnone || qp->unconstrained, PetscObjectComm((PetscObject)ksp), PETSC_ERR_SUP, "KSP %s with constraints does not support preconditioning (PC %s); use -pc_type none", qp->name, pctype);
   if (ksp->guess_zero) PetscCall(VecSet(ksp->vec_sol, 0.0));
 
   /* the fixed step length matters only when there are constraints: without them every step is CG */
@@ -124,7 +123,7 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   qp->core.counters         = &qp->counters;
   qp->core.report           = KSPQPReport;
   qp->core.report_ctx       = ksp;
-  qp->core.precondition     = (qp->unconstrained && !pcnone) ? KSPQPPrecondition : nullptr;
+  qp->core.precondition     = pcnone ? nullptr : KSPQPPrecondition; /* in face: restricted to the free entries */
   qp->core.precondition_ctx = ksp;
   ksp->reason               = KSP_CONVERGED_ITERATING;
   PetscCall(MPGPCoreSolve(&qp->core, ksp->vec_sol));
@@ -158,6 +157,7 @@ PetscErrorCode KSPView_QP(KSP ksp, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "  %s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
                                    qp->norm.user > 0 ? "given" : "estimated", (double)qp->norm.used));
   PetscCall(PetscViewerASCIIPushTab(viewer));
+  PetscCall(MPGPCoreViewExpansion(&qp->core, viewer));
   PetscCall(QPCountersView(&qp->counters, NULL, viewer));
   if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
@@ -259,7 +259,7 @@ PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name
   qp->name         = name;
   ksp->data        = qp;
   PetscCall(KSPSetSupportedNorm(ksp, KSP_NORM_UNPRECONDITIONED, PC_LEFT, 3));
-  /* with constraints no preconditioner applies: default to none unless the user chose one */
+  /* a preconditioner (in face, with constraints) only when the user chooses one */
   PetscCall(KSPGetPC(ksp, &pc));
   if (!((PetscObject)pc)->type_name) PetscCall(PCSetType(pc, PCNONE));
 
@@ -300,8 +300,9 @@ PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name
   Bounds come from `KSPMPRGPSetBounds()`, `KSPQPSetConstraints()`, or the variable bounds of the KSP's DM
   (`DMSetVariableBounds()`), so an unmodified program with a DM that has bounds can use it. The
   initial guess is projected. The residual norm reported to monitors and to the convergence test is
-  the norm of the projected gradient (the KKT residual); `-ksp_rtol` is relative to |b|. With bounds
-  the PC must be none.
+  the norm of the projected gradient (the KKT residual); `-ksp_rtol` is relative to |b|. The PC is
+  none unless chosen; with bounds a PC M preconditions the CG steps in face, z = [M^-1]_FF g_F on the
+  free entries F (see `TaoQPGetPC()`).
 
   Level: beginner
 

@@ -19,6 +19,9 @@ PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject,
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_bb", kind, name));
     PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "MPGP", core->bb, &core->bb, NULL));
   }
+  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_expansion_projcg", kind, name));
+  PetscCall(PetscOptionsBool(opt, "Expansion steps first try the projected full CG step P(x - a_cg p), kept when q is no higher than at the feasible half step  (default: Dostal's expansion only)",
+                             "MPGP", core->projcg, &core->projcg, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm", kind, name));
   PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "TaoQPSetNormEstimate", norm->user, &value, &set));
   if (set) {
@@ -52,5 +55,15 @@ PetscErrorCode QPNormSettingsApply(QPNormSettings *norm, Mat A, const char *objp
   PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%s%s_%s_norm_", objprefix ? objprefix : "", kind, name));
   PetscCall(MatQPEstimateNorm(A, norm->method, norm->margin >= 0 ? norm->margin : (norm->method == QP_NORM_SLEPC ? 0.01 : 0.05), prefix, &norm->used, &products));
   counters->estimate_mults += products;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* one line on how expansion steps are done */
+PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *core, PetscViewer viewer)
+{
+  PetscFunctionBegin;
+  if (core->projcg)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: projected full CG step first (%" PetscInt_FMT " not kept), else feasible half step and fixed-length projected step\n", core->projcg_rejected));
+  else PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: feasible half step and fixed-length projected step\n"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

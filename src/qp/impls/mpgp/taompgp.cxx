@@ -30,6 +30,7 @@ struct TaoQP {
   PetscReal   cone_mu       = 1.0;
   PetscBool   counters_view = PETSC_FALSE;
   Tao         tao           = nullptr;
+  PC          pc            = nullptr; /* preconditioning in face, options -tao_<name>_pc_*; PCNONE by default */
 };
 
 TaoQP *GetQP(Tao tao) { return static_cast<TaoQP *>(tao->data); }
@@ -44,6 +45,34 @@ PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm
   PetscCall(TaoMonitor(tao, it, f, gpnorm, 0.0, step));
   PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
   *stop = tao->reason != TAO_CONTINUE_ITERATING ? PETSC_TRUE : PETSC_FALSE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TaoQPPrecondition(void *ctx, Vec g, Vec z)
+{
+  PetscFunctionBegin;
+  PetscCall(PCApply(static_cast<PC>(ctx), g, z));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The preconditioner, created on first use with the prefix -[tao prefix]tao_<name>_ and type none. */
+PetscErrorCode TaoQPGetPC_QP(Tao tao, PC *pc)
+{
+  TaoQP *qp = GetQP(tao);
+
+  PetscFunctionBegin;
+  if (!qp->pc) {
+    const char *tprefix;
+    char        prefix[64];
+    PetscCall(PCCreate(PetscObjectComm((PetscObject)tao), &qp->pc));
+    PetscCall(PetscObjectIncrementTabLevel((PetscObject)qp->pc, (PetscObject)tao, 1));
+    PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
+    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "tao_%s_", qp->name));
+    PetscCall(PCSetOptionsPrefix(qp->pc, tprefix));
+    PetscCall(PCAppendOptionsPrefix(qp->pc, prefix));
+    PetscCall(PCSetType(qp->pc, PCNONE));
+  }
+  *pc = qp->pc;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -190,7 +219,17 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   qp->core.counters   = &qp->counters;
   qp->core.report     = TaoQPReport;
   qp->core.report_ctx = tao;
-  tao->reason         = TAO_CONTINUE_ITERATING;
+  {
+    PetscBool none = PETSC_TRUE;
+    if (qp->pc) PetscCall(PetscObjectTypeCompare((PetscObject)qp->pc, PCNONE, &none));
+    qp->core.precondition     = none ? nullptr : TaoQPPrecondition;
+    qp->core.precondition_ctx = qp->pc;
+    if (!none) {
+      PetscCall(PCSetOperators(qp->pc, A, tao->hessian_pre ? tao->hessian_pre : A));
+      PetscCall(PCSetUp(qp->pc));
+    }
+  }
+  tao->reason = TAO_CONTINUE_ITERATING;
   PetscCall(MPGPCoreSolve(&qp->core, tao->solution));
   PetscCall(VecCopy(qp->core.g, tao->gradient));
   if (qp->core.status == MPGPStatus::INDEFINITE) {
@@ -212,6 +251,11 @@ PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptions
 
   PetscFunctionBegin;
   PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), "tao", qp->name, &qp->core, &qp->norm, &qp->counters_view));
+  {
+    PC pc;
+    PetscCall(TaoQPGetPC_QP(tao, &pc));
+    PetscCall(PCSetFromOptions(pc));
+  }
   PetscCall(PetscSNPrintf(title, sizeof(title), "%s: block description from the variable bounds", qp->name));
   PetscOptionsHeadBegin(PetscOptionsObject, title);
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_block_type", qp->name));
@@ -237,8 +281,13 @@ PetscErrorCode TaoView_QP(Tao tao, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
                                    qp->norm.user > 0 ? "given" : "estimated", (double)qp->norm.used));
+  PetscCall(MPGPCoreViewExpansion(&qp->core, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "stopping: |projected gradient| <= max(gatol %g, gttol %g * |b| = %g)\n", (double)tao->gatol, (double)tao->gttol, (double)(tao->gttol * qp->bnorm)));
   PetscCall(QPCountersView(&qp->counters, NULL, viewer));
+  if (qp->core.precondition) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "preconditioning in face (the PC restricted to the free entries):\n"));
+    PetscCall(PCView(qp->pc, viewer));
+  }
   if (qp->core.status == MPGPStatus::INDEFINITE) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the Hessian is not positive definite (p'Ap <= 0)\n"));
   if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
@@ -254,7 +303,9 @@ PetscErrorCode TaoDestroy_QP(Tao tao)
   PetscCall(SeparableSetDestroy(&qp->user_set));
   PetscCall(SeparableSetDestroy(&qp->set));
   PetscCall(VecDestroy(&qp->b));
-  for (const char *fn : {"TaoQPSetConstraints_C", "TaoQPGetConstraints_C", "TaoQPSetLinearTerm_C", "TaoQPSetNormEstimate_C", "TaoQPGetNormEstimate_C", "TaoQPGetCounters_C", "TaoQPResetCounters_C"})
+  PetscCall(PCDestroy(&qp->pc));
+  for (const char *fn : {"TaoQPSetConstraints_C", "TaoQPGetConstraints_C", "TaoQPSetLinearTerm_C", "TaoQPSetNormEstimate_C", "TaoQPGetNormEstimate_C", "TaoQPGetCounters_C", "TaoQPResetCounters_C",
+                         "TaoQPGetPC_C", "TaoQPSetExpansionProjCG_C"})
     PetscCall(PetscObjectComposeFunction((PetscObject)tao, fn, NULL));
   delete qp;
   tao->data = NULL;
@@ -307,6 +358,13 @@ PetscErrorCode TaoQPGetNormEstimate_QP(Tao tao, PetscReal *norm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode TaoQPSetExpansionProjCG_QP(Tao tao, PetscBool flg)
+{
+  PetscFunctionBegin;
+  GetQP(tao)->core.projcg = flg;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TaoQPGetCounters_QP(Tao tao, QPCounters *c)
 {
   PetscFunctionBegin;
@@ -354,6 +412,8 @@ PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetNormEstimate_C", TaoQPGetNormEstimate_QP));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetCounters_C", TaoQPGetCounters_QP));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPResetCounters_C", TaoQPResetCounters_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetPC_C", TaoQPGetPC_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetExpansionProjCG_C", TaoQPSetExpansionProjCG_QP));
   PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -370,6 +430,8 @@ PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name
 . -tao_mprgp_norm <value>        - ||A|| given, not estimated
 . -tao_mprgp_norm_method <slepc> - slepc or power
 . -tao_mprgp_norm_margin         - safety margin on the estimate
+. -tao_mprgp_expansion_projcg <false> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`)
+. -tao_mprgp_pc_type <none>      - preconditioner of the CG steps, restricted to the free entries (preconditioning in face; e.g. icc, jacobi)
 - -tao_mprgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:
@@ -379,6 +441,10 @@ PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name
   `TaoQPSetConstraints()`. The initial guess is projected. The solver stops when the projected
   gradient satisfies |gP| <= max(gatol, gttol |b|) (`-tao_gatol`, `-tao_gttol`, defaults 0 and 1e-8),
   or after `-tao_max_it` iterations. Each iteration costs one Hessian product (expansion steps two).
+  With a preconditioner M (`-tao_mprgp_pc_type`, `TaoQPGetPC()`; it is set up with the Hessian and the
+  Hessian's preconditioning matrix) the CG steps use z = [M^-1]_FF g_F on the free set F, a principal
+  submatrix of M^-1, hence symmetric positive definite on the face; the proportioning test, the
+  expansion and proportioning steps and the stopping test stay unpreconditioned.
 
   Level: beginner
 
@@ -404,6 +470,8 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_bb <false>          - try Barzilai-Borwein lengths in gradient projection steps, kept only when q decreases
 . -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
 . -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
+. -tao_mpgp_expansion_projcg <false> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`)
+. -tao_mpgp_pc_type <none>      - preconditioner of the CG steps, restricted to the free entries and interior blocks
 - -tao_mpgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:
