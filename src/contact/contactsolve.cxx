@@ -319,19 +319,6 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
       PetscCall(TaoSMALXESetAnderson(d->tao, 1, 3));
     }
   }
-  /* inner solvers: expansion steps try the projected CG step first (TaoQPSetExpansionProjCG(); on the
-     brick n_A is lower at most sizes and grows less with n, docs/brick-benchmark.md) */
-  if (d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED) {
-    for (PetscInt k = 0; k < 2; k++) {
-      Tao sub;
-      PetscCall(TaoSMALXEGetBlockSubsolver(d->tao, k, &sub));
-      PetscCall(TaoQPSetExpansionProjCG(sub, PETSC_TRUE));
-    }
-  } else {
-    Tao sub;
-    PetscCall(TaoSMALXEGetSubsolver(d->tao, &sub));
-    PetscCall(TaoQPSetExpansionProjCG(sub, PETSC_TRUE));
-  }
   PetscCall(TaoSetFromOptions(d->tao));
   d->setup = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);

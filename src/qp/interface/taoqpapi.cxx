@@ -220,7 +220,8 @@ PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
   fixed-length step follows, one Hessian product later); it adds many constraints at once. Measured
   (docs/qp-benchmark.md, docs/brick-benchmark.md): fewer products on discretized PDE problems (the
   obstacle, the journal bearing, the friction disks, the brick's dual contact problems), up to twice
-  as many on random ill-conditioned QPs. The contact layer turns it on for its inner solvers.
+  as many on random ill-conditioned QPs; mixed on the brick's friction problems (fewer products at
+  -contact_rtol 1e-3 and 1e-4, more at the other tolerances), where it stays off.
 
   Level: intermediate
 

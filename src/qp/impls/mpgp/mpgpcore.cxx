@@ -5,7 +5,7 @@
      CG step stays feasible;
    - expansion step otherwise in the proportional case: to the boundary by the largest feasible step
      along p, then a projected step of fixed length alpha along the free gradient, and CG restarts.
-     With -tao_mprgp_expansion_projcg (TaoQPSetExpansionProjCG(); the contact layer's inner solvers)
+     With -tao_mprgp_expansion_projcg (TaoQPSetExpansionProjCG())
      the projected full CG step P(x - a_cg p) is tried first and kept when q there is no higher than
      at the feasible half step (q's change at the half step is known from g'p and p'Ap, so the test
      is free; a rejected try costs one product). It adds many constraints at once where the
