@@ -46,6 +46,14 @@ BOUND_SOLVERS = [
     ("bqpip, -upper 100 -pc_type none", ["-tao_type", "bqpip", "-upper", "100", "-pc_type", "none"], {"sizes": ["small"], "factors": [10.0, 1.0, 1e-1, 1e-2]}),  # 20x the products of bqpip with ILU
     # sensitivity of ours to the fixed step length (not the defaults)
     ("mprgp, -tao_mprgp_alpha 1", ["-tao_type", "mprgp", "-tao_mprgp_alpha", "1"]),
+    # the projected CG expansion, preconditioning in face with ICC(0) (the counterpart of gpcg's ILU(0)),
+    # and both with Gamma = 2 (fewer proportioning steps: the preconditioned CG steps make more progress)
+    ("mprgp, -tao_mprgp_expansion_projcg", ["-tao_type", "mprgp", "-tao_mprgp_expansion_projcg"]),
+    ("mprgp, -tao_mprgp_pc_type icc", ["-tao_type", "mprgp", "-tao_mprgp_pc_type", "icc"]),
+    ("mprgp, -tao_mprgp_pc_type icc -tao_mprgp_expansion_projcg -tao_mprgp_gamma 2",
+     ["-tao_type", "mprgp", "-tao_mprgp_pc_type", "icc", "-tao_mprgp_expansion_projcg", "-tao_mprgp_gamma", "2"]),
+    ("mpgp, -tao_mpgp_pc_type icc -tao_mpgp_expansion_projcg -tao_mpgp_gamma 2",
+     ["-tao_type", "mpgp", "-tao_mpgp_pc_type", "icc", "-tao_mpgp_expansion_projcg", "-tao_mpgp_gamma", "2"]),
 ]
 DISK_SOLVERS = [
     ("mpgp", ["-tao_type", "mpgp"]),
@@ -54,6 +62,7 @@ DISK_SOLVERS = [
     ("mpgp, -tao_mpgp_bb 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1"]),
     ("mpgp, -tao_mpgp_alpha 1", ["-tao_type", "mpgp", "-tao_mpgp_alpha", "1"]),
     ("mpgp, -tao_mpgp_bb 1 -tao_mpgp_alpha 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1", "-tao_mpgp_alpha", "1"]),
+    ("mpgp, -tao_mpgp_bb 1 -tao_mpgp_alpha 1 -tao_mpgp_expansion_projcg", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1", "-tao_mpgp_alpha", "1", "-tao_mpgp_expansion_projcg"]),
     ("almm", ["-tao_type", "almm"], {"factors": [1.0, 1e-2, 1e-4]}),
     ("almm, -tao_almm_type classic", ["-tao_type", "almm", "-tao_almm_type", "classic"], {"timeout": 30, "sizes": ["small"]}),  # stalls
     ("pdipm", ["-tao_type", "pdipm", "-mat_mumps_icntl_14", "200"]),
