@@ -20,7 +20,7 @@ PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject,
     PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "MPGP", core->bb, &core->bb, NULL));
   }
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_expansion_projcg", kind, name));
-  PetscCall(PetscOptionsBool(opt, "Expansion steps first try the projected full CG step P(x - a_cg p), kept when q is no higher than at the feasible half step  (default: Dostal's expansion only)",
+  PetscCall(PetscOptionsBool(opt, "Expansion steps first try the projected full CG step P(x - a_cg p), kept when q is no higher than at the feasible half step (default: Dostal's expansion only)",
                              "MPGP", core->projcg, &core->projcg, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm", kind, name));
   PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "TaoQPSetNormEstimate", norm->user, &value, &set));
