@@ -7,6 +7,7 @@
 
 #include <petscvec.h>
 #include <cmath>
+#include <type_traits>
 
 /* FMA in every function (the build's baseline has it) or only in run-time dispatched clones: an
    x86-64 baseline build has no FMA, but nearly every x86-64 CPU in use does. The library is compiled
@@ -28,48 +29,6 @@
 #  define CONEFETI_INLINE_KERNEL inline
 #endif
 
-struct DoubleDouble {
-  double hi = 0, lo = 0;
-
-  /* add a double exactly (Knuth's TwoSum), keeping the error in lo */
-  inline void add(double a)
-  {
-    const double s  = hi + a;
-    const double bb = s - hi;
-    const double e  = (hi - (s - bb)) + (a - bb);
-    hi              = s;
-    lo += e;
-  }
-  /* add the exact product a*b (TwoProd): the rounded product plus its exact error term. With a
-     fused multiply-add the error is one instruction; without it, Dekker's product (Veltkamp
-     splitting, exact barring overflow) gives the same error term in about 17 operations. Both are
-     exact, so the two variants return bitwise the same sums; which one runs is chosen at compile
-     time (addProduct) or, for the kernels that have an FMA clone, at run time (see
-     ReproducibleSumUseFMA()). Fused = true only inside code compiled for FMA (CONEFETI_TARGET_FMA
-     or an FMA baseline): elsewhere __builtin_fma is a call into libm. */
-  template <bool Fused> inline void addProductT(double a, double b)
-  {
-    const double p = a * b;
-    double       e;
-    if constexpr (Fused) e = __builtin_fma(a, b, -p);
-    else {
-      constexpr double split = 134217729.0; /* 2^27 + 1 */
-      const double     ta = split * a, ah = ta - (ta - a), al = a - ah;
-      const double     tb = split * b, bh = tb - (tb - b), bl = b - bh;
-      e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    }
-    add(p);
-    lo += e;
-  }
-  inline void addProduct(double a, double b) { addProductT<CONEFETI_FMA_BASELINE>(a, b); }
-  inline void add(const DoubleDouble &o)
-  {
-    add(o.hi);
-    lo += o.lo;
-  }
-  inline double value() const { return hi + lo; }
-};
-
 /* Four double-double accumulators side by side: lane k takes the terms k, k + 4, k + 8, ... of a
    local array and the lanes are added at the end. One accumulator is a chain of dependent
    additions (about ten operations per term, one term at a time); four independent ones run as one
@@ -80,33 +39,56 @@ typedef double DoubleDoubleLanes __attribute__((vector_size(4 * sizeof(double)))
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-struct DoubleDouble4 {
-  DoubleDoubleLanes hi = {0, 0, 0, 0}, lo = {0, 0, 0, 0};
+/* A double-double accumulator of T = double (one sum) or DoubleDoubleLanes (four sums, lane-wise):
+   the same operations either way. */
+template <class T> struct DoubleDoubleT {
+  T hi{}, lo{};
 
-  inline void add(const DoubleDoubleLanes &a)
+  /* add a value exactly (Knuth's TwoSum), keeping the error in lo */
+  inline void add(const T &a)
   {
-    const DoubleDoubleLanes s  = hi + a;
-    const DoubleDoubleLanes bb = s - hi;
-    const DoubleDoubleLanes e  = (hi - (s - bb)) + (a - bb);
-    hi                         = s;
+    const T s  = hi + a;
+    const T bb = s - hi;
+    const T e  = (hi - (s - bb)) + (a - bb);
+    hi         = s;
     lo += e;
   }
-  /* lane-wise DoubleDouble::addProductT: the same exact error terms */
-  template <bool Fused> inline void addProductT(const DoubleDoubleLanes &a, const DoubleDoubleLanes &b)
+  /* add the exact product a*b (TwoProd): the rounded product plus its exact error term. With a
+     fused multiply-add the error is one instruction; without it, Dekker's product (Veltkamp
+     splitting, exact barring overflow) gives the same error term in about 17 operations. Both are
+     exact, so the two variants return bitwise the same sums; which one runs is chosen at compile
+     time (addProduct) or, for the kernels that have an FMA clone, at run time (see
+     ReproducibleSumUseFMA()). Fused = true only inside code compiled for FMA (CONEFETI_TARGET_FMA
+     or an FMA baseline): elsewhere __builtin_fma is a call into libm. */
+  template <bool Fused> inline void addProductT(const T &a, const T &b)
   {
-    const DoubleDoubleLanes p = a * b;
-    DoubleDoubleLanes       e;
-    if constexpr (Fused) {
-      for (int k = 0; k < 4; k++) e[k] = __builtin_fma(a[k], b[k], -p[k]);
-    } else {
-      const double            split = 134217729.0; /* 2^27 + 1 */
-      const DoubleDoubleLanes ta = split * a, ah = ta - (ta - a), al = a - ah;
-      const DoubleDoubleLanes tb = split * b, bh = tb - (tb - b), bl = b - bh;
+    const T p = a * b;
+    T       e;
+    if constexpr (!Fused) {
+      constexpr double split = 134217729.0; /* 2^27 + 1 */
+      const T          ta = split * a, ah = ta - (ta - a), al = a - ah;
+      const T          tb = split * b, bh = tb - (tb - b), bl = b - bh;
       e = ((ah * bh - p) + ah * bl + al * bh) + al * bl;
-    }
+    } else if constexpr (std::is_same_v<T, double>) e = __builtin_fma(a, b, -p);
+    else
+      for (int k = 0; k < 4; k++) e[k] = __builtin_fma(a[k], b[k], -p[k]);
     add(p);
     lo += e;
   }
+};
+
+struct DoubleDouble : DoubleDoubleT<double> {
+  using DoubleDoubleT<double>::add;
+  inline void addProduct(double a, double b) { addProductT<CONEFETI_FMA_BASELINE>(a, b); }
+  inline void add(const DoubleDouble &o)
+  {
+    add(o.hi);
+    lo += o.lo;
+  }
+  inline double value() const { return hi + lo; }
+};
+
+struct DoubleDouble4 : DoubleDoubleT<DoubleDoubleLanes> {
   /* the lanes added into one DoubleDouble, lane 0 first */
   inline DoubleDouble total() const
   {

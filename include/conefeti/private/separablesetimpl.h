@@ -38,7 +38,7 @@ struct SeparableSetData {
   std::vector<PetscReal>     lo, hi;     /* n entries; +-infinity when absent */
   std::vector<PetscReal>     eff_center; /* 2 per disk */
   std::vector<PetscReal>     cone_apex;  /* 3 per cone */
-  std::vector<PetscReal>     split_work; /* n entries, scratch of SeparableSetSplitGradient_Private() */
+  std::vector<PetscReal>     split_work; /* n entries (sized at setup), scratch of SeparableSetSplitGradient_Private() */
   std::vector<unsigned char> split_free; /* n entries: 1 where the last split found the entry's block free (interior) */
   bool                       has_bounds = false;
   bool                       dirty      = true;

@@ -80,6 +80,8 @@ PetscErrorCode ReproducibleAllreduce(DoubleDouble *v, PetscInt count, MPI_Comm c
 }
 
 namespace {
+#pragma GCC diagnostic                            push
+#pragma GCC diagnostic                            ignored "-Wpsabi" /* lanes are passed only between inlined functions */
 template <bool Fused> CONEFETI_INLINE_KERNEL void DotKernel(PetscInt n, const PetscScalar *a, const PetscScalar *b, const PetscScalar *c, const PetscScalar *e, DoubleDouble s[2])
 {
   DoubleDouble4 s0, s1; /* locals: kept in registers, not stored back after every term */
@@ -89,6 +91,7 @@ template <bool Fused> CONEFETI_INLINE_KERNEL void DotKernel(PetscInt n, const Pe
   s[0] = s0.total();
   s[1] = s1.total();
 }
+#pragma GCC diagnostic pop
 #if CONEFETI_FMA_DISPATCH
 CONEFETI_TARGET_FMA void DotKernelFMA(PetscInt n, const PetscScalar *a, const PetscScalar *b, const PetscScalar *c, const PetscScalar *e, DoubleDouble s[2]) { DotKernel<true>(n, a, b, c, e, s); }
 #endif

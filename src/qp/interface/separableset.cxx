@@ -468,6 +468,8 @@ PetscErrorCode SeparableSetSetUp_Private(SeparableSet set)
   if (d->shift) PetscCall(VecGetArrayRead(d->shift, &s));
   PetscCallCXX(d->lo.assign(d->n, PETSC_NINFINITY));
   PetscCallCXX(d->hi.assign(d->n, PETSC_INFINITY));
+  PetscCallCXX(d->split_work.resize(d->n));
+  PetscCallCXX(d->split_free.assign(d->n, 0));
   d->has_bounds = false;
   for (PetscInt i = 0; i < d->n; i++) {
     if (d->kind[i] != SEPARABLE_SCALAR) continue;

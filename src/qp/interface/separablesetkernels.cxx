@@ -305,8 +305,6 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
   if (b) PetscCall(VecGetArrayRead(b, &ba));
   PetscCall(VecGetArrayWrite(phi, &pa));
   PetscCall(VecGetArrayWrite(beta, &ba_));
-  PetscCallCXX(d->split_work.resize(d->n));
-  PetscCallCXX(d->split_free.resize(d->n));
   SplitData sd{d, xa, ga, apa, ba, pa, ba_, d->split_work.data(), d->split_free.data(), alpha, {}};
 #if CONEFETI_FMA_DISPATCH
   if (ReproducibleSumUseFMA()) SplitKernelFMA(sd);
@@ -339,7 +337,6 @@ PetscErrorCode SeparableSetMaskFree_Private(SeparableSet set, Vec z)
   PetscScalar      *za;
 
   PetscFunctionBegin;
-  PetscCheck((PetscInt)d->split_free.size() == d->n, PetscObjectComm((PetscObject)set), PETSC_ERR_ORDER, "SeparableSetMaskFree_Private() before a split");
   PetscCall(VecGetArray(z, &za));
   for (PetscInt i = 0; i < d->n; i++)
     if (!d->split_free[i]) za[i] = 0;
