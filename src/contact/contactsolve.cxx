@@ -86,7 +86,7 @@ PetscErrorCode Consistent(Tao, Vec lambda, PetscBool *ok, void *ctx)
   ContactProblem         cp = static_cast<ContactProblem>(ctx);
   ContactProblemData    *d  = Data(cp);
   std::vector<PetscReal> target;
-  PetscReal              rel;
+  PetscReal              rel = 0;
 
   PetscFunctionBegin;
   PetscCall(TargetRadii(cp, lambda, target));
