@@ -228,22 +228,35 @@ static PetscErrorCode CreateShell(FETI feti, PetscInt m, PetscInt n, PetscErrorC
 
 /* KSPSetUp() of a direct solver, reporting a failed factorization (zero or negative pivot: a singular
    matrix) through *failed instead of the factorization package's own error, so that the caller can
-   say what the singularity means */
+   say what the singularity means. Any other failure inside the package (an ordering that fails, out of
+   memory, a bad package option) is an error that names the options prefix: it says nothing about the
+   matrix. */
 PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscBool *failed)
 {
   PetscErrorCode ierr;
   PC             pc;
   PCFailedReason reason = PC_NOERROR;
+  PetscBool      errorif;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
+  /* without error-if-failure a zero pivot is a PC failed reason in every package (MUMPS would raise the
+     same library error code as for any other failure) */
+  PetscCall(KSPGetErrorIfNotConverged(ksp, &errorif));
+  PetscCall(KSPSetErrorIfNotConverged(ksp, PETSC_FALSE));
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
   ierr = KSPSetUp(ksp);
   PetscCall(PetscPopErrorHandler());
+  PetscCall(KSPSetErrorIfNotConverged(ksp, errorif));
   PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
-  if (!ierr) {
-    PetscCall(KSPGetPC(ksp, &pc));
-    PetscCall(PCGetFailedReason(pc, &reason));
+  PetscCall(KSPGetPC(ksp, &pc));
+  if (!ierr) PetscCall(PCGetFailedReason(pc, &reason));
+  if (ierr && ierr != PETSC_ERR_MAT_CH_ZRPVT && ierr != PETSC_ERR_MAT_LU_ZRPVT) {
+    const char *prefix;
+    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    SETERRQ(PETSC_COMM_SELF, ierr,
+            "The sparse factorization (options prefix -%s) failed inside the solver package with PETSc error %d, not at a zero pivot: check the -%spc_factor_mat_solver_type and -%smat_* options",
+            prefix ? prefix : "", (int)ierr, prefix ? prefix : "", prefix ? prefix : "");
   }
   *failed = (ierr || reason != PC_NOERROR) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -99,8 +99,13 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet, const
       PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
       {
         MatFactorError err = MAT_FACTOR_NOERROR;
-        if (!ierr) PetscCall(MatFactorGetError(sd.Fii, &err));
-        PetscCheck(!ierr && err == MAT_FACTOR_NOERROR, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+        /* K_ii is a fresh matrix (no error-if-failure): a zero pivot is a factor error, any raised error is the package's */
+        PetscCheck(!ierr, PETSC_COMM_SELF, ierr,
+                   "Dirichlet preconditioner: the factorization of K_ii by %s failed inside the solver package with PETSc error %d, not at a zero pivot: check the "
+                   "-feti_dirichlet_pc_factor_mat_solver_type and -mat_* options",
+                   solver, (int)ierr);
+        PetscCall(MatFactorGetError(sd.Fii, &err));
+        PetscCheck(err == MAT_FACTOR_NOERROR, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
                    "Dirichlet preconditioner: the interior block K_ii of a subdomain is singular (a part of the subdomain not connected to its interface?)");
       }
       PetscCall(ISDestroy(&rperm));
