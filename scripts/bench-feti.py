@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """FETI benchmark: prints the Markdown tables of docs/feti-benchmark.md.
 
-usage: scripts/bench-feti.py [--build build] [--ranks 2] [--quick] [--parts factor,scaling,compare] [--hugepages 1]
+usage: scripts/bench-feti.py [--build build] [--ranks 2] [--quick] [--parts factor,scaling,compare,memory] [--hugepages 1]
 
   factor   sparse Cholesky of one subdomain (petsc / cholmod / mumps) on 1e3 - 1e5 dofs: factorization
            time, time of one K+ application (two triangular solves), peak memory; 1 rank
@@ -9,6 +9,8 @@ usage: scripts/bench-feti.py [--build build] [--ranks 2] [--quick] [--parts fact
            setup time, time per F product, CG iterations, peak RSS per primal unknown, up to > 1M unknowns
   compare  FETI against CG + GAMG (rigid-body near-null space) and a direct MUMPS Cholesky on the same
            mesh, and the time ratios
+  memory   where the peak RSS goes at about 1M primal unknowns for H/h = 4, 6, 8 (PETSc's -log_view_memory:
+           resident memory added inside each setup event, summed over ranks)
 
 Every number is the RESULT line of one run of feti_ex2_elasticity (best of --repeat runs for times)."""
 import argparse
@@ -114,13 +116,58 @@ def compare_table(exe, ranks, repeat, quick):
     print()
 
 
+def memory_events(exe, ranks, args):
+    """Run once with -log_view_memory; return the RESULT dictionary and the resident memory [bytes] each
+    event added (last column, summed over ranks and calls), or None on failure."""
+    cmd = ["mpiexec", "-n", str(ranks), exe] + args + ["-log_view", "-log_view_memory"]
+    out = subprocess.run(cmd, env=ENV, capture_output=True, text=True, timeout=3600).stdout
+    m = re.search(r"^RESULT (.*)$", out, re.M)
+    if not m:
+        sys.stderr.write("failed: %s\n%s\n" % (" ".join(cmd), out[-2000:]))
+        return None
+    r = {k: (float(v) if re.match(r"^-?[0-9.e+-]+$", v) else v) for k, v in (kv.split("=") for kv in m.group(1).split())}
+    rmi = {}
+    for line in out.splitlines():
+        f = line.split()
+        if len(f) > 20 and f[0] in ("FEMSetUp", "FEMDecompose", "FEMAssembly", "FETISetUp", "FETIAssembly", "FETIFactor"):
+            rmi[f[0]] = float(f[-1]) * 1e6  # PETSc prints decimal megabytes
+    return r, rmi
+
+
+def memory_table(exe, ranks, quick):
+    print("### Where the memory goes (%d ranks, lumped preconditioner)\n" % ranks)
+    print("Resident memory each setup stage added (PETSc's `-log_view_memory`, summed over the ranks), in bytes per primal")
+    print("unknown. Mesh = the boxes and the decomposition; K_s, f_s = subdomain assembly; FETI operators = B, the kernels,")
+    print("G and the coarse matrix GG^T (incl. transient products); factors = the subdomain Cholesky factorizations (CHOLMOD);")
+    print("other FETI setup = coarse factorization, the lumped preconditioner's K_bb blocks, work vectors; rest = MPI and")
+    print("PETSc start-up, the solve's vectors and allocator slack (peak RSS minus the stages).\n")
+    print("| H/h | subdomains | primal unknowns | mesh | K_s, f_s | FETI operators | factors | other FETI setup | rest | peak RSS / primal unknown [B] |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    configs = [(4, 14), (6, 10), (8, 8)] if not quick else [(4, 4), (8, 2)]
+    for m, p in configs:
+        res = memory_events(exe, ranks, ["-cells", str(m * p), "-fem_subdomains", "%d,%d,%d" % (p, p, p), "-feti_pc_type", "lumped"])
+        if res is None:
+            print("| %d | %d | failed | | | | | | | |" % (m, p ** 3))
+            continue
+        r, e = res
+        n = r["primal"]
+        mesh = e.get("FEMSetUp", 0) + e.get("FEMDecompose", 0)
+        assembly = e.get("FEMAssembly", 0)
+        operators = e.get("FETIAssembly", 0)
+        factors = e.get("FETIFactor", 0)
+        other = e.get("FETISetUp", 0) - operators - factors
+        rest = r["rss"] - mesh - assembly - e.get("FETISetUp", 0)
+        print("| %d | %d | %d | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f |" % (m, r["subdomains"], n, mesh / n, assembly / n, operators / n, factors / n, other / n, rest / n, r["rss"] / n))
+    print()
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build"))
     ap.add_argument("--ranks", type=int, default=2)
     ap.add_argument("--repeat", type=int, default=2)
     ap.add_argument("--quick", action="store_true", help="small sizes only (a smoke test of the script)")
-    ap.add_argument("--parts", default="factor,scaling,compare")
+    ap.add_argument("--parts", default="factor,scaling,compare,memory")
     ap.add_argument("--hugepages", type=int, default=1, help="1: run with transparent huge pages (scripts/hugepages.py), 0: without")
     a = ap.parse_args()
     ENV.update({k: v for k, v in hugepages.environment(a.hugepages).items() if k in ("OMP_NUM_THREADS", "GLIBC_TUNABLES")})
@@ -136,6 +183,8 @@ def main():
         scaling_table(exe, a.ranks, a.repeat, a.quick)
     if "compare" in parts:
         compare_table(exe, a.ranks, a.repeat, a.quick)
+    if "memory" in parts:
+        memory_table(exe, a.ranks, a.quick)
 
 
 if __name__ == "__main__":
