@@ -10,7 +10,8 @@ enum class MPGPVariant {
 
 enum class MPGPStatus {
   STOPPED,    /* the owner's report callback asked to stop (converged or out of iterations) */
-  INDEFINITE, /* p'Ap <= 0: the Hessian is not positive definite on the search space */
+  INDEFINITE, /* p'Ap < 0: the Hessian is not positive semidefinite on the search space */
+  UNBOUNDED,  /* p'Ap = 0 along a descent direction that no constraint stops: q is unbounded below */
   NOT_A_NUMBER
 };
 

@@ -42,6 +42,7 @@ struct SeparableSetData {
   std::vector<unsigned char> split_free; /* n entries: 1 where the last split found the entry's block free (interior) */
   bool                       has_bounds = false;
   bool                       dirty      = true;
+  PetscObjectState           lb_state = 0, ub_state = 0, shift_state = 0; /* of lb, ub, shift when the effective data were made */
 };
 
 struct _p_SeparableSet {

@@ -120,8 +120,8 @@ static PetscErrorCode SeparableSetReplaceVec(Vec src, Vec *dst)
 - ub  - upper bounds, entries may be `PETSC_INFINITY`; NULL means no upper bounds
 
   Notes:
-  The vectors are referenced, not copied: changing their values later changes the set (call
-  `SeparableSetSetBounds()` again so that the set notices). Entries of lb/ub at positions that belong
+  The vectors are referenced, not copied: changing their values later changes the set (the set
+  notices through the vectors' object states, as PETSc objects do). Entries of lb/ub at positions that belong
   to disk or cone blocks are ignored. lb > ub is an error.
 
   Level: beginner
@@ -454,15 +454,23 @@ PetscErrorCode SeparableSetIsUnconstrained(SeparableSet set, PetscBool *free)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Folds the shift into bounds, centers and apexes, and validates l <= u. Cheap; done when dirty. */
+/* Folds the shift into bounds, centers and apexes, and validates l <= u. Cheap; done when dirty,
+   which includes new values written into the bound or shift vectors since (their object states). */
 PetscErrorCode SeparableSetSetUp_Private(SeparableSet set)
 {
   SeparableSetData  *d  = set->data;
   const PetscScalar *lb = NULL, *ub = NULL, *s = NULL;
-  PetscInt           bad = -1;
+  PetscInt           bad      = -1;
+  PetscObjectState   state[3] = {0, 0, 0};
 
   PetscFunctionBegin;
-  if (!d->dirty) PetscFunctionReturn(PETSC_SUCCESS);
+  if (d->lb) PetscCall(PetscObjectStateGet((PetscObject)d->lb, &state[0]));
+  if (d->ub) PetscCall(PetscObjectStateGet((PetscObject)d->ub, &state[1]));
+  if (d->shift) PetscCall(PetscObjectStateGet((PetscObject)d->shift, &state[2]));
+  if (!d->dirty && state[0] == d->lb_state && state[1] == d->ub_state && state[2] == d->shift_state) PetscFunctionReturn(PETSC_SUCCESS);
+  d->lb_state    = state[0];
+  d->ub_state    = state[1];
+  d->shift_state = state[2];
   if (d->lb) PetscCall(VecGetArrayRead(d->lb, &lb));
   if (d->ub) PetscCall(VecGetArrayRead(d->ub, &ub));
   if (d->shift) PetscCall(VecGetArrayRead(d->shift, &s));

@@ -128,7 +128,10 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   ksp->reason               = KSP_CONVERGED_ITERATING;
   PetscCall(MPGPCoreSolve(&qp->core, ksp->vec_sol));
   if (qp->core.status == MPGPStatus::INDEFINITE) ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
-  else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) ksp->reason = KSP_DIVERGED_NANORINF;
+  else if (qp->core.status == MPGPStatus::UNBOUNDED) { /* as KSPCG on p'Ap = 0 */
+    PetscCall(PetscInfo(ksp, "KSP %s: p'Ap = 0 along a descent direction no constraint stops: the problem is unbounded below (a singular operator with an inconsistent right-hand side?)\n", qp->name));
+    ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
+  } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) ksp->reason = KSP_DIVERGED_NANORINF;
   if (qp->counters_view) {
     PetscViewer viewer;
     PetscCall(PetscViewerASCIIGetStdout(PetscObjectComm((PetscObject)ksp), &viewer));

@@ -100,6 +100,26 @@ static PetscErrorCode MPGPCorePrecondition(MPGPCore *c)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A direction d with d'Ad <= 0. Zero curvature up to rounding (|d'Ad| <= 1e-10 ||A|| |d|^2: a
+   semicoercive problem, e.g. a floating body, with d in the kernel of A) is fine as long as a constraint
+   stops the step (af finite): *status STOPPED, the caller steps to the boundary. Otherwise the solve
+   ends: NaN, negative curvature (INDEFINITE), or a flat descent direction nothing stops (UNBOUNDED). */
+static PetscErrorCode MPGPCoreFlatDirection(MPGPCore *c, Vec d, PetscReal dAd, PetscReal af, MPGPStatus *status)
+{
+  PetscReal dd;
+
+  PetscFunctionBegin;
+  if (PetscIsInfOrNanReal(dAd)) {
+    *status = MPGPStatus::NOT_A_NUMBER;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(ReproducibleDot(d, d, &dd));
+  if (dAd < -1e-10 * c->normA * dd) *status = MPGPStatus::INDEFINITE;
+  else if (af >= PETSC_INFINITY) *status = MPGPStatus::UNBOUNDED;
+  else *status = MPGPStatus::STOPPED;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Search direction after a restart: the free gradient, or its preconditioned version. */
 static PetscErrorCode MPGPCoreRestartDirection(MPGPCore *c)
 {
@@ -154,12 +174,16 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
       PetscReal pAp, gp, acg, af;
       PetscCall(MPGPCoreMult(c, c->p, c->Ap));
       PetscCall(ReproducibleDot2(c->Ap, c->p, c->g, c->p, &pAp, &gp));
-      if (!(pAp > 0)) {
-        c->status = PetscIsInfOrNanReal(pAp) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
-        break;
-      }
-      acg = gp / pAp;
       PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->p, &af));
+      if (!(pAp > 0)) {
+        MPGPStatus flat;
+        PetscCall(MPGPCoreFlatDirection(c, c->p, pAp, af, &flat));
+        if (flat != MPGPStatus::STOPPED) {
+          c->status = flat;
+          break;
+        }
+        acg = PETSC_INFINITY; /* q falls linearly along -p: go to the boundary (expansion) */
+      } else acg = gp / pAp;
       if (acg <= af) { /* conjugate gradient step */
         PetscReal gamma_cg;
         PetscCall(ReproducibleAXPY(x, -acg, c->p));
@@ -220,15 +244,19 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
         PetscReal bAb, gb;
         PetscCall(MPGPCoreMult(c, c->beta, c->Ap));
         PetscCall(ReproducibleDot2(c->Ap, c->beta, c->g, c->beta, &bAb, &gb));
-        if (!(bAb > 0)) {
-          c->status = PetscIsInfOrNanReal(bAb) ? MPGPStatus::NOT_A_NUMBER : MPGPStatus::INDEFINITE;
-          break;
-        }
         /* the exact line search step leaves lower bounds inward, but with both bounds on an entry it
            can cross the opposite one: stop there (q still decreases, the step is shorter) */
         PetscReal af;
         PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->beta, &af));
-        step = PetscMin(gb / bAb, af);
+        if (!(bAb > 0)) {
+          MPGPStatus flat;
+          PetscCall(MPGPCoreFlatDirection(c, c->beta, bAb, af, &flat));
+          if (flat != MPGPStatus::STOPPED) {
+            c->status = flat;
+            break;
+          }
+        }
+        step = bAb > 0 ? PetscMin(gb / bAb, af) : af;
         PetscCall(ReproducibleAXPY(x, -step, c->beta));
         PetscCall(ReproducibleAXPY(c->g, -step, c->Ap));
       } else {

@@ -22,6 +22,7 @@ struct TaoQP {
   Vec          b        = nullptr; /* linear term */
   PetscBool    b_user   = PETSC_FALSE;
   PetscReal    bnorm    = 0;
+  PetscReal    gref     = 0; /* what gttol is relative to: |b|, or |gP(x0)| when b = 0 */
   QPCounters   counters = {};
 
   QPNormSettings norm;
@@ -40,6 +41,10 @@ PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm
   Tao tao = static_cast<Tao>(ctx);
 
   PetscFunctionBegin;
+  if (it == 0) {
+    TaoQP *qp = GetQP(tao);
+    qp->gref  = qp->bnorm > 0 ? qp->bnorm : gpnorm;
+  }
   tao->niter = it;
   PetscCall(TaoLogConvergenceHistory(tao, f, gpnorm, 0.0, tao->ksp_its));
   PetscCall(TaoMonitor(tao, it, f, gpnorm, 0.0, step));
@@ -78,7 +83,7 @@ PetscErrorCode TaoQPGetPC_QP(Tao tao, PC *pc)
 
 /* Default test of the QP types: |gP| <= max(gatol, gttol |b|). Relative to |b| rather than to the
    initial gradient, so that the result does not depend on the initial guess and is invariant under
-   scaling of A and b. */
+   scaling of A and b; when b = 0 (the bounds alone make the problem) relative to |gP(x0)|. */
 PetscErrorCode TaoQPConvergenceTest(Tao tao, void *)
 {
   TaoQP    *qp = GetQP(tao);
@@ -88,7 +93,7 @@ PetscErrorCode TaoQPConvergenceTest(Tao tao, void *)
   if (tao->reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(PETSC_SUCCESS);
   if (PetscIsInfOrNanReal(g) || PetscIsInfOrNanReal(tao->fc)) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
   else if (g <= tao->gatol) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_GATOL));
-  else if (g <= tao->gttol * qp->bnorm) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_GTTOL));
+  else if (g <= tao->gttol * qp->gref) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_GTTOL));
   else if (tao->niter >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -160,6 +165,7 @@ PetscErrorCode TaoQPPrepareSet(Tao tao, TaoQP *qp)
     }
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  if (qp->block_type != QP_BLOCK_SCALAR) PetscCall(SeparableSetDestroy(&qp->set)); /* disks and cones from the bounds of this solve */
   if (!qp->set) {
     PetscCall(VecGetLocalSize(tao->solution, &n));
     PetscCall(VecGetSize(tao->solution, &N));
@@ -233,7 +239,10 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   PetscCall(MPGPCoreSolve(&qp->core, tao->solution));
   PetscCall(VecCopy(qp->core.g, tao->gradient));
   if (qp->core.status == MPGPStatus::INDEFINITE) {
-    PetscCall(PetscInfo(tao, "TAO %s: p'Ap <= 0, the Hessian is not positive definite\n", qp->name));
+    PetscCall(PetscInfo(tao, "TAO %s: p'Ap < 0, the Hessian is not positive semidefinite\n", qp->name));
+    PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+  } else if (qp->core.status == MPGPStatus::UNBOUNDED) {
+    PetscCall(PetscInfo(tao, "TAO %s: p'Ap = 0 along a descent direction no constraint stops: q is unbounded below\n", qp->name));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
   if (qp->counters_view) {
@@ -282,13 +291,15 @@ PetscErrorCode TaoView_QP(Tao tao, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
                                    qp->norm.user > 0 ? "given" : "estimated", (double)qp->norm.used));
   PetscCall(MPGPCoreViewExpansion(&qp->core, viewer));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "stopping: |projected gradient| <= max(gatol %g, gttol %g * |b| = %g)\n", (double)tao->gatol, (double)tao->gttol, (double)(tao->gttol * qp->bnorm)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "stopping: |projected gradient| <= max(gatol %g, gttol %g * %s = %g)\n", (double)tao->gatol, (double)tao->gttol, qp->bnorm > 0 ? "|b|" : "|gP(x0)| (b = 0)",
+                                   (double)(tao->gttol * qp->gref)));
   PetscCall(QPCountersView(&qp->counters, NULL, viewer));
   if (qp->core.precondition) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "preconditioning in face (the PC restricted to the free entries):\n"));
     PetscCall(PCView(qp->pc, viewer));
   }
-  if (qp->core.status == MPGPStatus::INDEFINITE) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the Hessian is not positive definite (p'Ap <= 0)\n"));
+  if (qp->core.status == MPGPStatus::INDEFINITE) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the Hessian is not positive semidefinite (p'Ap < 0)\n"));
+  if (qp->core.status == MPGPStatus::UNBOUNDED) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: q is unbounded below (p'Ap = 0 along a descent direction no constraint stops)\n"));
   if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -64,6 +64,8 @@ struct TaoSMALXE {
   PetscReal        normA = 0, normC2 = 1, normH = 0;
   PetscReal        dnorm2 = 0, qxt = 0;            /* |d|^2 or |x~|^2, and q(x~): constants of L */
   PetscObjectState hessian_state = 0, q_state = 0; /* of the operators the norm estimate belongs to */
+  PetscObjectState c_state         = 0;            /* of the C whose |C|^2 is normC2 */
+  PetscBool        C_from_routines = PETSC_FALSE;  /* C and d from TAO's equality routines: evaluated again at every solve */
 
   /* parameters */
   PetscReal    rho_rel = 1.0, M_rel = 0.1, M_min_rel = 1e-4, eta_rel = 0.1, beta = 10.0;
@@ -486,6 +488,23 @@ PetscErrorCode PrepareEquality(Tao tao, TaoSMALXE *s)
   s->C = tao->jacobian_equality;
   PetscCall(VecDuplicate(tao->constraints_equality, &s->d));
   PetscCall(VecAXPY(s->d, -1.0, tao->constraints_equality)); /* ce(x) = C x - d, so d = -ce(0) */
+  s->C_from_routines = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A later solve with TAO's equality routines: the user may have changed the constraint since, as for
+   any TAO solver they are evaluated again (C in place, d = -ce(0), and x~ = C'd in projector form). */
+PetscErrorCode RefreshEquality(Tao tao, TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  if (!s->C_from_routines) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(TaoComputeJacobianEquality(tao, tao->solution, tao->jacobian_equality, tao->jacobian_equality_pre));
+  PetscCheck(tao->jacobian_equality == s->C, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE,
+             "TAO smalxe: the equality Jacobian was replaced by another matrix between solves; create a new Tao");
+  PetscCall(VecSet(tao->stepdirection, 0.0));
+  PetscCall(TaoComputeEqualityConstraints(tao, tao->stepdirection, tao->constraints_equality));
+  PetscCall(VecAXPBY(s->d, -1.0, 0.0, tao->constraints_equality));
+  if (s->Q_from_C) PetscCall(MatMultTranspose(s->C, s->d, s->xt));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -620,6 +639,23 @@ PetscErrorCode EstimateNorms(Tao tao, TaoSMALXE *s)
   PetscReal   margin = s->norm_margin >= 0 ? s->norm_margin : (s->norm_method == QP_NORM_SLEPC ? 0.01 : 0.05);
 
   PetscFunctionBegin;
+  /* |C|^2 = |C'C| (penalty form), once per state of C: no product with A (an empty C: a problem without equality) */
+  if (!s->projector) {
+    PetscObjectState sc;
+    PetscCall(PetscObjectStateGet((PetscObject)s->C, &sc));
+    if (sc != s->c_state || s->normA <= 0) {
+      Mat      CtC;
+      PetscInt rows;
+      s->c_state = sc;
+      PetscCall(MatGetSize(s->C, &rows, NULL));
+      if (!rows) s->normC2 = 1;
+      else {
+        PetscCall(MatCreateNormal(s->C, &CtC));
+        PetscCall(MatQPEstimateNorm(CtC, QP_NORM_POWER, 0.05, NULL, &s->normC2, NULL));
+        PetscCall(MatDestroy(&CtC));
+      }
+    }
+  }
   /* once per operator: repeated solves (successive approximations) reuse the estimate */
   {
     PetscObjectState sa, sq = 0;
@@ -638,18 +674,6 @@ PetscErrorCode EstimateNorms(Tao tao, TaoSMALXE *s)
     PetscCall(MatQPClearNormEstimate(s->H));
   } else PetscCall(MatQPEstimateNorm(tao->hessian, s->norm_method, margin, prefix, &s->normA, &products));
   s->counters.estimate_mults += products;
-  if (!s->projector) { /* |C|^2 = |C'C|: no product with A (an empty C: a problem without equality) */
-    Mat      CtC;
-    PetscInt rows;
-    PetscCall(MatGetSize(s->C, &rows, NULL));
-    if (!rows) {
-      s->normC2 = 1;
-      PetscFunctionReturn(PETSC_SUCCESS);
-    }
-    PetscCall(MatCreateNormal(s->C, &CtC));
-    PetscCall(MatQPEstimateNorm(CtC, QP_NORM_POWER, 0.05, NULL, &s->normC2, NULL));
-    PetscCall(MatDestroy(&CtC));
-  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -734,6 +758,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
                "TAO smalxe: the Hessian must be square with the solution's size %" PetscInt_FMT ", it is %" PetscInt_FMT " x %" PetscInt_FMT, N, m, n);
   }
   PetscCall(TaoComputeVariableBounds(tao));
+  if (s->setup) PetscCall(RefreshEquality(tao, s));
   PetscCall(SetUpOnce(tao, s));
   PetscCall(PassVariableBounds(tao, s));
   if (!s->b_user) {
