@@ -58,7 +58,10 @@ static PetscErrorCode Check(Tao tao, AppCtx *app, Vec x, Vec lb, const char *tag
   PetscCall(VecGetArrayRead(lb, &la));
   PetscCall(VecGetArrayRead(g, &ga));
   for (PetscInt i = 0; i < re - rs; i++)
-    if (xa[i] > la[i] + 1e-10) { sumg += ga[i]; nfree++; }
+    if (xa[i] > la[i] + 1e-10) {
+      sumg += ga[i];
+      nfree++;
+    }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &sumg, 1, MPIU_REAL, MPIU_SUM, PETSC_COMM_WORLD));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfree, 1, MPIU_INT, MPIU_SUM, PETSC_COMM_WORLD));
   {
@@ -73,8 +76,8 @@ static PetscErrorCode Check(Tao tao, AppCtx *app, Vec x, Vec lb, const char *tag
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecRestoreArrayRead(lb, &la));
   PetscCall(VecRestoreArrayRead(g, &ga));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s: %s its %d f %.10e gnorm %.2e cnorm %.2e | min(x-lb) %.2e |mean(x)-vol| %.2e KKT %.2e nfree %d\n", tag, TaoConvergedReasons[r], (int)its, (double)f, (double)gn,
-                        (double)cn, (double)viol, (double)PetscAbsReal(s / app->n - app->vol), (double)PetscSqrtReal(kkt), (int)nfree));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s: %s its %d f %.10e gnorm %.2e cnorm %.2e | min(x-lb) %.2e |mean(x)-vol| %.2e KKT %.2e nfree %d\n", tag, TaoConvergedReasons[r], (int)its, (double)f,
+                        (double)gn, (double)cn, (double)viol, (double)PetscAbsReal(s / app->n - app->vol), (double)PetscSqrtReal(kkt), (int)nfree));
   PetscCall(VecDestroy(&g));
   PetscCall(VecDestroy(&d));
   PetscFunctionReturn(0);
@@ -86,7 +89,7 @@ int main(int argc, char **argv)
   Tao       tao;
   Mat       J;
   Vec       x, lb, ub, ce;
-  PetscInt  n = 100, rs, re;
+  PetscInt  n    = 100, rs, re;
   PetscReal load = 20, vol2 = -0.02;
   PetscBool resolve = PETSC_FALSE;
 

@@ -59,8 +59,8 @@ static PetscErrorCode Report(Tao tao, const char *tag, Vec x, Vec xref)
     PetscCall(VecNorm(d, NORM_INFINITY, &dx));
     PetscCall(VecDestroy(&d));
   }
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s: type %s reason %s(%d) its %d f %.12e gnorm %.3e cnorm %.3e xdiff %.3e |x-xref|inf %.3e\n", tag, type, TaoConvergedReasons[reason], (int)reason, (int)its, (double)f,
-                        (double)gnorm, (double)cnorm, (double)xdiff, (double)dx));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%s: type %s reason %s(%d) its %d f %.12e gnorm %.3e cnorm %.3e xdiff %.3e |x-xref|inf %.3e\n", tag, type, TaoConvergedReasons[reason], (int)reason, (int)its,
+                        (double)f, (double)gnorm, (double)cnorm, (double)xdiff, (double)dx));
   PetscFunctionReturn(0);
 }
 
@@ -115,11 +115,20 @@ int main(int argc, char **argv)
     PetscCall(VecSet(lb, PETSC_NINFINITY));
     PetscCall(VecSet(ub, PETSC_INFINITY));
   }
-  if (!strcmp(bounds, "huge")) { PetscCall(VecSet(lb, -1e20)); PetscCall(VecSet(ub, 1e20)); }
-  if (!strcmp(bounds, "lift")) { PetscCall(VecShift(lb, 0.3)); PetscCall(VecSet(ub, PETSC_INFINITY)); }
-  if (!strcmp(bounds, "box")) { PetscCall(VecSet(lb, -0.1)); PetscCall(VecSet(ub, 0.1)); }
+  if (!strcmp(bounds, "huge")) {
+    PetscCall(VecSet(lb, -1e20));
+    PetscCall(VecSet(ub, 1e20));
+  }
+  if (!strcmp(bounds, "lift")) {
+    PetscCall(VecShift(lb, 0.3));
+    PetscCall(VecSet(ub, PETSC_INFINITY));
+  }
+  if (!strcmp(bounds, "box")) {
+    PetscCall(VecSet(lb, -0.1));
+    PetscCall(VecSet(ub, 0.1));
+  }
   if (!strcmp(bounds, "crossed")) PetscCall(VecSet(ub, -5.0)); /* ub < lb everywhere */
-  if (!strcmp(bounds, "crossedlast")) { /* only the last entry has ub < lb */
+  if (!strcmp(bounds, "crossedlast")) {                        /* only the last entry has ub < lb */
     PetscCall(VecSet(ub, PETSC_INFINITY));
     if (rend == n) PetscCall(VecSetValue(ub, n - 1, -5.0, INSERT_VALUES));
     PetscCall(VecAssemblyBegin(ub));
@@ -138,9 +147,9 @@ int main(int argc, char **argv)
   }
 
   if (ref) {
-    Tao  rt;
-    Mat  Ac;
-    Vec  rx;
+    Tao rt;
+    Mat Ac;
+    Vec rx;
     PetscCall(MatDuplicate(app.A, MAT_COPY_VALUES, &Ac));
     PetscCall(VecDuplicate(x, &xref));
     PetscCall(VecDuplicate(x, &rx));
@@ -198,7 +207,8 @@ int main(int argc, char **argv)
     PetscCall(VecSet(x, 0.0));
     PetscCall(TaoSolve(tao));
     PetscCall(Report(tao, "solve2(box +-0.02)", x, NULL));
-    PetscReal mx; PetscCall(VecNorm(x, NORM_INFINITY, &mx));
+    PetscReal mx;
+    PetscCall(VecNorm(x, NORM_INFINITY, &mx));
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "solve2: max|x_i| %.6f\n", (double)mx));
   } else if (resolve == 3) { /* same problem again from the solution */
     PetscCall(TaoSolve(tao));

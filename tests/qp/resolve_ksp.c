@@ -89,7 +89,10 @@ int main(int argc, char **argv)
     PetscCall(KSPMPRGPSetBounds(ksp, lb2, NULL));
     PetscCall(KSPSolve(ksp, b2, x2));
     PetscCall(Rep(ksp, x2, lb2, "solve2 (n doubled)"));
-    PetscCall(MatDestroy(&A2)); PetscCall(VecDestroy(&x2)); PetscCall(VecDestroy(&b2)); PetscCall(VecDestroy(&lb2));
+    PetscCall(MatDestroy(&A2));
+    PetscCall(VecDestroy(&x2));
+    PetscCall(VecDestroy(&b2));
+    PetscCall(VecDestroy(&lb2));
   }
   PetscCall(KSPDestroy(&ksp));
   PetscCall(VecDestroy(&x));

@@ -6,15 +6,18 @@
      brick -k 4 -friction 0.3                       (n = 900, the paper's smallest size)
      brick -k 12 -friction 0.1 -contact_coulomb_algorithm msa
      brick -k 4 -law frictionless                   (no tangential multipliers, mprgp only)
+     brick -k 4 -paper_m -gap 3e-3                  (a contact strip of the paper's size, see below)
    Prints the pipeline, the counts of the paper's tables (n, m, Iter, n_A = QPP + QPQ), the node
    states and the mechanical residuals. Exit status: 0 when the solve converged, 2 when it did not
    (as the conefeti driver). */
 #include <conefeti.h>
 #include <conefeti/private/compat.h>
 
-static PetscErrorCode ContactFace(const PetscReal c[3], const PetscReal n[3], PetscBool *tagged, void *)
+/* the bottom faces whose centroid lies in x in (xrange[0], xrange[1]) */
+static PetscErrorCode ContactFace(const PetscReal c[3], const PetscReal n[3], PetscBool *tagged, void *ctx)
 {
-  *tagged = (c[0] > 1.0 && n[2] < -0.5) ? PETSC_TRUE : PETSC_FALSE;
+  const PetscReal *xrange = (const PetscReal *)ctx;
+  *tagged                 = (c[0] > xrange[0] && c[0] < xrange[1] && n[2] < -0.5) ? PETSC_TRUE : PETSC_FALSE;
   return PETSC_SUCCESS;
 }
 
@@ -30,7 +33,8 @@ int main(int argc, char **argv)
   char              law[32] = "coulomb";
   Vec               lambda, u;
   PetscLogDouble    t0, t1, t2;
-  PetscBool         converged;
+  PetscBool         converged, paperm = PETSC_FALSE;
+  PetscReal         xrange[2] = {1.0, 3.0}; /* the bottom of the two free cubes */
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "The paper's brick"));
   PetscCall(ConeFETIInitializePackage());
@@ -41,6 +45,14 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-gap", &gap, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tilt", &tilt, NULL));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-law", law, sizeof(law), NULL));
+  /* The paper's m = 6(k+1)^2 gluing rows + 3 (k+1)(k-2) contact rows: its contact zone (Figure 1, lost)
+     had k - 2 node columns across the full width. -paper_m takes the strip of the third cube from one
+     cell after the interface to two cells before the end, x in [2 + 1/k, 3 - 2/k]: same n and m */
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-paper_m", &paperm, NULL));
+  if (paperm) {
+    xrange[0] = 2.0 + 1.0 / k; /* face centroids lie strictly inside their cells */
+    xrange[1] = 3.0 - 2.0 / k;
+  }
   PetscCall(PetscTime(&t0));
   cells[0] = 3 * k;
   cells[1] = cells[2] = k;
@@ -53,7 +65,7 @@ int main(int argc, char **argv)
     PetscCall(FEMSetTraction(fem, b, "z1", top));
     PetscCall(FEMSetTraction(fem, b, "x1", end));
   }
-  PetscCall(FEMTagFaces(fem, b, "contact", ContactFace, NULL));
+  PetscCall(FEMTagFaces(fem, b, "contact", ContactFace, xrange));
   {
     PetscBool given; /* three cubes, as the paper, unless -fem_subdomains says otherwise */
     PetscCall(PetscOptionsHasName(NULL, NULL, "-fem_subdomains", &given));
