@@ -11,6 +11,7 @@
 #include <conefeti/private/contactimpl.h>
 #include <conefeti/private/reproduciblesum.h>
 #include <conefeti/sys.h>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -61,8 +62,12 @@ struct _p_ContactModel {
 
 namespace {
 
+/* scaled by the largest entry first: no overflow for |v| near the largest real, no underflow near the smallest */
 void Normalize(PetscReal v[3])
 {
+  const PetscReal m = std::max({std::fabs(v[0]), std::fabs(v[1]), std::fabs(v[2])});
+  if (!(m > 0)) return;
+  for (int i = 0; i < 3; i++) v[i] /= m;
   const PetscReal s = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
   for (int i = 0; i < 3; i++) v[i] /= s;
 }

@@ -35,7 +35,7 @@ struct SceneSupport {
 
 struct SceneTraction {
   SceneSelector            selector;
-  std::array<PetscReal, 3> value;
+  std::array<PetscReal, 3> value{}; /* zero: also the default -help shows */
 };
 
 struct SceneBody {

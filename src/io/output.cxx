@@ -17,6 +17,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <sys/stat.h>
 
 namespace {
 
@@ -200,9 +201,12 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
 #else
   PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_WRITE, &v));
   {
-    char      version[32];
-    PetscInt  sizes[3] = {layout.nnodes, layout.nelements, layout.ncontact};
-    PetscBool solved   = PETSC_TRUE;
+    char              version[32];
+    PetscInt          sizes[3] = {layout.nnodes, layout.nelements, layout.ncontact};
+    PetscBool         solved   = PETSC_TRUE, converged;
+    ContactStatistics st;
+    PetscCall(ContactModelGetStatistics(impl.cm, &st));
+    converged = st.converged;
     PetscCall(PetscSNPrintf(version, sizeof(version), "%d.%d.%d", CONEFETI_VERSION_MAJOR, CONEFETI_VERSION_MINOR, CONEFETI_VERSION_PATCH));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "conefeti", PETSC_STRING, version));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "scene", PETSC_STRING, impl.name.c_str()));
@@ -211,6 +215,8 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "tetrahedra", PETSC_INT, &sizes[1]));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "contact_nodes", PETSC_INT, &sizes[2]));
     PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "solved", PETSC_BOOL, &solved));
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "converged", PETSC_BOOL, &converged)); /* false only with -output_unconverged */
+    PetscCall(PetscViewerHDF5WriteAttribute(v, "/", "reason", PETSC_STRING, st.reason));
   }
   PetscCall(PetscViewerHDF5PushGroup(v, "/volume"));
   PetscCall(ViewReal(v, comm, "coordinates", 3, coords));
@@ -257,12 +263,41 @@ std::string Attribute(const char *name, const char *type, const char *center, co
   return std::string("      <Attribute Name=\"") + name + "\" AttributeType=\"" + type + "\" Center=\"" + center + "\">\n        " + item + "\n      </Attribute>\n";
 }
 
-/* the XDMF text: a volume grid of tetrahedra and a contact grid of points, both referring to datasets of h5 */
-std::string XDMF(const char *h5, const char *scene, const Layout &L)
+/* text for XML character data and attribute values */
+std::string XMLEscape(const std::string &in)
 {
-  std::string x;
+  std::string out;
+  for (char c : in) switch (c) {
+    case '&': out += "&amp;"; break;
+    case '<': out += "&lt;"; break;
+    case '>': out += "&gt;"; break;
+    case '"': out += "&quot;"; break;
+    case '\'': out += "&apos;"; break;
+    default: out += c;
+    }
+  return out;
+}
+
+/* text inside an XML comment: no "--" and no final '-' (entities are not expanded there) */
+std::string XMLCommentText(const std::string &in)
+{
+  std::string out;
+  for (char c : in) {
+    if (c == '-' && !out.empty() && out.back() == '-') out += ' ';
+    out += c;
+  }
+  if (!out.empty() && out.back() == '-') out += ' ';
+  return out;
+}
+
+/* the XDMF text: a volume grid of tetrahedra and a contact grid of points, both referring to datasets of h5 */
+std::string XDMF(const char *h5raw, const char *scene, const Layout &L)
+{
+  std::string       x;
+  const std::string h5s = XMLEscape(h5raw);
+  const char       *h5  = h5s.c_str();
   x += "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"3.0\">\n  <Domain>\n";
-  x += std::string("    <!-- conefeti scene \"") + scene + "\": datasets in " + h5 + " (docs/output.md) -->\n";
+  x += "    <!-- " + XMLCommentText(std::string("conefeti scene \"") + scene + "\": datasets in " + h5raw + " (docs/output.md)") + " -->\n";
   x += "    <Grid Name=\"volume\" GridType=\"Uniform\">\n";
   x += "      <Topology TopologyType=\"Tetrahedron\" NumberOfElements=\"" + std::to_string((long long)L.nelements) + "\">\n        " + Item(h5, "/volume/connectivity", L.nelements, 4, PETSC_TRUE) +
        "\n      </Topology>\n";
@@ -310,17 +345,35 @@ PetscErrorCode WriteText(MPI_Comm comm, const char *path, const std::string &tex
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode Rename(MPI_Comm comm, const char *from, const char *to, const char *what)
+/* Rank 0 replaces the pair (h5, xmf) by the temporary pair, both or neither: existing files are first
+   moved aside to <name>.old, and moved back if a step fails. On error *failed names the file and errno. */
+int ReplacePair(const std::string &h5tmp, const std::string &h5, const std::string &xmftmp, const std::string &xmf, std::string *failed)
 {
-  PetscMPIInt rank;
-  int         err = 0;
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (!rank && rename(from, to) != 0) err = errno ? errno : EIO;
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
-  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "%s: cannot rename %s to %s: %s", what, from, to, strerror(err));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  const std::string from[2] = {h5tmp, xmftmp}, to[2] = {h5, xmf}, old[2] = {h5 + ".old", xmf + ".old"};
+  bool              moved[2] = {false, false}, placed[2] = {false, false};
+  int               err = 0;
+  for (int i = 0; i < 2 && !err; i++) {
+    struct stat st;
+    if (stat(to[i].c_str(), &st) != 0) continue; /* nothing there yet */
+    if (S_ISDIR(st.st_mode)) err = EISDIR;
+    else if (rename(to[i].c_str(), old[i].c_str()) != 0) err = errno ? errno : EIO;
+    else moved[i] = true;
+    if (err) *failed = to[i];
+  }
+  for (int i = 0; i < 2 && !err; i++) {
+    if (rename(from[i].c_str(), to[i].c_str()) != 0) {
+      err     = errno ? errno : EIO;
+      *failed = to[i];
+    } else placed[i] = true;
+  }
+  for (int i = 0; i < 2; i++) {
+    if (err && placed[i]) (void)remove(to[i].c_str());
+    if (moved[i]) {
+      if (err) (void)rename(old[i].c_str(), to[i].c_str());
+      else (void)remove(old[i].c_str());
+    }
+  }
+  return err;
 }
 
 PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::string &xmf, const std::string &h5tmp, const std::string &xmftmp, PetscBool fail)
@@ -337,8 +390,15 @@ PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::st
   PetscCall(WriteHDF5(scene, h5tmp.c_str(), layout));
   PetscCall(WriteText(comm, xmftmp.c_str(), XDMF(h5name.c_str(), scene->impl->name.c_str(), layout), what));
   PetscCheck(!fail, comm, PETSC_ERR_FILE_WRITE, "-output_test_failure: failing on purpose after writing %s and %s (tests that a failed write leaves no file behind)", h5tmp.c_str(), xmftmp.c_str());
-  PetscCall(Rename(comm, h5tmp.c_str(), h5.c_str(), what));
-  PetscCall(Rename(comm, xmftmp.c_str(), xmf.c_str(), what));
+  {
+    PetscMPIInt rank;
+    int         err = 0;
+    std::string failed;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (!rank) err = ReplacePair(h5tmp, h5, xmftmp, xmf, &failed);
+    PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+    PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "%s: cannot replace %s: %s (%s and %s are left as they were)", what, rank ? "the output" : failed.c_str(), strerror(err), h5.c_str(), xmf.c_str());
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -383,6 +443,7 @@ PetscErrorCode ContactSceneWriteOutput(ContactScene scene, const char basename[]
   comm = PetscObjectComm((PetscObject)scene);
   PetscCheck(scene->impl->solved, comm, PETSC_ERR_ORDER, "Call ContactSceneSolve() before ContactSceneWriteOutput()");
   PetscCheck(basename && basename[0], comm, PETSC_ERR_ARG_WRONG, "-output needs a base name (the files are <basename>.h5 and <basename>.xmf)");
+  PetscCheck(basename[strlen(basename) - 1] != '/', comm, PETSC_ERR_ARG_WRONG, "-output %s: a base name, not a directory (the files are <basename>.h5 and <basename>.xmf)", basename);
   PetscObjectOptionsBegin((PetscObject)scene);
   PetscCall(PetscOptionsBool("-output_test_failure", "Developer: fail after writing the temporary output files (tests the atomic write)", "ContactSceneWriteOutput", fail, &fail, NULL));
   PetscOptionsEnd();
@@ -394,12 +455,23 @@ PetscErrorCode ContactSceneWriteOutput(ContactScene scene, const char basename[]
   PetscCall(PetscLogEventBegin(CONTACTSCENE_Output, scene, 0, 0, 0));
   /* a clear message before HDF5 prints its own error stack: can the directory be written? */
   PetscCall(WriteText(comm, xmftmp.c_str(), "", "-output"));
+#if defined(PETSC_HAVE_HDF5)
+  /* HDF5's own error stack (dozens of lines for a full disk) would bury the message naming the file */
+  H5E_auto2_t h5func = NULL;
+  void       *h5data = NULL;
+  const bool  quiet  = H5Eget_auto2(H5E_DEFAULT, &h5func, &h5data) >= 0 && H5Eset_auto2(H5E_DEFAULT, NULL, NULL) >= 0;
+#endif
   ierr = WriteAll(scene, h5, xmf, h5tmp, xmftmp, fail);
+#if defined(PETSC_HAVE_HDF5)
+  if (quiet) (void)H5Eset_auto2(H5E_DEFAULT, h5func, h5data);
+#endif
   if (ierr) {
     if (!rank) {
       (void)remove(h5tmp.c_str());
       (void)remove(xmftmp.c_str());
     }
+    PetscCheck(ierr == PETSC_ERR_FILE_WRITE || fail, comm, ierr, "-output: writing %s failed (a full disk or a quota?); the previous %s and %s, if any, are left as they were", h5tmp.c_str(),
+               h5.c_str(), xmf.c_str());
     PetscCall(ierr);
   }
   PetscCall(PetscLogEventEnd(CONTACTSCENE_Output, scene, 0, 0, 0));

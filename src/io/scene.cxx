@@ -3,6 +3,7 @@
    Parsing is strict: every value is checked before PETSc converts it, so a bad value gives an error
    that names the option and the value; a -scene_* option that no body or zone uses (a typo, or a
    body/zone index after a gap) is an error, not a warning at the end of the run. */
+#include <algorithm>
 #include "ioimpl.h"
 
 #include <cerrno>
@@ -418,7 +419,7 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
     PetscCheck(!setother && !setotherface, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is a foundation zone: %s and %s belong to -scene_zone%d_type bodies", (int)z, r.Full(s + "other_body").c_str(),
                r.Full(s + "other_face").c_str(), (int)z);
     PetscCheck(setnormal, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d needs %s nx,ny,nz (the plane's normal, pointing toward the body)", (int)z, r.Full(s + "normal").c_str());
-    const PetscReal len = std::sqrt(zone.normal[0] * zone.normal[0] + zone.normal[1] * zone.normal[1] + zone.normal[2] * zone.normal[2]);
+    const PetscReal len = std::max({std::fabs(zone.normal[0]), std::fabs(zone.normal[1]), std::fabs(zone.normal[2])}); /* only nonzero matters: no squares to overflow */
     PetscCheck(len > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the normal must be nonzero", r.Full(s + "normal").c_str());
   } else {
     PetscCheck(!setpoint && !setnormal, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is between bodies: %s and %s belong to foundation zones (the normal is the first face's)", (int)z,
@@ -634,7 +635,7 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   const char *prefix;
   MPI_Comm    comm;
   PetscBool   help, set;
-  char        name[64];
+  char        name[256];
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
@@ -646,6 +647,7 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   PetscObjectOptionsBegin((PetscObject)scene);
   Reader r{PetscOptionsObject, prefix, comm, help};
   PetscCall(PetscOptionsString("-scene_name", "Name of the scene (summary, output)", "ContactSceneSetFromOptions", name, name, sizeof(name), &set));
+  PetscCheck(strlen(name) < sizeof(name) - 1, comm, PETSC_ERR_ARG_SIZ, "-scene_name: at most %d characters", (int)sizeof(name) - 2); /* PETSc cuts longer strings */
   PetscCall(r.Int("-scene_refine", "Multiply every body's cells by this factor", "a positive integer", &impl.refine, &set));
   PetscCheck(impl.refine >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": the refinement factor must be a positive integer", r.Full("-scene_refine").c_str(), impl.refine);
   PetscCall(PetscOptionsName("-scene_view", "View the scene after ContactSceneSetUp()", "ContactSceneView", &set));

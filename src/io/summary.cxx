@@ -70,7 +70,10 @@ PetscErrorCode ContactSceneGetPipelineDescription(ContactScene scene, ContactPip
     PetscCall(KSPGetType(ksp, &ktype));
     PetscCall(KSPGetPC(ksp, &pc));
     PetscCall(PCGetType(pc, &ptype));
+    /* mprgp and mpgp without bounds are CG (same iterates, reproducible sums) */
     PetscCall(PetscStrcmp(ktype, KSPCG, &iscg));
+    if (!iscg) PetscCall(PetscStrcmp(ktype, KSPMPRGP, &iscg));
+    if (!iscg) PetscCall(PetscStrcmp(ktype, KSPMPGP, &iscg));
     PetscCall(PetscSNPrintf(buf, sizeof(buf), "linear: no contact zone; FETI %s (KSP %s, preconditioner %s)", iscg ? "projected conjugate gradients" : "projected Krylov solve", ktype ? ktype : "?",
                             ptype ? ptype : "none"));
   } else {

@@ -124,6 +124,7 @@ def main(argv):
         if sub is not None:
             check(len(np.unique(sub)) == js["subdomains"], "%d subdomain ids in the file, the summary has %d subdomains" % (len(np.unique(sub)), js["subdomains"]))
         check(h.attrs.get("contact_nodes") == js["contact_nodes"], "file attribute contact_nodes %s, summary %d" % (h.attrs.get("contact_nodes"), js["contact_nodes"]))
+        check(bool(h.attrs.get("converged")) == bool(js["converged"]), "file attribute converged %s, summary %s" % (h.attrs.get("converged"), js["converged"]))
         if js["contact_nodes"]:
             check("contact" in grids, "no contact grid although the summary has contact nodes")
             if st is not None:
