@@ -196,6 +196,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
     Tao tao;
     PetscCall(ContactProblemGetTao(cp, &tao));
     PetscCall(TaoQPGetNormEstimate(tao, &s->norm_F));
+    PetscCall(TaoGetTolerances(tao, NULL, NULL, &s->rtol));
   }
   /* the mechanical residuals, from u and lambda */
   PetscCall(ContactModelComputeResiduals(impl.cm, &s->residuals));
@@ -263,6 +264,13 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
     PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", line.c_str()));
     if (s->pipeline == CONTACT_PIPELINE_COULOMB) PetscCall(PetscViewerASCIIPrintf(viewer, "Coulomb fixed point: |g - F l_n| / |F l_n| = %s\n", E(s->fixed_point).c_str()));
   }
+  /* the solver's tolerance is relative to |h| = |B K+ f - c|, which contains the gaps: with gaps far larger
+     than the displacements the loads cause, it is loose for the mechanics, and the residuals show it */
+  if (s->converged && s->rtol > 0 && r.max > 100 * s->rtol)
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "note: the largest residual %.1e is %.0f times -contact_rtol %g; the solver's tolerance is relative to |h| = |B K+ f - c|, which contains the gaps, so with gaps "
+                                     "far larger than the displacements the loads cause lower -contact_rtol (docs/contact.md)\n",
+                                     (double)r.max, (double)(r.max / s->rtol), (double)s->rtol));
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s: %s\n", s->converged ? "CONVERGED" : "NOT CONVERGED", s->reason));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
