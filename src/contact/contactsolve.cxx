@@ -374,6 +374,11 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
         "no equilibrium: the equality (rigid-body equilibrium) cannot be met with admissible contact forces (|G l - e| stagnates at %.3g); the loads exceed what supports and friction can carry",
         (double)d->stats.feasibility));
   else if (reason == TAO_DIVERGED_MAXITS) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -contact_tao_max_it)", its));
+  else if (reason == TAO_DIVERGED_NAN)
+    PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
+                            "not converged: a quantity of the solve is not a finite number (DIVERGED_NAN) after %" PetscInt_FMT
+                            " outer iterations: an overflow from loads, gaps or friction coefficients near the largest real?",
+                            its));
   else PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %s", TaoConvergedReasons[reason]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -46,6 +46,14 @@ PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm
     qp->gref  = qp->bnorm > 0 ? qp->bnorm : gpnorm;
   }
   tao->niter = it;
+  if (PetscIsInfOrNanReal(f) || PetscIsInfOrNanReal(gpnorm)) { /* TaoMonitor() would raise an error that blames a user function */
+    tao->fc       = f;
+    tao->residual = gpnorm;
+    PetscCall(PetscInfo(tao, "TAO QP: the objective or the projected gradient is not a finite number at iteration %" PetscInt_FMT " (overflow: data near the largest real?)\n", it));
+    PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
+    *stop = PETSC_TRUE;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(TaoLogConvergenceHistory(tao, f, gpnorm, 0.0, tao->ksp_its));
   PetscCall(TaoMonitor(tao, it, f, gpnorm, 0.0, step));
   PetscUseTypeMethod(tao, convergencetest, tao->cnvP);

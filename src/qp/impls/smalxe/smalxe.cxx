@@ -21,6 +21,7 @@
 #include <conefeti/private/qpadopt.h>
 #include <conefeti/private/reproduciblesum.h>
 #include <petsc/private/taoimpl.h>
+#include <limits>
 #include <vector>
 
 namespace {
@@ -709,8 +710,12 @@ PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
       s->counters.nested_iterations += after.iterations - before.iterations;
       s->counters.estimate_mults += after.estimate_mults - before.estimate_mults;
       PetscCall(TaoGetConvergedReason(blk.sub, &reason));
-      PetscCheck(reason != TAO_DIVERGED_USER && reason != TAO_DIVERGED_NAN, PetscObjectComm((PetscObject)tao), PETSC_ERR_NOT_CONVERGED,
-                 "TAO smalxe: the inner solve of block %zu failed (%s); is the Hessian positive definite on the feasible set?", k, TaoConvergedReasons[reason]);
+      if (reason == TAO_DIVERGED_NAN) { /* overflow: the outer loop ends with DIVERGED_NAN, a reason, not an error */
+        *gp = std::numeric_limits<PetscReal>::quiet_NaN();
+        PetscFunctionReturn(PETSC_SUCCESS);
+      }
+      PetscCheck(reason != TAO_DIVERGED_USER, PetscObjectComm((PetscObject)tao), PETSC_ERR_NOT_CONVERGED,
+                 "TAO smalxe: the inner solve of block %zu failed (%s); is the Hessian positive semidefinite on the feasible set, and q bounded below?", k, TaoConvergedReasons[reason]);
       if (blk.is) {
         PetscCall(VecScatterBegin(blk.scatter, blk.x, tao->solution, INSERT_VALUES, SCATTER_REVERSE));
         PetscCall(VecScatterEnd(blk.scatter, blk.x, tao->solution, INSERT_VALUES, SCATTER_REVERSE));
@@ -827,6 +832,14 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     PetscCall(VecCopy(s->g, tao->gradient));
     tao->niter = k;
     s->counters.iterations++;
+    if (PetscIsInfOrNanReal(L) || PetscIsInfOrNanReal(gp) || PetscIsInfOrNanReal(e)) { /* TaoMonitor() would blame a user function */
+      tao->fc       = L;
+      tao->residual = gp;
+      tao->cnorm    = e;
+      PetscCall(PetscInfo(tao, "TAO smalxe: L, |gP| or |Cx - d| is not a finite number at outer iteration %" PetscInt_FMT " (overflow: data near the largest real?)\n", k));
+      PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
+      break;
+    }
     PetscCall(TaoLogConvergenceHistory(tao, L, gp, e, tao->ksp_its));
     PetscCall(TaoMonitor(tao, k, L, gp, e, 0.0));
     /* the multiplier update comes before the test: the returned multiplier is the updated one */
