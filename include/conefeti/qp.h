@@ -152,6 +152,7 @@ PETSC_EXTERN PetscErrorCode TaoSMALXEGetEqualityMultiplier(Tao, Vec);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetFeasibility(Tao, PetscReal *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetConsistencyCheck(Tao, PetscErrorCode (*)(Tao, Vec, PetscBool *, void *), void *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);
+PETSC_EXTERN PetscErrorCode TaoSMALXEGetStalled(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetAnderson(Tao, PetscInt, PetscInt);
 
 /* ---------------------------------------------------------------------------------------------

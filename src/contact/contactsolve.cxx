@@ -362,17 +362,23 @@ static PetscErrorCode CollectStatistics(ContactProblem cp, PetscInt outer, Petsc
 static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reason, PetscInt its)
 {
   ContactProblemData *d = cp->data;
-  PetscBool           stagnated;
+  PetscBool           stagnated, stalled;
 
   PetscFunctionBegin;
   PetscCall(TaoSMALXEGetStagnated(d->tao, &stagnated));
+  PetscCall(TaoSMALXEGetStalled(d->tao, &stalled));
   d->stats.converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
   if (reason > 0) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "converged (%s) in %" PetscInt_FMT " outer iterations", TaoConvergedReasons[reason], its));
   else if (stagnated)
     PetscCall(PetscSNPrintf(
         d->stats.reason, sizeof(d->stats.reason),
-        "no equilibrium: the equality (rigid-body equilibrium) cannot be met with admissible contact forces (|G l - e| stagnates at %.3g); the loads exceed what supports and friction can carry",
+        d->has_coulomb
+            ? "no equilibrium found: |G l - e| stagnates at %.3g while the multiplier grows; the loads exceed what supports and friction carry, or the Coulomb radii F l_n lock the loop (large F)"
+            : "no equilibrium: the equality (rigid-body equilibrium) cannot be met with admissible contact forces (|G l - e| stagnates at %.3g); the loads exceed what supports and friction can carry",
         (double)d->stats.feasibility));
+  else if (stalled)
+    PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "stalled: |G l - e| stays near %.3g after %" PetscInt_FMT " outer iterations, more will not help%s", (double)d->stats.feasibility,
+                            its, d->has_coulomb ? "; the Coulomb radii F l_n can lock the loop (large F): try a smaller F or -contact_coulomb_algorithm msa" : ""));
   else if (reason == TAO_DIVERGED_MAXITS) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -contact_tao_max_it)", its));
   else if (reason == TAO_DIVERGED_NAN)
     PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),

@@ -241,6 +241,36 @@ PetscErrorCode TaoSMALXESetConsistencyCheck(Tao tao, PetscErrorCode (*fn)(Tao, V
 }
 
 /*@C
+  TaoSMALXEGetStalled - Whether the last solve stopped because the outer loop made no progress: the
+  best |Cx - d| of the last stagnation_its outer iterations was not 1% below the best before them, while
+  the multiplier did not grow (so not `TaoSMALXEGetStagnated()`). More iterations would not help; with
+  a consistency check (Coulomb radii) the loop may be locked between a few states.
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. flag - `PETSC_TRUE` if the solve stopped for it (reason `TAO_DIVERGED_USER`)
+
+  Options Database Key:
+. -tao_smalxe_stagnation_its <30> - the window (0 turns both tests off)
+
+  Level: intermediate
+
+.seealso: `TAOSMALXE`, `TaoSMALXEGetStagnated()`, `TaoSMALXEGetFeasibility()`
+@*/
+PetscErrorCode TaoSMALXEGetStalled(Tao tao, PetscBool *flag)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidBoolPointer(flag, 2);
+  PetscUseMethod(tao, "TaoSMALXEGetStalled_C", (Tao, PetscBool *), (tao, flag));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   TaoSMALXEGetStagnated - Whether the last solve stopped because |Cx - d| stagnated, which means
   that C x = d cannot be met over the set (or that rho is far too small).
 

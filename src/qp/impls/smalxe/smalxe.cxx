@@ -91,6 +91,7 @@ struct TaoSMALXE {
   std::vector<PetscReal> feas_history, mult_history; /* |Cx - d| and |C'mu| per outer iteration */
   PetscInt               stagnation_its = 30;
   PetscBool              stagnated      = PETSC_FALSE;
+  PetscBool              stalled        = PETSC_FALSE; /* |Cx - d| made no progress while the multiplier settled */
 
   /* Anderson acceleration of the multiplier update (depth 0: the plain update mu += rho (Cx - d)) */
   PetscInt         anderson = -1, anderson_start = 3; /* depth -1: automatic (AndersonDepth()) */
@@ -437,6 +438,21 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
     PetscCall(PetscInfo(tao, "TAO smalxe: |Cx - d| = %g stagnates (%" PetscInt_FMT " iterations without 1%% progress): C x = d cannot be met over the set, or rho is far too small\n",
                         (double)tao->cnorm, s->stagnation_its));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+  }
+  if (tao->reason == TAO_CONTINUE_ITERATING && s->stagnation_its > 0 && k >= 2 * s->stagnation_its && tao->cnorm > tol_e) {
+    /* the best |Cx - d| of the last stagnation_its outer iterations is not 1% below the best before
+       them (a minimum over a window, so that a loop cycling between a few states counts too), while the
+       multiplier does not grow: the iteration is stuck, more of it will not help */
+    PetscReal recent = PETSC_MAX_REAL, before = PETSC_MAX_REAL;
+    for (PetscInt i = 0; i <= k; i++) {
+      if (i > k - s->stagnation_its) recent = PetscMin(recent, s->feas_history[i]);
+      else before = PetscMin(before, s->feas_history[i]);
+    }
+    if (recent > 0.99 * before) {
+      s->stalled = PETSC_TRUE;
+      PetscCall(PetscInfo(tao, "TAO smalxe: |Cx - d| stalls near %g: its best value did not fall by 1%% in %" PetscInt_FMT " outer iterations\n", (double)recent, s->stagnation_its));
+      PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+    }
   }
   /* niter counts from 0 (the first inner solve), so niter + 1 outer iterations are done: -tao_max_it N allows N */
   if (tao->reason == TAO_CONTINUE_ITERATING && tao->niter + 1 >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
@@ -811,6 +827,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
   s->feas_history.clear();
   s->mult_history.clear();
   s->stagnated = PETSC_FALSE;
+  s->stalled   = PETSC_FALSE;
   for (PetscInt k = 0;; k++) {
     PetscReal gp, e, L;
     PetscReal xg, xb, md;
@@ -950,6 +967,7 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
         AndersonDepth(s), s->anderson_start, s->aAccelerated, s->aRestarts));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "plain multiplier update (no Anderson acceleration)\n"));
   if (s->stagnated) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stagnated: the equality cannot be met over the set (or rho is far too small)\n"));
+  if (s->stalled) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stalled: no progress in %" PetscInt_FMT " outer iterations, the multiplier settled\n", s->stagnation_its));
   PetscCall(QPCountersView(&s->counters, NULL, viewer));
   if (s->blocks.size() > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "inner solves: %zu blocks, %" PetscInt_FMT " Gauss-Seidel sweep(s) per outer iteration\n", s->blocks.size(), s->sweeps));
   for (auto &blk : s->blocks) PetscCall(TaoView(blk.sub, viewer));
@@ -980,7 +998,8 @@ const char *const kComposed[] = {"TaoQPSetConstraints_C",     "TaoQPGetConstrain
                                  "TaoSMALXESetBlocks_C",      "TaoSMALXEGetBlockSubsolver_C",
                                  "TaoSMALXESetPreSolve_C",    "TaoSMALXEGetEqualityMultiplier_C",
                                  "TaoSMALXEGetFeasibility_C", "TaoSMALXESetConsistencyCheck_C",
-                                 "TaoSMALXEGetStagnated_C",   "TaoSMALXESetAnderson_C"};
+                                 "TaoSMALXEGetStagnated_C",   "TaoSMALXEGetStalled_C",
+                                 "TaoSMALXESetAnderson_C"};
 
 PetscErrorCode TaoDestroy_SMALXE(Tao tao)
 {
@@ -1200,6 +1219,13 @@ PetscErrorCode GetStagnated_SMALXE(Tao tao, PetscBool *flag)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode GetStalled_SMALXE(Tao tao, PetscBool *flag)
+{
+  PetscFunctionBegin;
+  *flag = Get(tao)->stalled;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 {
   PetscFunctionBegin;
@@ -1289,6 +1315,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetFeasibility_C", GetFeasibility_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetConsistencyCheck_C", SetConsistencyCheck_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStagnated_C", GetStagnated_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStalled_C", GetStalled_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetAnderson_C", SetAnderson_SMALXE));
   PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
