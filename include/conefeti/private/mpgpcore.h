@@ -9,9 +9,10 @@ enum class MPGPVariant {
 };
 
 enum class MPGPStatus {
-  STOPPED,    /* the owner's report callback asked to stop (converged or out of iterations) */
-  INDEFINITE, /* p'Ap < 0: the Hessian is not positive semidefinite on the search space */
-  UNBOUNDED,  /* p'Ap = 0 along a descent direction that no constraint stops: q is unbounded below */
+  STOPPED,        /* the owner's report callback asked to stop (converged or out of iterations) */
+  INDEFINITE,     /* p'Ap < 0: the Hessian is not positive semidefinite on the search space */
+  UNBOUNDED,      /* p'Ap = 0 along a descent direction that no constraint stops: q is unbounded below */
+  NORM_TOO_SMALL, /* q rose in a step: the fixed step length 1/||A|| is too long, the norm estimate too small */
   NOT_A_NUMBER
 };
 

@@ -19,9 +19,9 @@ PetscErrorCode ReproducibleSumSetFromOptions(void)
 #if CONEFETI_FMA_DISPATCH
   cpu = (__builtin_cpu_supports("avx") && __builtin_cpu_supports("fma")) ? PETSC_TRUE : PETSC_FALSE;
 #endif
-  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "conefeti QP kernels", "TaoMPRGP");
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "conefeti QP kernels", "TAOMPRGP");
   PetscCall(
-      PetscOptionsBool("-qp_reproducible_fma", "Exact products of the rank-independent sums by the CPU's FMA instead of Dekker's product (the same sums, faster)", "TaoMPRGP", want, &want, NULL));
+      PetscOptionsBool("-qp_reproducible_fma", "Exact products of the rank-independent sums by the CPU's FMA instead of Dekker's product (the same sums, faster)", "TAOMPRGP", want, &want, NULL));
   PetscOptionsEnd();
   use_fma = (cpu && want) ? PETSC_TRUE : PETSC_FALSE;
   PetscCall(PetscInfo(NULL, "rank-independent sums: exact products by %s\n", use_fma ? "FMA (run-time dispatch)" : (CONEFETI_FMA_BASELINE ? "FMA (build baseline)" : "Dekker's product")));

@@ -555,7 +555,10 @@ PetscErrorCode SeparableSetView(SeparableSet set, PetscViewer viewer)
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 4, MPIU_INT, MPI_SUM, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, range, 4, MPIU_REAL, MPIU_MIN, comm));
-  PetscCall(PetscObjectPrintClassNamePrefixType((PetscObject)set, viewer));
+  {                                                                                    /* a SeparableSet has no types: the header without PETSc's "type not yet set" */
+    const char *name = ((PetscObject)set)->name, *prefix = ((PetscObject)set)->prefix; /* a generated name says nothing */
+    PetscCall(PetscViewerASCIIPrintf(viewer, "SeparableSet Object:%s%s%s%s\n", name ? " " : "", name ? name : "", prefix ? " prefix " : "", prefix ? prefix : ""));
+  }
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "length %" PetscInt_FMT ": %" PetscInt_FMT " free scalars, %" PetscInt_FMT " bounded scalars, %" PetscInt_FMT " disks, %" PetscInt_FMT " cones\n", d->N,
                                    counts[0], counts[1], counts[2], counts[3]));

@@ -127,8 +127,24 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   qp->core.precondition_ctx = ksp;
   ksp->reason               = KSP_CONVERGED_ITERATING;
   PetscCall(MPGPCoreSolve(&qp->core, ksp->vec_sol));
+  if (qp->core.status == MPGPStatus::NORM_TOO_SMALL && qp->norm.user <= 0 && !qp->unconstrained) {
+    /* the cached estimate belongs to an operator that has changed behind the same state: estimate
+       again and go on from the current iterate (once) */
+    const char *kprefix;
+    PetscCall(PetscInfo(ksp, "KSP %s: q rose with ||A|| = %g: estimating ||A|| again\n", qp->name, (double)qp->norm.used));
+    PetscCall(MatQPClearNormEstimate(A));
+    PetscCall(KSPGetOptionsPrefix(ksp, &kprefix));
+    PetscCall(QPNormSettingsApply(&qp->norm, A, kprefix, "ksp", qp->name, &qp->counters));
+    qp->core.normA = qp->norm.used;
+    ksp->reason    = KSP_CONVERGED_ITERATING;
+    PetscCall(MPGPCoreSolve(&qp->core, ksp->vec_sol));
+  }
   if (qp->core.status == MPGPStatus::INDEFINITE) ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
-  else if (qp->core.status == MPGPStatus::UNBOUNDED) { /* as KSPCG on p'Ap = 0 */
+  else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {
+    PetscCall(PetscInfo(ksp, "KSP %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL operator whose action changed needs PetscObjectStateIncrease(), or give -ksp_%s_norm\n", qp->name,
+                        (double)qp->norm.used, qp->name));
+    ksp->reason = KSP_DIVERGED_BREAKDOWN;
+  } else if (qp->core.status == MPGPStatus::UNBOUNDED) { /* as KSPCG on p'Ap = 0 */
     PetscCall(PetscInfo(ksp, "KSP %s: p'Ap = 0 along a descent direction no constraint stops: the problem is unbounded below (a singular operator with an inconsistent right-hand side?)\n", qp->name));
     ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
   } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) ksp->reason = KSP_DIVERGED_NANORINF;
@@ -146,6 +162,20 @@ PetscErrorCode KSPSetFromOptions_QP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptions
 
   PetscFunctionBegin;
   PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)ksp), "ksp", qp->name, &qp->core, &qp->norm, &qp->counters_view));
+  {
+    /* KSPSetFromOptions() gives the PC PETSc's default type (ILU, block Jacobi) before -ksp_type makes
+       this KSP one of ours: that PC was not chosen, and ours is none unless chosen (-pc_type) */
+    const char *prefix;
+    PetscBool   kspset, pcset, dflt;
+    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, prefix, "-ksp_type", &kspset));
+    PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, prefix, "-pc_type", &pcset));
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)ksp->pc, &dflt, PCILU, PCBJACOBI, PCICC, ""));
+    if (kspset && !pcset && dflt) {
+      PetscCall(PetscInfo(ksp, "KSP %s: the PC of type %s was PETSc's default, not chosen: none\n", qp->name, ((PetscObject)ksp->pc)->type_name));
+      PetscCall(PCSetType(ksp->pc, PCNONE));
+    }
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

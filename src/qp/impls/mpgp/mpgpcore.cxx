@@ -290,6 +290,18 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
     }
     it++;
     c->counters->iterations++;
+    {
+      /* every step lowers q when alpha <= 2/||A||: a rise beyond the rounding of q's terms means the
+         estimate of ||A|| is too small (e.g. a MATSHELL whose action changed without a new object state) */
+      const PetscReal fnew = 0.5 * (s.xg - s.xb), noise = 1e-10 * (PetscAbsReal(s.xg) + PetscAbsReal(s.xb));
+      if (fnew > c->f + noise) {
+        PetscCall(PetscInfo(NULL, "MPGP: q rose from %g to %g in iteration %" PetscInt_FMT ": the norm estimate %g of A is too small\n", (double)c->f, (double)fnew, it, (double)c->normA));
+        c->f      = fnew;
+        c->gpnorm = PetscSqrtReal(s.gp2);
+        c->status = MPGPStatus::NORM_TOO_SMALL;
+        break;
+      }
+    }
     c->f      = 0.5 * (s.xg - s.xb);
     c->gpnorm = PetscSqrtReal(s.gp2);
     PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, step, &stop));

@@ -1,4 +1,5 @@
 /* Options and the norm estimate of the MPRGP/MPGP core, shared by the TAO and KSP types. */
+#include <cstring>
 #include <conefeti/private/mpgpcore.h>
 
 /* kind: "tao" or "ksp"; name: "mprgp" or "mpgp" */
@@ -23,7 +24,7 @@ PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject,
   PetscCall(PetscOptionsBool(opt, "Expansion steps first try the projected full CG step P(x - a_cg p), kept when q is no higher than at the feasible half step (default: Dostal's expansion only)",
                              "MPGP", core->projcg, &core->projcg, NULL));
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm", kind, name));
-  PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", "TaoQPSetNormEstimate", norm->user, &value, &set));
+  PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", strcmp(kind, "ksp") ? "TaoQPSetNormEstimate" : "KSPQPSetNormEstimate", norm->user, &value, &set));
   if (set) {
     PetscCheck(value >= 0 && !PetscIsInfOrNanReal(value), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and > 0 (0 to estimate), got %g", opt, (double)value);
     norm->user = value;

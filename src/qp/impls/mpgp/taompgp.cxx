@@ -102,6 +102,7 @@ PetscErrorCode TaoQPConvergenceTest(Tao tao, void *)
   if (PetscIsInfOrNanReal(g) || PetscIsInfOrNanReal(tao->fc)) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
   else if (g <= tao->gatol) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_GATOL));
   else if (g <= tao->gttol * qp->gref) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_GTTOL));
+  else if (tao->grtol > 0 && g <= tao->grtol * PetscAbsReal(tao->fc)) PetscCall(TaoSetConvergedReason(tao, TAO_CONVERGED_GRTOL)); /* TAO's |g|/|f| test, off unless -tao_grtol is given */
   else if (tao->niter >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -245,12 +246,28 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   }
   tao->reason = TAO_CONTINUE_ITERATING;
   PetscCall(MPGPCoreSolve(&qp->core, tao->solution));
+  if (qp->core.status == MPGPStatus::NORM_TOO_SMALL && qp->norm.user <= 0) {
+    /* the cached estimate belongs to an operator that has changed behind the same state: estimate
+       again and go on from the current iterate (once) */
+    const char *tprefix;
+    PetscCall(PetscInfo(tao, "TAO %s: q rose with ||A|| = %g: estimating ||A|| again\n", qp->name, (double)qp->norm.used));
+    PetscCall(MatQPClearNormEstimate(A));
+    PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
+    PetscCall(QPNormSettingsApply(&qp->norm, A, tprefix, "tao", qp->name, &qp->counters));
+    qp->core.normA = qp->norm.used;
+    tao->reason    = TAO_CONTINUE_ITERATING;
+    PetscCall(MPGPCoreSolve(&qp->core, tao->solution));
+  }
   PetscCall(VecCopy(qp->core.g, tao->gradient));
   if (qp->core.status == MPGPStatus::INDEFINITE) {
     PetscCall(PetscInfo(tao, "TAO %s: p'Ap < 0, the Hessian is not positive semidefinite\n", qp->name));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::UNBOUNDED) {
     PetscCall(PetscInfo(tao, "TAO %s: p'Ap = 0 along a descent direction no constraint stops: q is unbounded below\n", qp->name));
+    PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+  } else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {
+    PetscCall(PetscInfo(tao, "TAO %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL Hessian whose action changed needs PetscObjectStateIncrease(), or give -tao_%s_norm\n", qp->name,
+                        (double)qp->norm.used, qp->name));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
   if (qp->counters_view) {
@@ -272,6 +289,16 @@ PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptions
     PC pc;
     PetscCall(TaoQPGetPC_QP(tao, &pc));
     PetscCall(PCSetFromOptions(pc));
+  }
+  if (qp->core.variant == MPGPVariant::MPRGP) { /* bounds only: no block description to choose, so none in -help */
+    const char *prefix;
+    PetscEnum   type = (PetscEnum)QP_BLOCK_SCALAR;
+    PetscBool   set;
+    PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+    PetscCall(PetscOptionsGetEnum(((PetscObject)tao)->options, prefix, "-tao_mprgp_block_type", QPBlockTypes, &type, &set));
+    PetscCheck(!set || type == (PetscEnum)QP_BLOCK_SCALAR, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_mprgp_block_type %s: mprgp handles bounds only; use -tao_type mpgp",
+               QPBlockTypes[type]);
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscSNPrintf(title, sizeof(title), "%s: block description from the variable bounds", qp->name));
   PetscOptionsHeadBegin(PetscOptionsObject, title);
@@ -299,8 +326,8 @@ PetscErrorCode TaoView_QP(Tao tao, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
                                    qp->norm.user > 0 ? "given" : "estimated", (double)qp->norm.used));
   PetscCall(MPGPCoreViewExpansion(&qp->core, viewer));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "stopping: |projected gradient| <= max(gatol %g, gttol %g * %s = %g)\n", (double)tao->gatol, (double)tao->gttol, qp->bnorm > 0 ? "|b|" : "|gP(x0)| (b = 0)",
-                                   (double)(tao->gttol * qp->gref)));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "stopping: |projected gradient| <= max(gatol %g, gttol %g * %s = %g)%s\n", (double)tao->gatol, (double)tao->gttol,
+                                   qp->bnorm > 0 ? "|b|" : "|gP(x0)| (b = 0)", (double)(tao->gttol * qp->gref), tao->grtol > 0 ? ", or <= grtol |f|" : ""));
   PetscCall(QPCountersView(&qp->counters, NULL, viewer));
   if (qp->core.precondition) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "preconditioning in face (the PC restricted to the free entries):\n"));
@@ -308,6 +335,8 @@ PetscErrorCode TaoView_QP(Tao tao, PetscViewer viewer)
   }
   if (qp->core.status == MPGPStatus::INDEFINITE) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the Hessian is not positive semidefinite (p'Ap < 0)\n"));
   if (qp->core.status == MPGPStatus::UNBOUNDED) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: q is unbounded below (p'Ap = 0 along a descent direction no constraint stops)\n"));
+  if (qp->core.status == MPGPStatus::NORM_TOO_SMALL)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: q rose, the estimate of ||A|| is too small (a MATSHELL whose action changed needs PetscObjectStateIncrease())\n"));
   if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
