@@ -496,8 +496,22 @@ PetscErrorCode PrepareEquality(Tao tao, TaoSMALXE *s)
 {
   PetscFunctionBegin;
   if (s->C || (s->Q && s->xt)) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!tao->ops->computeequalityconstraints && !tao->ops->computejacobianequality) {
+    /* no equality at all: an empty C (0 rows), so that a bound-constrained program can select smalxe;
+       the outer loop then ends after its first inner solve */
+    PetscInt n, N;
+    PetscCall(PetscInfo(tao, "TAO smalxe: no equality constraint given, solving with an empty one\n"));
+    PetscCall(VecGetLocalSize(tao->solution, &n));
+    PetscCall(VecGetSize(tao->solution, &N));
+    PetscCall(MatCreateAIJ(PetscObjectComm((PetscObject)tao), 0, n, 0, N, 0, NULL, 0, NULL, &s->C));
+    PetscCall(MatAssemblyBegin(s->C, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(s->C, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatCreateVecs(s->C, NULL, &s->d));
+    s->projector = PETSC_FALSE; /* a projector onto an empty range would be the zero matrix: penalty form */
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCheck(tao->ops->computeequalityconstraints && tao->ops->computejacobianequality, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE,
-             "TAO smalxe: no equality constraint; call TaoSMALXESetEqualityConstraints(), TaoSMALXESetProjector(), or TaoSetEqualityConstraintsRoutine() with TaoSetJacobianEqualityRoutine()");
+             "TAO smalxe: an equality needs both TaoSetEqualityConstraintsRoutine() and TaoSetJacobianEqualityRoutine() (or TaoSMALXESetEqualityConstraints(), TaoSMALXESetProjector())");
   PetscCall(TaoComputeJacobianEquality(tao, tao->solution, tao->jacobian_equality, tao->jacobian_equality_pre));
   PetscCall(VecSet(tao->stepdirection, 0.0));
   PetscCall(TaoComputeEqualityConstraints(tao, tao->stepdirection, tao->constraints_equality));
