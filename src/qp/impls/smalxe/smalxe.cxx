@@ -792,6 +792,12 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     PetscCheck(m == n && n == N, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_SIZ,
                "TAO smalxe: the Hessian must be square with the solution's size %" PetscInt_FMT ", it is %" PetscInt_FMT " x %" PetscInt_FMT, N, m, n);
   }
+  {
+    const char *prefix;
+    PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+    PetscCheck(tao->max_it >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-%stao_max_it %" PetscInt_FMT ": smalxe needs at least one outer iteration", prefix ? prefix : "",
+               tao->max_it);
+  }
   PetscCall(TaoComputeVariableBounds(tao));
   if (s->setup) PetscCall(RefreshEquality(tao, s));
   PetscCall(SetUpOnce(tao, s));
