@@ -3,28 +3,14 @@
    right-hand side changed must meet the new equality, as with TAO's own almm.
    A = tridiag(-1,2,-1), b = load/n^2. -resolve: second TaoSolve after changing vol (-vol2).
    Checks KKT: x >= lb, |Cx - d|, and the Lagrangian's projected gradient with mu fitted on the free set. */
-#include <petsctao.h>
+#include "quadratic.h"
 
 typedef struct {
-  Mat       A;
-  Vec       b;
+  Quadratic q; /* first: the callbacks of quadratic.h take this context */
   PetscReal vol;
   PetscInt  n;
 } AppCtx;
 
-static PetscErrorCode FG(Tao tao, Vec x, PetscReal *f, Vec g, void *ptr)
-{
-  AppCtx     *app = (AppCtx *)ptr;
-  PetscScalar xg, xb;
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(app->A, x, g));
-  PetscCall(VecDot(x, g, &xg));
-  PetscCall(VecDot(x, app->b, &xb));
-  *f = 0.5 * xg - xb;
-  PetscCall(VecAXPY(g, -1.0, app->b));
-  PetscFunctionReturn(0);
-}
-static PetscErrorCode H(Tao tao, Vec x, Mat Hm, Mat Hp, void *ptr) { return 0; }
 static PetscErrorCode CE(Tao tao, Vec x, Vec c, void *ptr)
 {
   AppCtx     *app = (AppCtx *)ptr;
@@ -48,8 +34,8 @@ static PetscErrorCode Check(Tao tao, AppCtx *app, Vec x, Vec lb, const char *tag
   PetscCall(TaoGetSolutionStatus(tao, &its, &f, &gn, &cn, &xd, NULL));
   PetscCall(VecDuplicate(x, &g));
   PetscCall(VecDuplicate(x, &d));
-  PetscCall(MatMult(app->A, x, g));
-  PetscCall(VecAXPY(g, -1.0, app->b));
+  PetscCall(MatMult(app->q.A, x, g));
+  PetscCall(VecAXPY(g, -1.0, app->q.b));
   PetscCall(VecWAXPY(d, -1.0, lb, x));
   PetscCall(VecMin(d, NULL, &viol));
   PetscCall(VecSum(x, &s));
@@ -101,19 +87,19 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-vol2", &vol2, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-load", &load, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-resolve", &resolve, NULL));
-  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 1, NULL, &app.A));
-  PetscCall(MatGetOwnershipRange(app.A, &rs, &re));
+  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 1, NULL, &app.q.A));
+  PetscCall(MatGetOwnershipRange(app.q.A, &rs, &re));
   for (PetscInt i = rs; i < re; i++) {
-    if (i > 0) PetscCall(MatSetValue(app.A, i, i - 1, -1.0, INSERT_VALUES));
-    if (i < n - 1) PetscCall(MatSetValue(app.A, i, i + 1, -1.0, INSERT_VALUES));
-    PetscCall(MatSetValue(app.A, i, i, 2.0, INSERT_VALUES));
+    if (i > 0) PetscCall(MatSetValue(app.q.A, i, i - 1, -1.0, INSERT_VALUES));
+    if (i < n - 1) PetscCall(MatSetValue(app.q.A, i, i + 1, -1.0, INSERT_VALUES));
+    PetscCall(MatSetValue(app.q.A, i, i, 2.0, INSERT_VALUES));
   }
-  PetscCall(MatAssemblyBegin(app.A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(app.A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatCreateVecs(app.A, &x, &app.b));
+  PetscCall(MatAssemblyBegin(app.q.A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(app.q.A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(app.q.A, &x, &app.q.b));
   PetscCall(VecDuplicate(x, &lb));
   PetscCall(VecDuplicate(x, &ub));
-  PetscCall(VecSet(app.b, -load / (n * n)));
+  PetscCall(VecSet(app.q.b, -load / (n * n)));
   PetscCall(VecSet(lb, -0.08));
   PetscCall(VecSet(ub, PETSC_INFINITY));
   PetscCall(VecSet(x, 0));
@@ -126,8 +112,8 @@ int main(int argc, char **argv)
 
   PetscCall(TaoCreate(PETSC_COMM_WORLD, &tao));
   PetscCall(TaoSetSolution(tao, x));
-  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, FG, &app));
-  PetscCall(TaoSetHessian(tao, app.A, app.A, H, &app));
+  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, QuadraticObjectiveGradient, &app));
+  PetscCall(TaoSetHessian(tao, app.q.A, app.q.A, QuadraticHessian, &app));
   PetscCall(TaoSetVariableBounds(tao, lb, ub));
   PetscCall(TaoSetEqualityConstraintsRoutine(tao, ce, CE, &app));
   PetscCall(TaoSetJacobianEqualityRoutine(tao, J, J, JE, &app));
@@ -145,8 +131,8 @@ int main(int argc, char **argv)
   PetscCall(VecDestroy(&lb));
   PetscCall(VecDestroy(&ub));
   PetscCall(VecDestroy(&ce));
-  PetscCall(VecDestroy(&app.b));
-  PetscCall(MatDestroy(&app.A));
+  PetscCall(VecDestroy(&app.q.b));
+  PetscCall(MatDestroy(&app.q.A));
   PetscCall(MatDestroy(&J));
   PetscCall(PetscFinalize());
   return 0;

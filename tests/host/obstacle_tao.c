@@ -9,30 +9,8 @@
    -resolve 0|1|2 : second TaoSolve with 1 = changed RHS, 2 = changed (lifted) bounds
    -sfo_first : TaoSetFromOptions before TaoSetVariableBounds
    -ref : also solve with a reference Tao (prefix ref_, default gpcg) and print |x - xref|_inf */
-#include <petsctao.h>
+#include "quadratic.h"
 
-typedef struct {
-  Mat A;
-  Vec b;
-} AppCtx;
-
-static PetscErrorCode FG(Tao tao, Vec x, PetscReal *f, Vec g, void *ptr)
-{
-  AppCtx     *app = (AppCtx *)ptr;
-  PetscScalar xg, xb;
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(app->A, x, g));
-  PetscCall(VecDot(x, g, &xg));
-  PetscCall(VecDot(x, app->b, &xb));
-  *f = 0.5 * PetscRealPart(xg) - PetscRealPart(xb);
-  PetscCall(VecAXPY(g, -1.0, app->b));
-  PetscFunctionReturn(0);
-}
-static PetscErrorCode H(Tao tao, Vec x, Mat Hm, Mat Hp, void *ptr)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0);
-}
 static PetscErrorCode ShellMult(Mat S, Vec x, Vec y)
 {
   Mat A;
@@ -66,7 +44,7 @@ static PetscErrorCode Report(Tao tao, const char *tag, Vec x, Vec xref)
 
 int main(int argc, char **argv)
 {
-  AppCtx    app;
+  Quadratic app;
   Tao       tao;
   Mat       S = NULL, Hm;
   Vec       x, lb, ub, xref = NULL;
@@ -158,8 +136,8 @@ int main(int argc, char **argv)
     PetscCall(TaoSetOptionsPrefix(rt, "ref_"));
     PetscCall(TaoSetType(rt, TAOGPCG));
     PetscCall(TaoSetSolution(rt, xref));
-    PetscCall(TaoSetObjectiveAndGradient(rt, NULL, FG, &app));
-    PetscCall(TaoSetHessian(rt, Ac, Ac, H, &app));
+    PetscCall(TaoSetObjectiveAndGradient(rt, NULL, QuadraticObjectiveGradient, &app));
+    PetscCall(TaoSetHessian(rt, Ac, Ac, QuadraticHessian, &app));
     if (strcmp(bounds, "none") && strcmp(bounds, "nocall")) PetscCall(TaoSetVariableBounds(rt, lb, ub));
     PetscCall(TaoSetTolerances(rt, 1e-12, 0, 0));
     PetscCall(TaoSetMaximumIterations(rt, 100000));
@@ -173,8 +151,8 @@ int main(int argc, char **argv)
 
   PetscCall(TaoCreate(PETSC_COMM_WORLD, &tao));
   PetscCall(TaoSetSolution(tao, x));
-  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, FG, &app));
-  PetscCall(TaoSetHessian(tao, Hm, Hm, H, &app));
+  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, QuadraticObjectiveGradient, &app));
+  PetscCall(TaoSetHessian(tao, Hm, Hm, QuadraticHessian, &app));
   if (sfo_first) PetscCall(TaoSetFromOptions(tao));
   if (strcmp(bounds, "none") && strcmp(bounds, "nocall")) PetscCall(TaoSetVariableBounds(tao, lb, ub));
   if (!sfo_first) PetscCall(TaoSetFromOptions(tao));

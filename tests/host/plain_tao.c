@@ -4,36 +4,11 @@
    -tao_mpgp_block_type disk` reads each consecutive pair's bound box as the inscribed disk
    |(x_2i, x_2i+1)| <= bound. Prints the largest pair norm and entry, so a test can check which set
    was enforced. */
-#include <petsctao.h>
-
-typedef struct {
-  Mat A;
-  Vec b;
-} AppCtx;
-
-static PetscErrorCode FormFunctionGradient(Tao tao, Vec x, PetscReal *f, Vec g, void *ptr)
-{
-  AppCtx     *app = (AppCtx *)ptr;
-  PetscScalar xg, xb;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(app->A, x, g));
-  PetscCall(VecDot(x, g, &xg));
-  PetscCall(VecDot(x, app->b, &xb));
-  *f = 0.5 * PetscRealPart(xg) - PetscRealPart(xb);
-  PetscCall(VecAXPY(g, -1.0, app->b));
-  PetscFunctionReturn(0);
-}
-
-static PetscErrorCode FormHessian(Tao tao, Vec x, Mat H, Mat Hpre, void *ptr)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(0);
-}
+#include "quadratic.h"
 
 int main(int argc, char **argv)
 {
-  AppCtx             app;
+  Quadratic          app;
   Tao                tao;
   Vec                x, lb, ub;
   PetscInt           n     = 200, rstart, rend, its;
@@ -66,8 +41,8 @@ int main(int argc, char **argv)
 
   PetscCall(TaoCreate(PETSC_COMM_WORLD, &tao));
   PetscCall(TaoSetSolution(tao, x));
-  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, FormFunctionGradient, &app));
-  PetscCall(TaoSetHessian(tao, app.A, app.A, FormHessian, &app));
+  PetscCall(TaoSetObjectiveAndGradient(tao, NULL, QuadraticObjectiveGradient, &app));
+  PetscCall(TaoSetHessian(tao, app.A, app.A, QuadraticHessian, &app));
   PetscCall(TaoSetVariableBounds(tao, lb, ub));
   PetscCall(TaoSetFromOptions(tao));
   PetscCall(TaoSolve(tao));
