@@ -251,6 +251,13 @@ PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscBool *failed)
   PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
   PetscCall(KSPGetPC(ksp, &pc));
   if (!ierr) PetscCall(PCGetFailedReason(pc, &reason));
+  if (!ierr && reason != PC_NOERROR && reason != PC_FACTOR_STRUCT_ZEROPIVOT && reason != PC_FACTOR_NUMERIC_ZEROPIVOT) {
+    const char *prefix; /* out of memory or another failure the package reports without raising an error */
+    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB,
+            "The sparse factorization (options prefix -%s) failed inside the solver package (%s), not at a zero pivot: check the -%spc_factor_mat_solver_type and -%smat_* options, or the memory",
+            prefix ? prefix : "", PCFailedReasons[reason], prefix ? prefix : "", prefix ? prefix : "");
+  }
   if (ierr && ierr != PETSC_ERR_MAT_CH_ZRPVT && ierr != PETSC_ERR_MAT_LU_ZRPVT) {
     const char *prefix;
     PetscCall(KSPGetOptionsPrefix(ksp, &prefix));

@@ -105,6 +105,9 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet, const
                    "-feti_dirichlet_pc_factor_mat_solver_type and -mat_* options",
                    solver, (int)ierr);
         PetscCall(MatFactorGetError(sd.Fii, &err));
+        PetscCheck(err == MAT_FACTOR_NOERROR || err == MAT_FACTOR_STRUCT_ZEROPIVOT || err == MAT_FACTOR_NUMERIC_ZEROPIVOT, PETSC_COMM_SELF, PETSC_ERR_LIB,
+                   "Dirichlet preconditioner: the factorization of K_ii by %s failed inside the solver package (%s), not at a zero pivot: check the -mat_* options of the package, or the memory",
+                   solver, err == MAT_FACTOR_OUTMEMORY ? "out of memory" : "another failure");
         PetscCheck(err == MAT_FACTOR_NOERROR, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
                    "Dirichlet preconditioner: the interior block K_ii of a subdomain is singular (a part of the subdomain not connected to its interface?)");
       }

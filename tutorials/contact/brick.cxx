@@ -50,6 +50,7 @@ int main(int argc, char **argv)
      cell after the interface to two cells before the end, x in [2 + 1/k, 3 - 2/k]: same n and m */
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-paper_m", &paperm, NULL));
   if (paperm) {
+    PetscCheck(k >= 4, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-paper_m needs -k >= 4 (the strip has k - 2 node columns), got -k %" PetscInt_FMT, k);
     xrange[0] = 2.0 + 1.0 / k; /* face centroids lie strictly inside their cells */
     xrange[1] = 3.0 - 2.0 / k;
   }

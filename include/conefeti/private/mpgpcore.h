@@ -30,6 +30,7 @@ struct MPGPCore {
   PetscReal   normA       = 0;           /* estimate of ||A||, provided by the owner before the solve */
   PetscBool   bb          = PETSC_FALSE; /* MPGP: try Barzilai-Borwein lengths in gradient projection steps */
   PetscBool   projcg      = PETSC_FALSE; /* expansion: first try the projected full CG step P(x - a_cg p) (see MPGPCoreSolve) */
+  PetscBool   resume      = PETSC_FALSE; /* continue an interrupted solve: iteration 0 is not reported (the owner's test keeps its reference) */
 
   Mat          A   = nullptr; /* not owned */
   Vec          b   = nullptr; /* not owned */

@@ -43,6 +43,7 @@ struct SeparableSetData {
   bool                       has_bounds = false;
   bool                       dirty      = true;
   PetscObjectState           lb_state = 0, ub_state = 0, shift_state = 0; /* of lb, ub, shift when the effective data were made */
+  PetscObjectState           version = 0;                                 /* counts the times the effective data were made: subsets copied from an older version are stale */
 };
 
 struct _p_SeparableSet {
@@ -63,6 +64,7 @@ struct SeparableSplit {
 };
 
 PETSC_INTERN PetscErrorCode SeparableSetSetUp_Private(SeparableSet);
+PETSC_INTERN PetscErrorCode SeparableSetGetVersion_Private(SeparableSet, PetscObjectState *);
 PETSC_INTERN PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet, Vec, Vec, PetscReal, Vec, Vec, Vec, Vec, SeparableSplit *);
 PETSC_INTERN PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet, Vec, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode SeparableSetMaskFree_Private(SeparableSet, Vec);

@@ -506,6 +506,16 @@ PetscErrorCode SeparableSetSetUp_Private(SeparableSet set)
   if (d->ub) PetscCall(VecRestoreArrayRead(d->ub, &ub));
   if (d->shift) PetscCall(VecRestoreArrayRead(d->shift, &s));
   d->dirty = false;
+  d->version++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The version of the set's effective data (after bringing them up to date) */
+PetscErrorCode SeparableSetGetVersion_Private(SeparableSet set, PetscObjectState *version)
+{
+  PetscFunctionBegin;
+  PetscCall(SeparableSetSetUp_Private(set));
+  *version = set->data->version;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -362,9 +362,10 @@ PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet set, Vec x, Vec p, 
   const unsigned char *kind = d->kind.data();
   for (PetscInt i = 0; i < d->n; i++) {
     const PetscReal pi = PetscRealPart(pa[i]), xi = PetscRealPart(xa[i]);
-    const PetscReal r = pi > 0 ? PetscMax(xi - lo[i], 0) : PetscMin(xi - hi[i], 0);
-    const PetscReal a = (pi != 0 && kind[i] == SEPARABLE_SCALAR) ? r / pi : kInf;
-    amin              = PetscMin(amin, a);
+    const PetscReal r    = pi > 0 ? PetscMax(xi - lo[i], 0) : PetscMin(xi - hi[i], 0);
+    const bool      open = pi > 0 ? lo[i] <= -kInf : hi[i] >= kInf; /* no bound that way: r / pi is finite when |pi| > 1 */
+    const PetscReal a    = (pi != 0 && kind[i] == SEPARABLE_SCALAR && !open) ? r / pi : kInf;
+    amin                 = PetscMin(amin, a);
   }
   for (size_t k = 0; k < d->disk_radius.size(); k++) {
     const PetscInt  i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];

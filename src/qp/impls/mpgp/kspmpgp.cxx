@@ -135,9 +135,11 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
     PetscCall(MatQPClearNormEstimate(A));
     PetscCall(KSPGetOptionsPrefix(ksp, &kprefix));
     PetscCall(QPNormSettingsApply(&qp->norm, A, kprefix, "ksp", qp->name, &qp->counters));
-    qp->core.normA = qp->norm.used;
-    ksp->reason    = KSP_CONVERGED_ITERATING;
+    qp->core.normA  = qp->norm.used;
+    qp->core.resume = PETSC_TRUE; /* the convergence test keeps the tolerance it set at the first iteration 0 */
+    ksp->reason     = KSP_CONVERGED_ITERATING;
     PetscCall(MPGPCoreSolve(&qp->core, ksp->vec_sol));
+    qp->core.resume = PETSC_FALSE;
   }
   if (qp->core.status == MPGPStatus::INDEFINITE) ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
   else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {

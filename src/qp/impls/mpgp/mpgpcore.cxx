@@ -148,7 +148,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
   if (c->projcg && !c->dx) PetscCall(VecDuplicate(x, &c->dx));
   PetscCall(PetscLogEventBegin(QP_Solve, 0, 0, 0, 0));
   alpha = c->alpha_scale / c->normA;
-  c->counters->solves++;
+  if (!c->resume) c->counters->solves++;
 
   /* the initial guess is projected */
   PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
@@ -158,7 +158,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
   c->status = MPGPStatus::STOPPED;
   c->f      = 0.5 * (s.xg - s.xb);
   c->gpnorm = PetscSqrtReal(s.gp2);
-  PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, 0.0, &stop));
+  if (!c->resume) PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, 0.0, &stop));
 
   while (!stop) {
     PetscReal step;
@@ -203,7 +203,8 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
         c->counters->cg_steps++;
       } else { /* expansion: feasible half step, then a projected step along the free gradient */
         PetscBool projected = PETSC_FALSE;
-        if (c->projcg && !PetscIsInfOrNanReal(acg)) { /* first try the projected full CG step; keep it if it beats the feasible half step */
+        if (c->projcg && acg < PETSC_INFINITY &&
+            !PetscIsNanReal(acg)) { /* PETSC_INFINITY (a flat direction) is finite */ /* first try the projected full CG step; keep it if it beats the feasible half step */
           if (!c->bb) {
             PetscCall(VecCopy(x, c->xprev));
             PetscCall(VecCopy(c->g, c->gprev));

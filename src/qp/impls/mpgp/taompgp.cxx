@@ -254,9 +254,11 @@ PetscErrorCode TaoSolve_QP(Tao tao)
     PetscCall(MatQPClearNormEstimate(A));
     PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
     PetscCall(QPNormSettingsApply(&qp->norm, A, tprefix, "tao", qp->name, &qp->counters));
-    qp->core.normA = qp->norm.used;
-    tao->reason    = TAO_CONTINUE_ITERATING;
+    qp->core.normA  = qp->norm.used;
+    qp->core.resume = PETSC_TRUE; /* the stopping reference (gref) stays that of the first start */
+    tao->reason     = TAO_CONTINUE_ITERATING;
     PetscCall(MPGPCoreSolve(&qp->core, tao->solution));
+    qp->core.resume = PETSC_FALSE;
   }
   PetscCall(VecCopy(qp->core.g, tao->gradient));
   if (qp->core.status == MPGPStatus::INDEFINITE) {

@@ -40,6 +40,8 @@ struct SMALXEBlock {
   Vec        x       = nullptr; /* block of the solution (owned only when is != NULL) */
   Vec        b       = nullptr; /* linear term of the block problem */
   VecScatter scatter = nullptr; /* full vector -> block */
+
+  PetscObjectState set_version = 0; /* of the parent set when the block's subset was copied from it */
 };
 
 struct TaoSMALXE {
@@ -448,7 +450,7 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
       if (i > k - s->stagnation_its) recent = PetscMin(recent, s->feas_history[i]);
       else before = PetscMin(before, s->feas_history[i]);
     }
-    if (recent > 0.99 * before) {
+    if (recent > 0.99 * before && s->mult_history[k] <= 1.25 * s->mult_history[k - s->stagnation_its]) {
       s->stalled = PETSC_TRUE;
       PetscCall(PetscInfo(tao, "TAO smalxe: |Cx - d| stalls near %g: its best value did not fall by 1%% in %" PetscInt_FMT " outer iterations\n", (double)recent, s->stagnation_its));
       PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
@@ -535,7 +537,30 @@ PetscErrorCode RefreshEquality(Tao tao, TaoSMALXE *s)
   PetscCall(VecSet(tao->stepdirection, 0.0));
   PetscCall(TaoComputeEqualityConstraints(tao, tao->stepdirection, tao->constraints_equality));
   PetscCall(VecAXPBY(s->d, -1.0, 0.0, tao->constraints_equality));
-  if (s->Q_from_C) PetscCall(MatMultTranspose(s->C, s->d, s->xt));
+  if (s->Q_from_C) {
+    PetscCall(MatMultTranspose(s->C, s->d, s->xt));
+    PetscCall(PetscObjectStateIncrease((PetscObject)s->Q)); /* Q = C'C changed with C: its norm estimates are stale */
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A later solve: a block's set is a copy of a part of the set, made again when the set changed since
+   (e.g. new values in its bound vectors) */
+PetscErrorCode RefreshBlockSets(TaoSMALXE *s)
+{
+  PetscFunctionBegin;
+  if (!s->set) PetscFunctionReturn(PETSC_SUCCESS);
+  for (auto &blk : s->blocks) {
+    PetscObjectState version;
+    SeparableSet     bset;
+    if (!blk.is) continue;
+    PetscCall(SeparableSetGetVersion_Private(s->set, &version));
+    if (version == blk.set_version) continue;
+    PetscCall(SeparableSetCreateSubset(s->set, blk.is, &bset));
+    PetscCall(TaoQPSetConstraints(blk.sub, bset));
+    PetscCall(SeparableSetDestroy(&bset));
+    blk.set_version = version;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -601,7 +626,10 @@ PetscErrorCode SetUpOnce(Tao tao, TaoSMALXE *s)
       PetscCall(MatShellSetOperation(blk.H, MATOP_MULT, (void (*)(void))ShellMultHBlock));
       PetscCall(MatShellSetOperation(blk.H, MATOP_DESTROY, (void (*)(void))BlockShellDestroy));
       PetscCall(MatSetOption(blk.H, MAT_SYMMETRIC, PETSC_TRUE));
-      if (s->set) PetscCall(SeparableSetCreateSubset(s->set, blk.is, &bset));
+      if (s->set) {
+        PetscCall(SeparableSetCreateSubset(s->set, blk.is, &bset));
+        PetscCall(SeparableSetGetVersion_Private(s->set, &blk.set_version));
+      }
     } else {
       blk.H = s->H;
       blk.x = tao->solution;
@@ -799,7 +827,10 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
                tao->max_it);
   }
   PetscCall(TaoComputeVariableBounds(tao));
-  if (s->setup) PetscCall(RefreshEquality(tao, s));
+  if (s->setup) {
+    PetscCall(RefreshEquality(tao, s));
+    PetscCall(RefreshBlockSets(s));
+  }
   PetscCall(SetUpOnce(tao, s));
   PetscCall(PassVariableBounds(tao, s));
   if (!s->b_user) {
@@ -950,7 +981,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsInt("-tao_smalxe_anderson_start", "First outer iteration (from 0) whose multiplier update is accelerated (the first inner solves are loose and make poor history)",
                             "TaoSMALXESetAnderson", s->anderson_start, &s->anderson_start, NULL));
   PetscCheck(s->anderson_start >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_anderson_start: must be >= 1, got %" PetscInt_FMT, s->anderson_start);
-  PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its", "Stop (infeasible) when |Cx - d| falls by less than 1% and the multiplier grows by a quarter in this many outer iterations (0: never)",
+  PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
+                            "Stop when |Cx - d| makes less than 1% progress in this many outer iterations: infeasible if the multiplier grew by a quarter meanwhile, stalled if it settled (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_counters_view", "Print the counters as one JSON line after each solve", "QPCountersViewJSON", s->counters_view, &s->counters_view, NULL));
   PetscOptionsHeadEnd();
