@@ -247,4 +247,5 @@ PETSC_EXTERN PetscErrorCode ContactModelGetSolution(ContactModel, Vec *, Vec *);
 PETSC_EXTERN PetscErrorCode ContactModelGetStatistics(ContactModel, ContactStatistics *);
 PETSC_EXTERN PetscErrorCode ContactModelComputeResiduals(ContactModel, ContactResiduals *);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodes(ContactModel, PetscInt *, const PetscInt **, const PetscInt **, const PetscReal **, const PetscReal **);
+PETSC_EXTERN PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel, PetscInt *);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodeStates(ContactModel, PetscReal[], PetscReal[], PetscReal[], ContactNodeStatus[]);

@@ -52,6 +52,7 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . fixed_point   - Coulomb: relative fixed-point residual |g - F l_n| / |F l_n| at the end
 . feasibility   - |G l - e| at the end
 . rtol          - the contact solver's relative tolerance (-contact_rtol; 0 for the linear pipeline)
+. unmatched_nodes - nodes of node-to-node zones' first faces without a partner (`ContactModelGetUnmatchedNodes()`)
 . residuals     - the mechanical residuals (each relative) and the node counts
 . finite        - whether every residual is a finite number
 . converged     - whether the solve met its tolerances (and the residuals are finite)
@@ -70,6 +71,7 @@ typedef struct {
   PetscInt                n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
   PetscInt                iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
   PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility, rtol;
+  PetscInt                unmatched_nodes;
   ContactResiduals        residuals;
   PetscBool               finite, converged;
   char                    reason[256];

@@ -35,7 +35,8 @@ struct NodeInfo {
 struct ModelData {
   FEM                      fem = nullptr;
   std::vector<ContactZone> zones;
-  std::vector<NodeInfo>    nodes; /* all contact nodes, the same on every rank */
+  std::vector<NodeInfo>    nodes;     /* all contact nodes, the same on every rank */
+  std::vector<PetscInt>    unmatched; /* per zone: nodes of a node-to-node zone's first face without a partner */
   FETI                     feti   = nullptr;
   ContactProblem           cp     = nullptr;
   Vec                      lambda = nullptr, u = nullptr, alpha = nullptr;
@@ -151,7 +152,10 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::set<Pets
       info.gap = (info.x[0] - zone.point[0]) * nu[0] + (info.x[1] - zone.point[1]) * nu[1] + (info.x[2] - zone.point[2]) * nu[2];
     } else {
       auto it = other.find(key(info.x));
-      if (it == other.end()) continue; /* a node of the first face without a partner on the second is not in contact */
+      if (it == other.end()) { /* a node of the first face without a partner on the second is not in contact */
+        d.unmatched[z]++;
+        continue;
+      }
       info.other_body = zone.other_body;
       info.other_node = it->second;
       if (fixed.count(offB + info.other_node)) continue;
@@ -403,7 +407,12 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   d = cm->data;
   if (d->setup) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(DirichletNodes(d->fem, fixed));
-  for (PetscInt z = 0; z < (PetscInt)d->zones.size(); z++) PetscCall(CollectZoneNodes(cm, z, fixed));
+  PetscCallCXX(d->unmatched.assign(d->zones.size(), 0));
+  for (PetscInt z = 0; z < (PetscInt)d->zones.size(); z++) {
+    PetscCall(CollectZoneNodes(cm, z, fixed));
+    if (d->unmatched[z])
+      PetscCall(PetscInfo(cm, "contact zone %" PetscInt_FMT ": %" PetscInt_FMT " nodes of the first face have no coinciding node on the second (not in contact)\n", z, d->unmatched[z]));
+  }
   PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG,
              "the contact zones have no admissible node (all fixed, or no matching nodes between bodies)");
   PetscCall(AppendRows(cm));
@@ -606,6 +615,38 @@ PetscErrorCode ContactModelGetStatistics(ContactModel cm, ContactStatistics *sta
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
   if (cm->data->cp) PetscCall(ContactProblemGetStatistics(cm->data->cp, stats));
   else *stats = cm->data->linear_stats;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactModelGetUnmatchedNodes - The number of nodes of node-to-node zones' first faces that have no
+  node of the second face at the same position, and so are not in contact.
+
+  Not Collective (the same on every rank)
+
+  Input Parameter:
+. cm - the model (set up)
+
+  Output Parameter:
+. n - the number, summed over the zones (0 on conforming meshes whose first face lies inside the second)
+
+  Notes:
+  Node-to-node contact needs conforming meshes: a first face larger than the second has such nodes by
+  design, but a nonzero count on faces meant to match says the meshes do not (different cells, shifted
+  bodies). The conefeti driver prints a note when it is nonzero; `ContactModelView()` gives it per zone.
+
+  Level: intermediate
+
+.seealso: `ContactModelAddZone()`, `ContactModelView()`
+@*/
+PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel cm, PetscInt *n)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  PetscValidIntPointer(n, 2);
+  PetscCheck(cm->data->setup, PetscObjectComm((PetscObject)cm), PETSC_ERR_ORDER, "Call ContactModelSetUp() first");
+  *n = 0;
+  for (PetscInt u : cm->data->unmatched) *n += u;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -906,8 +947,9 @@ PetscErrorCode ContactModelView(ContactModel cm, PetscViewer viewer)
                                        (double)zn.point[0], (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], ContactLaws[zn.law],
                                        (double)zn.coef));
     else
-      PetscCall(PetscViewerASCIIPrintf(viewer, "zone %zu: body %" PetscInt_FMT " face %s against body %" PetscInt_FMT " face %s (node to node), %s %g\n", z, zn.body, zn.face, zn.other_body,
-                                       zn.other_face, ContactLaws[zn.law], (double)zn.coef));
+      PetscCall(PetscViewerASCIIPrintf(
+          viewer, "zone %zu: body %" PetscInt_FMT " face %s against body %" PetscInt_FMT " face %s (node to node), %s %g; %" PetscInt_FMT " nodes of the first face without a partner\n", z, zn.body,
+          zn.face, zn.other_body, zn.other_face, ContactLaws[zn.law], (double)zn.coef, z < d->unmatched.size() ? d->unmatched[z] : 0));
   }
   if (d->cp) PetscCall(ContactProblemView(d->cp, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));

@@ -198,6 +198,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
     PetscCall(TaoQPGetNormEstimate(tao, &s->norm_F));
     PetscCall(TaoGetTolerances(tao, NULL, NULL, &s->rtol));
   }
+  PetscCall(ContactModelGetUnmatchedNodes(impl.cm, &s->unmatched_nodes));
   /* the mechanical residuals, from u and lambda */
   PetscCall(ContactModelComputeResiduals(impl.cm, &s->residuals));
   s->contact_nodes = s->residuals.counts[0] + s->residuals.counts[1] + s->residuals.counts[2];
@@ -264,6 +265,10 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
     PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", line.c_str()));
     if (s->pipeline == CONTACT_PIPELINE_COULOMB) PetscCall(PetscViewerASCIIPrintf(viewer, "Coulomb fixed point: |g - F l_n| / |F l_n| = %s\n", E(s->fixed_point).c_str()));
   }
+  if (s->unmatched_nodes)
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "note: %" PetscInt_FMT " nodes of node-to-node zone faces have no node of the other face at the same position and are not in contact (meshes that do not conform?)\n",
+        s->unmatched_nodes));
   /* the solver's tolerance is relative to |h| = |B K+ f - c|, which contains the gaps: with gaps far larger
      than the displacements the loads cause, it is loose for the mechanics, and the residuals show it */
   if (s->converged && s->rtol > 0 && r.max > 100 * s->rtol)

@@ -3,8 +3,12 @@
 #include <conefeti.h>
 int main(int argc, char **argv)
 {
-  Mat A, C; Vec x, b, lb, d; Tao tao; SeparableSet set; IS is[2];
-  PetscInt n = 40, rs, re;
+  Mat          A, C;
+  Vec          x, b, lb, d;
+  Tao          tao;
+  SeparableSet set;
+  IS           is[2];
+  PetscInt     n = 40, rs, re;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(ConeFETIInitializePackage());
   PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 1, NULL, &A));
@@ -14,14 +18,23 @@ int main(int argc, char **argv)
     if (i < n - 1) PetscCall(MatSetValue(A, i, i + 1, -1.0, INSERT_VALUES));
     PetscCall(MatSetValue(A, i, i, 2.0, INSERT_VALUES));
   }
-  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY)); PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatCreateVecs(A, &x, &b)); PetscCall(VecDuplicate(x, &lb));
-  PetscCall(VecSet(b, -1.0)); PetscCall(VecSet(lb, -1.0)); PetscCall(VecSet(x, 0.0));
+  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(A, &x, &b));
+  PetscCall(VecDuplicate(x, &lb));
+  PetscCall(VecSet(b, -1.0));
+  PetscCall(VecSet(lb, -1.0));
+  PetscCall(VecSet(x, 0.0));
   /* C: one row, x_0 - x_{n-1} = 0 */
   PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, re - rs, 1, n, 2, NULL, 2, NULL, &C));
-  if (rs == 0) { PetscCall(MatSetValue(C, 0, 0, 1.0, INSERT_VALUES)); PetscCall(MatSetValue(C, 0, n - 1, -1.0, INSERT_VALUES)); }
-  PetscCall(MatAssemblyBegin(C, MAT_FINAL_ASSEMBLY)); PetscCall(MatAssemblyEnd(C, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatCreateVecs(C, NULL, &d)); PetscCall(VecSet(d, 0.0));
+  if (rs == 0) {
+    PetscCall(MatSetValue(C, 0, 0, 1.0, INSERT_VALUES));
+    PetscCall(MatSetValue(C, 0, n - 1, -1.0, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(C, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(C, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(C, NULL, &d));
+  PetscCall(VecSet(d, 0.0));
   PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, re - rs, n, &set));
   PetscCall(SeparableSetSetBounds(set, lb, NULL));
   /* two blocks: first and second half of each rank's range */
@@ -40,7 +53,8 @@ int main(int argc, char **argv)
   PetscCall(TaoSMALXESetBlocks(tao, 2, is));
   PetscCall(TaoSetFromOptions(tao));
   for (int k = 0; k < 2; k++) {
-    PetscReal mn; TaoConvergedReason r;
+    PetscReal          mn;
+    TaoConvergedReason r;
     PetscCall(VecSet(x, 0.0));
     PetscCall(TaoSolve(tao));
     PetscCall(TaoGetConvergedReason(tao, &r));
@@ -48,9 +62,16 @@ int main(int argc, char **argv)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "solve%d: %s min x %.6f (lb %g)\n", k + 1, TaoConvergedReasons[r], (double)mn, k ? -0.1 : -1.0));
     PetscCall(VecSet(lb, -0.1)); /* in place */
   }
-  PetscCall(TaoDestroy(&tao)); PetscCall(SeparableSetDestroy(&set));
-  PetscCall(ISDestroy(&is[0])); PetscCall(ISDestroy(&is[1]));
-  PetscCall(MatDestroy(&A)); PetscCall(MatDestroy(&C)); PetscCall(VecDestroy(&x)); PetscCall(VecDestroy(&b)); PetscCall(VecDestroy(&lb)); PetscCall(VecDestroy(&d));
+  PetscCall(TaoDestroy(&tao));
+  PetscCall(SeparableSetDestroy(&set));
+  PetscCall(ISDestroy(&is[0]));
+  PetscCall(ISDestroy(&is[1]));
+  PetscCall(MatDestroy(&A));
+  PetscCall(MatDestroy(&C));
+  PetscCall(VecDestroy(&x));
+  PetscCall(VecDestroy(&b));
+  PetscCall(VecDestroy(&lb));
+  PetscCall(VecDestroy(&d));
   PetscCall(PetscFinalize());
   return 0;
 }
