@@ -252,8 +252,16 @@ PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscBool *failed)
   PetscCall(KSPGetPC(ksp, &pc));
   if (!ierr) PetscCall(PCGetFailedReason(pc, &reason));
   if (!ierr && reason != PC_NOERROR && reason != PC_FACTOR_STRUCT_ZEROPIVOT && reason != PC_FACTOR_NUMERIC_ZEROPIVOT) {
-    const char *prefix; /* out of memory or another failure the package reports without raising an error */
+    const char   *prefix; /* out of memory or another failure the package reports without raising an error */
+    MatSolverType type = NULL;
+    PetscBool     mumps;
     PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    PetscCall(PCFactorGetMatSolverType(pc, &type));
+    PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
+    /* MUMPS underestimates its workspace for small matrices with a large Schur complement (tiny subdomains) */
+    PetscCheck(!mumps || reason != PC_FACTOR_OUTMEMORY, PETSC_COMM_SELF, PETSC_ERR_LIB,
+               "The sparse factorization (options prefix -%s) failed inside MUMPS (FACTOR_OUTMEMORY): its workspace estimate was too small; raise it, e.g. -%smat_mumps_icntl_14 100 (percent)",
+               prefix ? prefix : "", prefix ? prefix : "");
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB,
             "The sparse factorization (options prefix -%s) failed inside the solver package (%s), not at a zero pivot: check the -%spc_factor_mat_solver_type and -%smat_* options, or the memory",
             prefix ? prefix : "", PCFailedReasons[reason], prefix ? prefix : "", prefix ? prefix : "");
