@@ -184,6 +184,14 @@ static PetscErrorCode SubdomainExplicitKplusBySchur(FETISubdomain &sd)
   PetscCall(MatFactorInfoInitialize(&info));
   PetscCall(MatCholeskyFactorSymbolic(factor, sd.Kreg, rperm, &info));
   PetscCall(MatCholeskyFactorNumeric(factor, sd.Kreg, &info));
+  {
+    MatFactorError err;
+    PetscCall(MatFactorGetError(factor, &err));
+    PetscCheck(err == MAT_FACTOR_NOERROR, PETSC_COMM_SELF, PETSC_ERR_LIB,
+               "The MUMPS factorization that gives a subdomain's Schur complement for the explicit (K+)_bb failed (%s): -feti_kplus_explicit_schur 0 builds the blocks by solves with the subdomain "
+               "factor instead",
+               err == MAT_FACTOR_OUTMEMORY ? "out of workspace or memory" : "a zero pivot or another failure");
+  }
   PetscCall(MatFactorInvertSchurComplement(factor));
   PetscCall(MatFactorCreateSchurComplement(factor, &S, NULL));
   PetscCall(MatConvert(S, MATSEQDENSE, MAT_INITIAL_MATRIX, &sd.Kplusbb));

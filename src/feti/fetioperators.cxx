@@ -228,51 +228,86 @@ static PetscErrorCode CreateShell(FETI feti, PetscInt m, PetscInt n, PetscErrorC
 
 /* KSPSetUp() of a direct solver, reporting a failed factorization (zero or negative pivot: a singular
    matrix) through *failed instead of the factorization package's own error, so that the caller can
-   say what the singularity means. Any other failure inside the package (an ordering that fails, out of
+   say what the singularity means. MUMPS running out of its workspace estimate (it underestimates it for
+   small matrices with a large Schur complement: tiny subdomains) is retried with a larger ICNTL(14),
+   up to three times; prepare(ctx), when given, redoes what the caller set on the factor before the
+   first attempt (the Schur dofs). Any other failure inside the package (an ordering that fails, out of
    memory, a bad package option) is an error that names the options prefix: it says nothing about the
    matrix. */
-PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscBool *failed)
+PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscErrorCode (*prepare)(void *), void *ctx, PetscBool *failed)
 {
   PetscErrorCode ierr;
   PC             pc;
   PCFailedReason reason = PC_NOERROR;
-  PetscBool      errorif;
+  PetscBool      errorif, factorpc, mumps = PETSC_FALSE;
+  const char    *prefix;
+  const PetscInt max_retries = 3;
+  PetscInt       workspace = 0, used = 0; /* ICNTL(14): asked for by the last retry, in effect in the last attempt */
+  PetscBool      given;
 
   PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
-  /* without error-if-failure a zero pivot is a PC failed reason in every package (MUMPS would raise the
-     same library error code as for any other failure) */
-  PetscCall(KSPGetErrorIfNotConverged(ksp, &errorif));
-  PetscCall(KSPSetErrorIfNotConverged(ksp, PETSC_FALSE));
-  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ierr = KSPSetUp(ksp);
-  PetscCall(PetscPopErrorHandler());
-  PetscCall(KSPSetErrorIfNotConverged(ksp, errorif));
-  PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
   PetscCall(KSPGetPC(ksp, &pc));
-  if (!ierr) PetscCall(PCGetFailedReason(pc, &reason));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &factorpc, PCCHOLESKY, PCLU, ""));
+  for (PetscInt attempt = 0;; attempt++) {
+    PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
+    /* without error-if-failure a zero pivot is a PC failed reason in every package (MUMPS would raise the
+       same library error code as for any other failure) */
+    PetscCall(KSPGetErrorIfNotConverged(ksp, &errorif));
+    PetscCall(KSPSetErrorIfNotConverged(ksp, PETSC_FALSE));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = KSPSetUp(ksp);
+    PetscCall(PetscPopErrorHandler());
+    PetscCall(KSPSetErrorIfNotConverged(ksp, errorif));
+    PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+    reason = PC_NOERROR;
+    if (!ierr) PetscCall(PCGetFailedReason(pc, &reason));
+    if (factorpc) {
+      MatSolverType type = NULL;
+      PetscCall(PCFactorGetMatSolverType(pc, &type));
+      PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
+    }
+    if (ierr || reason != PC_FACTOR_OUTMEMORY || !mumps) break;
+    {
+      Mat factor;
+      PetscCall(PCFactorGetMatrix(pc, &factor));
+      PetscCall(MatMumpsGetIcntl(factor, 14, &used));
+    }
+    if (attempt == max_retries || (attempt > 0 && used < workspace)) break; /* used < workspace: an explicit -mat_mumps_icntl_14 wins */
+    {                                                                       /* same matrix, a fresh factor with a larger workspace */
+      Mat      A, factor;
+      PetscInt pct = used;
+      workspace    = PetscMax(2 * pct, 100);
+      PetscCall(PetscInfo(ksp, "MUMPS workspace estimate too small (ICNTL(14) = %" PetscInt_FMT "%%): factoring again with %" PetscInt_FMT "%%\n", pct, workspace));
+      PetscCall(KSPGetOperators(ksp, &A, NULL));
+      PetscCall(PetscObjectReference((PetscObject)A));
+      PetscCall(PCReset(pc));
+      PetscCall(KSPSetOperators(ksp, A, A));
+      PetscCall(MatDestroy(&A));
+      if (prepare) PetscCall((*prepare)(ctx));
+      PetscCall(PCFactorSetUpMatSolverType(pc));
+      PetscCall(PCFactorGetMatrix(pc, &factor));
+      PetscCall(MatMumpsSetIcntl(factor, 14, workspace));
+    }
+  }
   if (!ierr && reason != PC_NOERROR && reason != PC_FACTOR_STRUCT_ZEROPIVOT && reason != PC_FACTOR_NUMERIC_ZEROPIVOT) {
-    const char   *prefix; /* out of memory or another failure the package reports without raising an error */
-    MatSolverType type = NULL;
-    PetscBool     mumps;
-    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-    PetscCall(PCFactorGetMatSolverType(pc, &type));
-    PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
-    /* MUMPS underestimates its workspace for small matrices with a large Schur complement (tiny subdomains) */
+    /* out of memory or another failure the package reports without raising an error */
+    PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, prefix, "-mat_mumps_icntl_14", &given));
+    PetscCheck(!mumps || reason != PC_FACTOR_OUTMEMORY || !given, PETSC_COMM_SELF, PETSC_ERR_LIB,
+               "The sparse factorization (options prefix -%s) failed inside MUMPS (FACTOR_OUTMEMORY): its workspace estimate was too small with -%smat_mumps_icntl_14 %" PetscInt_FMT
+               " (percent); raise it or leave it out (without it the workspace is raised until the factorization fits)",
+               prefix ? prefix : "", prefix ? prefix : "", used);
     PetscCheck(!mumps || reason != PC_FACTOR_OUTMEMORY, PETSC_COMM_SELF, PETSC_ERR_LIB,
-               "The sparse factorization (options prefix -%s) failed inside MUMPS (FACTOR_OUTMEMORY): its workspace estimate was too small; raise it, e.g. -%smat_mumps_icntl_14 100 (percent)",
-               prefix ? prefix : "", prefix ? prefix : "");
+               "The sparse factorization (options prefix -%s) failed inside MUMPS (FACTOR_OUTMEMORY): its workspace estimate was too small, also after %" PetscInt_FMT
+               " retries with a larger one (last ICNTL(14) = %" PetscInt_FMT "%%); raise it, e.g. -%smat_mumps_icntl_14 %" PetscInt_FMT " (percent), or check the memory",
+               prefix ? prefix : "", max_retries, used, prefix ? prefix : "", 4 * used);
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB,
             "The sparse factorization (options prefix -%s) failed inside the solver package (%s), not at a zero pivot: check the -%spc_factor_mat_solver_type and -%smat_* options, or the memory",
             prefix ? prefix : "", PCFailedReasons[reason], prefix ? prefix : "", prefix ? prefix : "");
   }
-  if (ierr && ierr != PETSC_ERR_MAT_CH_ZRPVT && ierr != PETSC_ERR_MAT_LU_ZRPVT) {
-    const char *prefix;
-    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-    SETERRQ(PETSC_COMM_SELF, ierr,
-            "The sparse factorization (options prefix -%s) failed inside the solver package with PETSc error %d, not at a zero pivot: check the -%spc_factor_mat_solver_type and -%smat_* options",
-            prefix ? prefix : "", (int)ierr, prefix ? prefix : "", prefix ? prefix : "");
-  }
+  PetscCheck(!ierr || ierr == PETSC_ERR_MAT_CH_ZRPVT || ierr == PETSC_ERR_MAT_LU_ZRPVT, PETSC_COMM_SELF, ierr,
+             "The sparse factorization (options prefix -%s) failed inside the solver package with PETSc error %d, not at a zero pivot: check the -%spc_factor_mat_solver_type and -%smat_* options",
+             prefix ? prefix : "", (int)ierr, prefix ? prefix : "", prefix ? prefix : "");
   *failed = (ierr || reason != PC_NOERROR) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -311,7 +346,7 @@ PetscErrorCode FETICreateCoarseKSP(FETI feti, Mat A, KSP *ksp, PetscBool *failed
     PetscCall(PCFactorSetMatSolverType(innerpc, impl.subsolver));
   }
   PetscCall(KSPSetFromOptions(*ksp));
-  PetscCall(FETIKSPSetUpFactorization(feti, *ksp, failed));
+  PetscCall(FETIKSPSetUpFactorization(feti, *ksp, NULL, NULL, failed));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -192,6 +192,21 @@ static PetscErrorCode RegularizationResidual(FETISubdomain &sd, PetscReal *res)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* a factorization retried with more workspace starts from a fresh factor: the Schur dofs again */
+struct SchurDofsContext {
+  FETI           feti;
+  FETISubdomain *sd;
+};
+
+static PetscErrorCode SetSchurDofsAgain(void *ctx)
+{
+  SchurDofsContext *c = static_cast<SchurDofsContext *>(ctx);
+
+  PetscFunctionBegin;
+  PetscCall(FETISubdomainSetSchurDofs(c->feti, *c->sd));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
 {
   FETI_Impl        &impl = *feti->impl;
@@ -287,8 +302,9 @@ PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
   PetscCall(KSPSetFromOptions(sd.ksp));
   PetscCall(FETISubdomainSetSchurDofs(feti, sd));
   {
-    PetscBool failed;
-    PetscCall(FETIKSPSetUpFactorization(feti, sd.ksp, &failed));
+    PetscBool        failed;
+    SchurDofsContext ctx{feti, &sd};
+    PetscCall(FETIKSPSetUpFactorization(feti, sd.ksp, SetSchurDofsAgain, &ctx, &failed));
     PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
                "Subdomain %" PetscInt_FMT ": the regularized K_s is not positive definite: K_s has zero-energy modes outside its kernel basis of dimension %" PetscInt_FMT
                " (a disconnected subdomain, a mechanism, wrong coordinates?)",

@@ -105,7 +105,7 @@ PETSC_INTERN PetscErrorCode FETISetUpOperators(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplus(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyP(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETICreateCoarseKSP(FETI, Mat, KSP *, PetscBool *);
-PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscBool *);
+PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscErrorCode (*)(void *), void *, PetscBool *);
 
 /* fetiexplicitkplus.cxx */
 PETSC_INTERN PetscErrorCode FETISetUpExplicitKplus(FETI);
