@@ -53,6 +53,7 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . feasibility   - |G l - e| at the end
 . rtol          - the contact solver's relative tolerance (-contact_rtol; 0 for the linear pipeline)
 . unmatched_nodes - nodes of node-to-node zones' first faces without a partner (`ContactModelGetUnmatchedNodes()`)
+. max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . residuals     - the mechanical residuals (each relative) and the node counts
 . finite        - whether every residual is a finite number
 . converged     - whether the solve met its tolerances (and the residuals are finite)
@@ -72,6 +73,7 @@ typedef struct {
   PetscInt                iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
   PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility, rtol;
   PetscInt                unmatched_nodes;
+  PetscReal               max_nu;
   ContactResiduals        residuals;
   PetscBool               finite, converged;
   char                    reason[256];

@@ -199,6 +199,8 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
     PetscCall(TaoGetTolerances(tao, NULL, NULL, &s->rtol));
   }
   PetscCall(ContactModelGetUnmatchedNodes(impl.cm, &s->unmatched_nodes));
+  s->max_nu = -1;
+  for (const SceneBody &b : impl.bodies) s->max_nu = PetscMax(s->max_nu, b.nu);
   /* the mechanical residuals, from u and lambda */
   PetscCall(ContactModelComputeResiduals(impl.cm, &s->residuals));
   s->contact_nodes = s->residuals.counts[0] + s->residuals.counts[1] + s->residuals.counts[2];
@@ -269,6 +271,13 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
     PetscCall(PetscViewerASCIIPrintf(
         viewer, "note: %" PetscInt_FMT " nodes of node-to-node zone faces have no node of the other face at the same position and are not in contact (meshes that do not conform?)\n",
         s->unmatched_nodes));
+  /* P1 tetrahedra lock as nu -> 0.5: the displacements come out too small, and K_s and F get ill-conditioned
+     (more products); the solve itself stays correct for the discrete problem */
+  if (s->max_nu > 0.45)
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "note: Poisson's ratio %g is close to 0.5: linear tetrahedra lock for nearly incompressible material (displacements too small, "
+                                     "stresses oscillate; refining helps only slowly) and the dual problem is ill-conditioned (more F products)\n",
+                                     (double)s->max_nu));
   /* the solver's tolerance is relative to |h| = |B K+ f - c|, which contains the gaps: with gaps far larger
      than the displacements the loads cause, it is loose for the mechanics, and the residuals show it */
   if (s->converged && s->rtol > 0 && r.max > 100 * s->rtol)
