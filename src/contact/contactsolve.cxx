@@ -240,10 +240,11 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscCall(PetscOptionsEnum("-contact_coulomb_algorithm", "Coulomb friction: msa (Algorithm 1), merged (Algorithm 2), monolithic", "ContactCoulombAlgorithm", ContactCoulombAlgorithms,
                              (PetscEnum)d->algorithm, (PetscEnum *)&d->algorithm, NULL));
   PetscCall(PetscOptionsReal("-contact_rtol", "Projected gradient and equality residual relative to |h|", "ContactProblemSolve", d->rtol, &d->rtol, NULL));
-  PetscCall(PetscOptionsReal("-contact_msa_rtol", "MSA: relative change of the slip bounds at which the successive approximations stop", "ContactProblemSolve", d->msa_rtol, &d->msa_rtol, NULL));
+  PetscCall(PetscOptionsReal("-contact_msa_rtol", "MSA: relative change of the slip bounds at which the successive approximations stop (-1: -contact_rtol)", "ContactProblemSolve", d->msa_rtol,
+                             &d->msa_rtol, NULL));
   PetscCall(PetscOptionsInt("-contact_msa_max_it", "MSA: most successive approximations", "ContactProblemSolve", d->msa_max_it, &d->msa_max_it, NULL));
-  PetscCall(
-      PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance", "ContactProblemSolve", d->fixed_point_rtol, &d->fixed_point_rtol, NULL));
+  PetscCall(PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance (-1: -contact_rtol)", "ContactProblemSolve", d->fixed_point_rtol,
+                             &d->fixed_point_rtol, NULL));
   PetscOptionsEnd();
   PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_rtol must be in (0, 1), got %g", (double)d->rtol);
   PetscCheck(d->msa_rtol > 0 || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_rtol must be positive, got %g", (double)d->msa_rtol);

@@ -40,7 +40,7 @@ struct ContactProblemData {
 
   /* options */
   PetscReal rtol             = 1e-6; /* smalxe: |gP| and feasibility relative to |h| */
-  PetscReal msa_rtol         = 1e-6; /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| */
+  PetscReal msa_rtol         = -1;   /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| (< 0: rtol) */
   PetscInt  msa_max_it       = 100;
   PetscReal fixed_point_rtol = -1; /* monolithic: radii consistent with F l_n to this relative tolerance (< 0: rtol) */
 
