@@ -55,6 +55,7 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . unmatched_nodes - nodes of node-to-node zones' first faces without a partner (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . residuals     - the mechanical residuals (each relative) and the node counts
+. fingerprint   - `ConeFETIVecFingerprint()` of the multipliers: the same on any number of ranks (on one machine)
 . finite        - whether every residual is a finite number
 . converged     - whether the solve met its tolerances (and the residuals are finite)
 - reason        - a sentence saying how the solve ended
@@ -75,6 +76,7 @@ typedef struct {
   PetscInt                unmatched_nodes;
   PetscReal               max_nu;
   ContactResiduals        residuals;
+  char                    fingerprint[17];
   PetscBool               finite, converged;
   char                    reason[256];
 } ContactSceneSummary;

@@ -14,6 +14,8 @@ static PetscErrorCode FETIReset(FETI feti)
   for (FETISubdomain &sd : impl.sub) PetscCall(FETISubdomainDestroy(sd));
   impl.sub.clear();
   PetscCall(MatDestroy(&impl.B));
+  PetscCall(FETIRowSumDestroy(impl.Bsum));
+  PetscCall(FETIRowSumDestroy(impl.Btsum));
   PetscCall(VecDestroy(&impl.c));
   PetscCall(VecDestroy(&impl.f));
   PetscCall(MatDestroy(&impl.R));
@@ -36,6 +38,8 @@ static PetscErrorCode FETIReset(FETI feti)
   PetscCall(VecDestroy(&impl.wd2));
   PetscCall(VecDestroy(&impl.wc1));
   PetscCall(VecDestroy(&impl.wc2));
+  PetscCall(VecDestroy(&impl.wp3));
+  PetscCall(VecDestroy(&impl.wd3));
   PetscCall(VecDestroy(&impl.rhs));
   PetscCall(VecDestroy(&impl.residual));
   PetscCall(VecDestroy(&impl.alpha));

@@ -1,10 +1,12 @@
 /* FETISetUp() and the FETI operators as MATSHELLs:
      K+  primal -> primal  block diagonal generalized inverse
      F   dual -> dual      B K+ B' (one B' product, one solve per subdomain, one B product; never formed)
-     G   dual -> coarse    R'B' (stored as its transpose Gt = B R, sparse)
+     G   dual -> coarse    R'B' (a B' product, then R' subdomain by subdomain; never formed)
      P   dual -> dual      I - Gt (G Gt)^-1 G, the orthogonal projector onto Ker G
      Q   dual -> dual      I - P
-   The coarse matrix G G' is assembled and factorized once. */
+   The coarse matrix G G' is assembled from Gt = B R and factorized once; Gt is not kept. The products
+   with B and B' sum in a fixed order (fetirowsum.cxx), so that every operator gives the same bits on
+   any number of ranks. */
 #include <conefeti/private/fetiimpl.h>
 
 #include <algorithm>
@@ -126,6 +128,40 @@ PetscErrorCode FETIApplyCoarseInverse(FETI feti, Vec x, Vec y)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* y = G x = R'(B' x): R is block diagonal, so R' sums within each subdomain, in its dof order */
+PetscErrorCode FETIApplyG(FETI feti, Vec x, Vec y)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp3));
+  PetscCall(MatMultTranspose(impl.R, impl.wp3, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = G' x = B (R x) */
+PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  PetscCall(MatMult(impl.R, x, impl.wp3));
+  PetscCall(FETIRowSumApply(impl.Bsum, impl.wp3, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Gt = B R (dual x coarse, AIJ). Each entry sums the few dofs of one subdomain that a row of B
+   touches, in their order, so it is the same on any number of ranks. */
+PetscErrorCode FETICreateGt(FETI feti, Mat *Gt)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  PetscCall(MatMatMult(impl.B, impl.R, MAT_INITIAL_MATRIX, PETSC_DEFAULT, Gt));
+  PetscCall(MatProductClear(*Gt)); /* computed once: PETSc would keep the gathered rows of R for a reuse */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* y = Q x = Gt (G Gt)^-1 G x */
 static PetscErrorCode ApplyQ(FETI feti, Vec x, Vec y)
 {
@@ -136,9 +172,29 @@ static PetscErrorCode ApplyQ(FETI feti, Vec x, Vec y)
     PetscCall(VecSet(y, 0.0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(MatMultTranspose(impl.Gt, x, impl.wc1));
+  PetscCall(FETIApplyG(feti, x, impl.wc1));
   PetscCall(FETIApplyCoarseInverse(feti, impl.wc1, impl.wc2));
-  PetscCall(MatMult(impl.Gt, impl.wc2, y));
+  PetscCall(FETIApplyGt(feti, impl.wc2, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode MatMult_G(Mat A, Vec x, Vec y)
+{
+  FETI feti;
+
+  PetscFunctionBegin;
+  PetscCall(ShellGetFETI(A, &feti));
+  PetscCall(FETIApplyG(feti, x, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode MatMultTranspose_G(Mat A, Vec x, Vec y)
+{
+  FETI feti;
+
+  PetscFunctionBegin;
+  PetscCall(ShellGetFETI(A, &feti));
+  PetscCall(FETIApplyGt(feti, x, y));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -162,10 +218,10 @@ static PetscErrorCode MatMult_F(Mat A, Vec x, Vec y)
   PetscCall(ShellGetFETI(A, &feti));
   FETI_Impl &impl = *feti->impl;
   PetscCall(PetscLogEventBegin(FETI_MultF, feti, 0, 0, 0));
-  PetscCall(MatMultTranspose(impl.B, x, impl.wp1));
+  PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp1));
   if (impl.kplusexplicit) PetscCall(FETIApplyKplusOnBoundary(feti, impl.wp1, impl.wp2)); /* B' x lives on the dofs B touches */
   else PetscCall(FETIApplyKplus(feti, impl.wp1, impl.wp2));
-  PetscCall(MatMult(impl.B, impl.wp2, y));
+  PetscCall(FETIRowSumApply(impl.Bsum, impl.wp2, y));
   PetscCall(PetscLogEventEnd(FETI_MultF, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -354,11 +410,14 @@ static PetscErrorCode SetUpCoarse(FETI feti)
 {
   FETI_Impl &impl = *feti->impl;
   PetscBool  failed;
+  Mat        Gt;
 
   PetscFunctionBegin;
-  PetscCall(MatTransposeMatMult(impl.Gt, impl.Gt, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &impl.GGt));
-  PetscCall(MatSetOption(impl.GGt, MAT_SYMMETRIC, PETSC_TRUE));
-  PetscCall(MatSetOption(impl.GGt, MAT_SPD, PETSC_TRUE));
+  PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
+  PetscCall(FETICreateGt(feti, &Gt));
+  PetscCall(FETIAssembleCoarseMatrix(Gt, NULL, &impl.GGt));
+  PetscCall(MatDestroy(&Gt));
+  PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
   PetscCall(FETICreateCoarseKSP(feti, impl.GGt, &impl.coarse, &failed));
   PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
              "The coarse matrix G G' is singular: the constraints do not fix every rigid-body mode (a body without Dirichlet condition?)");
@@ -424,7 +483,9 @@ PetscErrorCode FETISetUp(FETI feti)
 
   PetscCall(MatCreateVecs(impl.B, &impl.wp1, &impl.wd1));
   if (impl.kplusexplicit) PetscCall(FETISetUpBoundaryMask(feti)); /* the subdomain factorizations may keep a Schur complement on it */
-  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUp(feti, impl.sub[s], impl.firstsub + s));
+  /* kernels first: the coarse problem is assembled and factored before the subdomain factors exist, so
+     that the memory its assembly needs for a moment is reused by them rather than stacked on them */
+  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
 
   /* coarse layout */
   impl.nlocalcoarse = 0;
@@ -483,11 +544,15 @@ PetscErrorCode FETISetUp(FETI feti)
     PetscCall(MatAssemblyEnd(impl.R, MAT_FINAL_ASSEMBLY));
     for (FETISubdomain &sd : impl.sub) PetscCallCXX(std::vector<PetscScalar>().swap(sd.R)); /* R holds the kernels now */
   }
-  PetscCall(MatMatMult(impl.B, impl.R, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &impl.Gt));
-  PetscCall(MatCreateVecs(impl.Gt, &impl.wc1, NULL));
+  PetscCall(MatCreateVecs(impl.R, &impl.wc1, NULL));
   PetscCall(VecDuplicate(impl.wc1, &impl.wc2));
+  PetscCall(VecDuplicate(impl.wp1, &impl.wp3));
+  PetscCall(VecDuplicate(impl.wd1, &impl.wd3));
+  PetscCall(FETIRowSumCreate(impl.B, PETSC_FALSE, impl.Bsum));
+  PetscCall(FETIRowSumCreate(impl.B, PETSC_TRUE, impl.Btsum));
   PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
   if (impl.ncoarse) PetscCall(SetUpCoarse(feti));
+  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpFactorization(feti, impl.sub[s], impl.firstsub + s));
   if (impl.kplusexplicit) {
     PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
     PetscCall(FETISetUpExplicitKplus(feti));
@@ -499,7 +564,10 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_Q, "Q", &impl.Q));
   PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_PFP, "PFP", &impl.PFP));
   PetscCall(CreateShell(feti, impl.nlocalprimal, impl.nlocalprimal, MatMult_Kplus, "Kplus", &impl.Kplus));
-  PetscCall(MatCreateTranspose(impl.Gt, &impl.G));
+  PetscCall(MatCreateShell(comm, impl.nlocalcoarse, mlocal, impl.ncoarse, nd, feti, &impl.G));
+  PetscCall(MatShellSetOperation(impl.G, MATOP_MULT, (void (*)(void))MatMult_G));
+  PetscCall(MatShellSetOperation(impl.G, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMultTranspose_G));
+  PetscCall(PetscObjectComposeFunction((PetscObject)impl.G, "FETIShellGetFETI_C", ShellGetFETI));
   PetscCall(PetscObjectSetName((PetscObject)impl.G, "G"));
   impl.setupcalled = PETSC_TRUE;
 
@@ -511,12 +579,12 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCall(VecDuplicate(impl.wd1, &impl.rhs));
   PetscCall(VecDuplicate(impl.wd1, &impl.residual));
   PetscCall(FETIApplyKplus(feti, impl.f, impl.wp1));
-  PetscCall(MatMult(impl.B, impl.wp1, impl.h));
+  PetscCall(FETIRowSumApply(impl.Bsum, impl.wp1, impl.h));
   if (impl.c) PetscCall(VecAXPY(impl.h, -1.0, impl.c));
   PetscCall(MatMultTranspose(impl.R, impl.f, impl.e));
   if (impl.ncoarse) {
     PetscCall(FETIApplyCoarseInverse(feti, impl.e, impl.wc2));
-    PetscCall(MatMult(impl.Gt, impl.wc2, impl.lambdatilde));
+    PetscCall(FETIApplyGt(feti, impl.wc2, impl.lambdatilde));
   } else PetscCall(VecSet(impl.lambdatilde, 0.0));
   PetscCall(PetscLogEventEnd(FETI_SetUp, feti, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)feti, NULL, "-feti_view"));
@@ -540,7 +608,7 @@ static PetscErrorCode CheckSetUp(FETI feti)
 
   Output Parameters:
 + F - B K+ B' (dual x dual)
-. G - R'B' (coarse x dual; the transpose of `FETIGetGt()`'s sparse matrix)
+. G - R'B' (coarse x dual; a shell whose transpose product is B R x)
 . P - I - G'(G G')^-1 G, orthogonal projector onto Ker G
 - Q - I - P
 
@@ -615,13 +683,17 @@ PetscErrorCode FETIGetKernel(FETI feti, Mat *R)
 /*@C
   FETIGetGt - The sparse matrix G' = B R (dual x coarse).
 
-  Not Collective
+  Collective on the first call
 
   Input Parameter:
 . feti - the FETI problem, set up
 
   Output Parameter:
 . Gt - the matrix (do not destroy)
+
+  Notes:
+  The operators do not need it (G is applied as R'B'), so `FETISetUp()` drops it after assembling the
+  coarse matrix; the first call builds it again and keeps it.
 
   Level: intermediate
 
@@ -632,6 +704,7 @@ PetscErrorCode FETIGetGt(FETI feti, Mat *Gt)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscCall(CheckSetUp(feti));
+  if (!feti->impl->Gt) PetscCall(FETICreateGt(feti, &feti->impl->Gt));
   *Gt = feti->impl->Gt;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -43,17 +43,18 @@ PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
   PetscCall(MatMult(impl.F, lambda, impl.residual));
   PetscCall(VecAXPY(impl.residual, -1.0, impl.h));
   if (!mask) {
-    PetscCall(MatMultTranspose(impl.Gt, impl.residual, impl.wc1));
+    PetscCall(FETIApplyG(feti, impl.residual, impl.wc1));
     PetscCall(FETIApplyCoarseInverse(feti, impl.wc1, alpha));
-  } else {
-    Mat       GtA, M;
+  } else { /* G_A = G diag(mask): (G_A G_A') alpha = G_A (mask .* residual) */
+    Mat       Gt, M;
     KSP       ksp;
     PetscBool failed;
-    PetscCall(MatDuplicate(impl.Gt, MAT_COPY_VALUES, &GtA));
-    PetscCall(MatDiagonalScale(GtA, mask, NULL));
-    PetscCall(MatTransposeMatMult(GtA, GtA, MAT_INITIAL_MATRIX, PETSC_DEFAULT, &M));
-    PetscCall(MatMultTranspose(GtA, impl.residual, impl.wc1));
-    PetscCall(MatSetOption(M, MAT_SPD, PETSC_TRUE));
+    PetscCall(FETICreateGt(feti, &Gt));
+    PetscCall(FETIAssembleCoarseMatrix(Gt, mask, &M));
+    PetscCall(MatDestroy(&Gt));
+    PetscCall(VecPointwiseMult(impl.wd3, mask, impl.residual));
+    PetscCall(VecPointwiseMult(impl.wd3, mask, impl.wd3));
+    PetscCall(FETIApplyG(feti, impl.wd3, impl.wc1));
     PetscCall(FETICreateCoarseKSP(feti, M, &ksp, &failed));
     PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_WRONG,
                "FETIComputeAlpha(): the rows in the mask do not determine the rigid-body amplitudes (G_A G_A' is singular); include rows that fix every floating subdomain");
@@ -62,7 +63,6 @@ PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
     PetscCall(PetscLogEventEnd(FETI_CoarseSolve, feti, 0, 0, 0));
     PetscCall(KSPDestroy(&ksp));
     PetscCall(MatDestroy(&M));
-    PetscCall(MatDestroy(&GtA));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -103,7 +103,7 @@ PetscErrorCode FETIRecoverPrimal(FETI feti, Vec lambda, Vec alpha, Vec u)
     alpha = impl.alpha;
   }
   PetscCall(PetscLogEventBegin(FETI_PrimalRecovery, feti, 0, 0, 0));
-  PetscCall(MatMultTranspose(impl.B, lambda, impl.wp1));
+  PetscCall(FETIRowSumApply(impl.Btsum, lambda, impl.wp1));
   PetscCall(VecAYPX(impl.wp1, -1.0, impl.f));
   PetscCall(FETIApplyKplus(feti, impl.wp1, u));
   if (impl.ncoarse) PetscCall(MatMultAdd(impl.R, alpha, u, u));

@@ -207,16 +207,15 @@ static PetscErrorCode SetSchurDofsAgain(void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
+/* The kernel basis R_s (checked against K_s), the fixing dofs, the correction C and the diagonal d of
+   the regularization: everything but the factorization */
+PetscErrorCode FETISubdomainSetUpKernel(FETI feti, FETISubdomain &sd, PetscInt s)
 {
   FETI_Impl        &impl = *feti->impl;
   std::vector<char> isD(sd.n, 0);
   Vec               diag;
   PetscReal         sum   = 0;
   PetscInt          nfree = 0;
-  const char       *prefix;
-  char              subprefix[256];
-  PC                pc;
 
   PetscFunctionBegin;
   sd.dirichletdofs.clear();
@@ -262,7 +261,18 @@ PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
   }
   PetscCall(VecDestroy(&diag));
   sd.regdiag = nfree && sum > 0 ? sum / nfree : 1.0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
+/* Kreg (in place when nobody else holds K_s) and its sparse Cholesky factorization, prefix feti_sub_ */
+PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, PetscInt s)
+{
+  FETI_Impl  &impl = *feti->impl;
+  const char *prefix;
+  char        subprefix[256];
+  PC          pc;
+
+  PetscFunctionBegin;
   PetscCallCXX(sd.removed = sd.fixing);
   PetscCallCXX(sd.removed.insert(sd.removed.end(), sd.dirichletdofs.begin(), sd.dirichletdofs.end()));
   std::sort(sd.removed.begin(), sd.removed.end());
@@ -280,19 +290,26 @@ PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
 
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
   PetscCall(PetscSNPrintf(subprefix, sizeof(subprefix), "%sfeti_sub_", prefix ? prefix : ""));
+  /* CHOLMOD takes AIJ or block-size-1 SBAIJ only: it factors a transient AIJ copy of an SBAIJ K_s, and
+     Kreg stays symmetric storage (half the memory of AIJ) for the products with K */
+  Mat Kfactor = sd.Kreg;
   {
-    /* CHOLMOD takes AIJ or block-size-1 SBAIJ only: convert an SBAIJ K_s once, in place */
     char      solver[64];
     PetscBool set, sbaij, cholmod;
-    PetscCall(PetscStrncpy(solver, impl.subsolver, sizeof(solver)));
+    /* the package KSPSetFromOptions() will choose: the option, else ours (MUMPS for explicit K+ blocks from its Schur complement) */
+    PetscCall(PetscStrncpy(solver, impl.kplusexplicit && impl.kplusschur ? MATSOLVERMUMPS : impl.subsolver, sizeof(solver)));
     PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, subprefix, "-pc_factor_mat_solver_type", solver, sizeof(solver), &set));
     PetscCall(PetscStrcmp(solver, MATSOLVERCHOLMOD, &cholmod));
     PetscCall(PetscObjectTypeCompare((PetscObject)sd.Kreg, MATSEQSBAIJ, &sbaij));
-    if (cholmod && sbaij) PetscCall(MatConvert(sd.Kreg, MATSEQAIJ, MAT_INPLACE_MATRIX, &sd.Kreg));
+    if (cholmod && sbaij) {
+      PetscCall(MatConvert(sd.Kreg, MATSEQAIJ, MAT_INITIAL_MATRIX, &Kfactor));
+      PetscCall(MatSetOption(Kfactor, MAT_SYMMETRIC, PETSC_TRUE));
+      PetscCall(MatSetOption(Kfactor, MAT_SPD, PETSC_TRUE));
+    }
   }
   PetscCall(KSPCreate(PETSC_COMM_SELF, &sd.ksp));
   PetscCall(KSPSetErrorIfNotConverged(sd.ksp, PETSC_TRUE));
-  PetscCall(KSPSetOperators(sd.ksp, sd.Kreg, sd.Kreg));
+  PetscCall(KSPSetOperators(sd.ksp, Kfactor, Kfactor));
   PetscCall(KSPSetOptionsPrefix(sd.ksp, subprefix));
   PetscCall(KSPSetType(sd.ksp, KSPPREONLY));
   PetscCall(KSPGetPC(sd.ksp, &pc));
@@ -309,6 +326,11 @@ PetscErrorCode FETISubdomainSetUp(FETI feti, FETISubdomain &sd, PetscInt s)
                "Subdomain %" PetscInt_FMT ": the regularized K_s is not positive definite: K_s has zero-energy modes outside its kernel basis of dimension %" PetscInt_FMT
                " (a disconnected subdomain, a mechanism, wrong coordinates?)",
                s, sd.nkernel);
+  }
+  if (Kfactor != sd.Kreg) { /* keep the factor, drop the copy: the KSP sees Kreg from now on and must not factor again */
+    PetscCall(PCSetReusePreconditioner(pc, PETSC_TRUE));
+    PetscCall(KSPSetOperators(sd.ksp, sd.Kreg, sd.Kreg));
+    PetscCall(MatDestroy(&Kfactor));
   }
   PetscCall(FETISubdomainExplicitKplusFromSchur(sd));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &sd.x));
@@ -345,11 +367,7 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(VecDestroy(&sd.ya));
   PetscCall(ISDestroy(&sd.boundary));
   PetscCall(ISDestroy(&sd.interior));
-  PetscCall(MatDestroy(&sd.Kbb));
-  PetscCall(MatDestroy(&sd.Kbi));
   PetscCall(MatDestroy(&sd.Fii));
-  PetscCall(VecDestroy(&sd.xb));
-  PetscCall(VecDestroy(&sd.yb));
   PetscCall(VecDestroy(&sd.xi));
   PetscCall(VecDestroy(&sd.yi));
   PetscCall(MatDestroy(&sd.Kplusbb));

@@ -171,6 +171,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   PetscCall(FEMGetNumSubdomains(impl.fem, &s->subdomains, NULL, NULL));
   PetscCall(FETIGetConstraints(feti, &B, &c, &kinds));
   PetscCall(ContactModelGetSolution(impl.cm, &lambda, NULL));
+  PetscCall(ConeFETIVecFingerprint(lambda, s->fingerprint));
   PetscCall(VecGetLocalSize(lambda, &nlocal));
   for (PetscInt i = 0; i < nlocal; i++) counts[kinds[i]]++;
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 4, MPIU_INT, MPI_SUM, comm));
@@ -407,6 +408,7 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Int(out, "slip", r.counts[2]);
   Real(out, "fixed_point", s->fixed_point);
   Real(out, "feasibility", s->feasibility);
+  Str(out, "fingerprint", s->fingerprint);
   Key(out, "residuals");
   out += "{";
   Real(out, "equilibrium", r.equilibrium);

@@ -160,14 +160,18 @@ static PetscErrorCode PrintResult(const char *name, Scene *s, const ContactStati
   Vec       lambda, u;
   PetscReal nl, nu;
   PetscInt  m;
+  char      fl[17], fu[17];
 
   PetscFunctionBeginUser;
   PetscCall(ContactModelGetSolution(s->cm, &lambda, &u));
+  PetscCall(ConeFETIVecFingerprint(lambda, fl));
+  PetscCall(ConeFETIVecFingerprint(u, fu));
   PetscCall(VecNorm(lambda, NORM_2, &nl));
   PetscCall(VecNorm(u, NORM_2, &nu));
   PetscCall(VecGetSize(lambda, &m));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "RESULT %s pipeline=%s m=%" PetscInt_FMT " Iter=%" PetscInt_FMT " qpp=%" PetscInt_FMT " qpq=%" PetscInt_FMT " other=%" PetscInt_FMT " |l|=%.6e |u|=%.6e\n",
-                        name, ContactPipelines[st->pipeline], m, st->outer_iterations, st->products_qpp, st->products_qpq, st->products_other, (double)nl, (double)nu));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                        "RESULT %s pipeline=%s m=%" PetscInt_FMT " Iter=%" PetscInt_FMT " qpp=%" PetscInt_FMT " qpq=%" PetscInt_FMT " other=%" PetscInt_FMT " |l|=%.6e |u|=%.6e l=%s u=%s\n", name,
+                        ContactPipelines[st->pipeline], m, st->outer_iterations, st->products_qpp, st->products_qpq, st->products_other, (double)nl, (double)nu, fl, fu));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

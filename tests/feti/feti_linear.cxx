@@ -56,7 +56,12 @@ int main(int argc, char **argv)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "primal %d, dual %d, coarse dimension %d\n", (int)nprimal, (int)ndual, (int)ncoarse));
   }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "FETI iterations %d\n", (int)its));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "RESULT iterations=%d\n", (int)its));
+  {
+    char fl[17], fu[17];
+    PetscCall(ConeFETIVecFingerprint(lambda, fl));
+    PetscCall(ConeFETIVecFingerprint(u, fu));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "RESULT iterations=%d lambda=%s u=%s\n", (int)its, fl, fu));
+  }
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "relative difference to the direct solution %.2e, ||B u||/||u|| %.2e\n", (double)(err / norm), (double)(gluing / unorm)));
   /* the CG tolerance (-feti_ksp_rtol 1e-12 in the tests) leaves about 1e-10 */
   PetscCheck(err <= 1e-8 * norm, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "FETI and direct solutions differ by %g relative", (double)(err / norm));

@@ -31,11 +31,10 @@ struct FETISubdomain {
   Vec                      x = nullptr, y = nullptr;           /* work vectors of length n (own storage) */
   Vec                      xa = nullptr, ya = nullptr;         /* vectors of length n without storage (VecPlaceArray) */
 
-  /* preconditioner data (boundary = dofs touched by B) */
+  /* preconditioner data (boundary = dofs touched by B); K_bb, K_bi are applied through K_V itself */
   IS  boundary = nullptr, interior = nullptr;
-  Mat Kbb = nullptr, Kbi = nullptr; /* K_ib = K_bi' is applied as a transpose product */
-  Mat Fii = nullptr;                /* Cholesky factor of K_ii (K_ii itself is not kept) */
-  Vec xb = nullptr, yb = nullptr, xi = nullptr, yi = nullptr;
+  Mat Fii = nullptr;              /* Cholesky factor of K_ii (K_ii itself is not kept) */
+  Vec xi = nullptr, yi = nullptr; /* interior-sized work vectors */
 
   /* explicit K+ on the dofs touched by B (-feti_kplus_explicit) */
   std::vector<PetscInt> kb;                         /* those dofs, without the removed ones */
@@ -44,9 +43,23 @@ struct FETISubdomain {
   PetscBool             schurfactor = PETSC_FALSE;  /* the subdomain's MUMPS factor holds the Schur complement on kb */
 };
 
+/* y = A x with every row summed in increasing global column order: bitwise the same on any number of
+   ranks (fetirowsum.cxx) */
+struct FETIRowSum {
+  Mat                   A      = nullptr;  /* the matrix (referenced), its AIJ copy or its transpose */
+  Mat                   Ad     = nullptr;  /* diagonal block (MPIAIJ) or A itself (SeqAIJ) */
+  Mat                   Ao     = nullptr;  /* off-diagonal block, columns compressed to garray (MPIAIJ) */
+  const PetscInt       *garray = nullptr;  /* global columns of Ao, ascending */
+  PetscInt              cstart = 0;        /* first local column */
+  std::vector<PetscInt> split;             /* per row: Ao's entries before it have columns below cstart */
+  VecScatter            scatter = nullptr; /* x -> ghosts */
+  Vec                   ghosts  = nullptr;
+};
+
 struct FETI_Impl {
   std::vector<FETISubdomain> sub;
   Mat                        B = nullptr;
+  FETIRowSum                 Bsum, Btsum; /* B and B' products, reproducible */
   Vec                        c = nullptr;
   std::vector<FETIRowKind>   kinds; /* local rows of B */
 
@@ -66,7 +79,7 @@ struct FETI_Impl {
   /* global objects */
   Vec f      = nullptr; /* primal load */
   Mat R      = nullptr; /* primal x coarse, block diagonal kernel basis (MPIAIJ) */
-  Mat Gt     = nullptr; /* B R, dual x coarse (MPIAIJ) */
+  Mat Gt     = nullptr; /* B R, dual x coarse (MPIAIJ): built for the coarse matrix and dropped (FETIGetGt() builds it again) */
   Mat GGt    = nullptr; /* coarse matrix */
   KSP coarse = nullptr; /* prefix feti_coarse_ */
   Mat F = nullptr, G = nullptr, P = nullptr, Q = nullptr, Kplus = nullptr, PFP = nullptr;
@@ -76,6 +89,7 @@ struct FETI_Impl {
 
   /* work vectors */
   Vec wp1 = nullptr, wp2 = nullptr, wd1 = nullptr, wd2 = nullptr, wc1 = nullptr, wc2 = nullptr;
+  Vec wp3 = nullptr, wd3 = nullptr;                       /* for G and G' (R'B' x, B R x) and their callers, which may hold wp1, wp2 or wd2 */
   Vec rhs = nullptr, residual = nullptr, alpha = nullptr; /* FETISolveLinear(), FETIComputeAlpha(), FETIRecoverPrimal() */
 };
 
@@ -95,7 +109,8 @@ PETSC_INTERN PetscErrorCode FETIKernelVanishingOn(PetscInt, PetscInt *, std::vec
 PETSC_INTERN PetscErrorCode FETIChooseFixingDofs(PetscInt, PetscInt, const std::vector<PetscScalar> &, Vec, const std::vector<PetscInt> &, PetscInt, std::vector<PetscInt> &);
 
 /* fetisubdomain.cxx */
-PETSC_INTERN PetscErrorCode FETISubdomainSetUp(FETI, FETISubdomain &, PetscInt);
+PETSC_INTERN PetscErrorCode FETISubdomainSetUpKernel(FETI, FETISubdomain &, PetscInt);
+PETSC_INTERN PetscErrorCode FETISubdomainSetUpFactorization(FETI, FETISubdomain &, PetscInt);
 PETSC_INTERN PetscErrorCode FETISubdomainApplyK(FETISubdomain &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainDestroy(FETISubdomain &);
@@ -104,6 +119,9 @@ PETSC_INTERN PetscErrorCode FETISubdomainDestroy(FETISubdomain &);
 PETSC_INTERN PetscErrorCode FETISetUpOperators(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplus(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyP(FETI, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETIApplyG(FETI, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETIApplyGt(FETI, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETICreateGt(FETI, Mat *);
 PETSC_INTERN PetscErrorCode FETICreateCoarseKSP(FETI, Mat, KSP *, PetscBool *);
 PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscErrorCode (*)(void *), void *, PetscBool *);
 
@@ -112,6 +130,12 @@ PETSC_INTERN PetscErrorCode FETISetUpExplicitKplus(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplusOnBoundary(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainSetSchurDofs(FETI, FETISubdomain &);
 PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &);
+
+/* fetirowsum.cxx */
+PETSC_INTERN PetscErrorCode FETIRowSumCreate(Mat, PetscBool, FETIRowSum &);
+PETSC_INTERN PetscErrorCode FETIRowSumApply(FETIRowSum &, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETIRowSumDestroy(FETIRowSum &);
+PETSC_INTERN PetscErrorCode FETIAssembleCoarseMatrix(Mat, Vec, Mat *);
 
 /* fetipc.cxx */
 PETSC_INTERN PetscErrorCode FETISetUpBoundaryMask(FETI);

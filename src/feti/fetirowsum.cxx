@@ -1,0 +1,235 @@
+/* Sparse products whose results are bitwise the same on any number of ranks.
+
+   PETSc's MatMult() of an MPIAIJ matrix sums each row as its diagonal block, then its off-diagonal block,
+   and MatMultTranspose() and the matrix products add partial sums of several ranks: the order of the
+   additions, and so the rounding, depends on how rows and columns are spread over the ranks. FETI's
+   numbering of primal, dual and coarse unknowns does not (subdomains are numbered globally), so summing
+   every row in increasing global column order makes B, B' and the coarse matrix G G' independent of the
+   rank count; with the reproducible dot products of the QP solvers, a whole solve then takes the same
+   iterations to the last bit on 1 or 64 ranks. The cost is a copy of the ghost entries of x per product
+   (the products with B are a small part of an F product). */
+#include <conefeti/private/fetiimpl.h>
+
+#include <algorithm>
+
+/* CSR arrays of a sequential AIJ block (borrowed: valid while the matrix lives and is not changed) */
+static PetscErrorCode CSR(Mat A, const PetscInt **ia, const PetscInt **ja, const PetscScalar **a)
+{
+  PetscScalar *v;
+
+  PetscFunctionBegin;
+  PetscCall(MatSeqAIJGetCSRAndMemType(A, ia, ja, &v, NULL));
+  if (a) *a = v;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Prepare y = A x (or y = A' x with transpose, through an explicit transpose kept here). A of any type:
+   anything but (MPI|Seq)AIJ is converted once. */
+PetscErrorCode FETIRowSumCreate(Mat A, PetscBool transpose, FETIRowSum &rs)
+{
+  PetscBool mpi, seq;
+  Vec       x;
+
+  PetscFunctionBegin;
+  PetscCall(FETIRowSumDestroy(rs));
+  PetscCall(PetscObjectBaseTypeCompare((PetscObject)A, MATMPIAIJ, &mpi));
+  PetscCall(PetscObjectBaseTypeCompare((PetscObject)A, MATSEQAIJ, &seq));
+  if (transpose) {
+    Mat At;
+    if (!mpi && !seq) {
+      Mat aij;
+      PetscCall(MatConvert(A, MATAIJ, MAT_INITIAL_MATRIX, &aij));
+      PetscCall(MatTranspose(aij, MAT_INITIAL_MATRIX, &At));
+      PetscCall(MatDestroy(&aij));
+    } else PetscCall(MatTranspose(A, MAT_INITIAL_MATRIX, &At));
+    rs.A = At;
+  } else if (!mpi && !seq) PetscCall(MatConvert(A, MATAIJ, MAT_INITIAL_MATRIX, &rs.A));
+  else {
+    PetscCall(PetscObjectReference((PetscObject)A));
+    rs.A = A;
+  }
+  PetscCall(PetscObjectBaseTypeCompare((PetscObject)rs.A, MATMPIAIJ, &mpi));
+  if (mpi) {
+    PetscInt        nghost, m, cend;
+    const PetscInt *ia, *ja;
+    IS              is;
+    PetscCall(MatMPIAIJGetSeqAIJ(rs.A, &rs.Ad, &rs.Ao, &rs.garray));
+    PetscCall(MatGetOwnershipRangeColumn(rs.A, &rs.cstart, &cend));
+    PetscCall(MatGetLocalSize(rs.Ao, &m, &nghost));
+    /* the ghost columns in garray are sorted: per row, the off-diagonal entries below cstart come first */
+    PetscCall(CSR(rs.Ao, &ia, &ja, NULL));
+    PetscCallCXX(rs.split.resize(m));
+    for (PetscInt i = 0; i < m; i++) {
+      PetscInt k = ia[i];
+      while (k < ia[i + 1] && rs.garray[ja[k]] < rs.cstart) k++;
+      rs.split[i] = k;
+    }
+    PetscCall(MatCreateVecs(rs.A, &x, NULL));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, nghost, &rs.ghosts));
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nghost, rs.garray, PETSC_USE_POINTER, &is));
+    PetscCall(VecScatterCreate(x, is, rs.ghosts, NULL, &rs.scatter));
+    PetscCall(ISDestroy(&is));
+    PetscCall(VecDestroy(&x));
+  } else rs.Ad = rs.A;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = A x, every row summed in increasing global column order */
+PetscErrorCode FETIRowSumApply(FETIRowSum &rs, Vec x, Vec y)
+{
+  const PetscInt    *dia, *dja, *oia = nullptr, *oja = nullptr;
+  const PetscScalar *da = nullptr, *oa = nullptr, *xa, *ga = nullptr;
+  PetscScalar       *ya;
+  PetscInt           m;
+
+  PetscFunctionBegin;
+  if (rs.scatter) {
+    PetscCall(VecScatterBegin(rs.scatter, x, rs.ghosts, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(rs.scatter, x, rs.ghosts, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(CSR(rs.Ao, &oia, &oja, &oa));
+    PetscCall(VecGetArrayRead(rs.ghosts, &ga));
+  }
+  PetscCall(CSR(rs.Ad, &dia, &dja, &da));
+  PetscCall(MatGetLocalSize(rs.Ad, &m, NULL));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(y, &ya));
+  for (PetscInt i = 0; i < m; i++) {
+    PetscScalar sum = 0;
+    if (oia)
+      for (PetscInt k = oia[i]; k < rs.split[i]; k++) sum += oa[k] * ga[oja[k]];
+    for (PetscInt k = dia[i]; k < dia[i + 1]; k++) sum += da[k] * xa[dja[k]];
+    if (oia)
+      for (PetscInt k = rs.split[i]; k < oia[i + 1]; k++) sum += oa[k] * ga[oja[k]];
+    ya[i] = sum;
+  }
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  if (rs.scatter) PetscCall(VecRestoreArrayRead(rs.ghosts, &ga));
+  PetscCall(PetscLogFlops(2.0 * (dia[m] + (oia ? oia[m] : 0))));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FETIRowSumDestroy(FETIRowSum &rs)
+{
+  PetscFunctionBegin;
+  PetscCall(MatDestroy(&rs.A));
+  PetscCall(VecScatterDestroy(&rs.scatter));
+  PetscCall(VecDestroy(&rs.ghosts));
+  rs.Ad = rs.Ao = nullptr;
+  rs.garray     = nullptr;
+  PetscCallCXX(std::vector<PetscInt>().swap(rs.split));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* M = Gt' W Gt with W = diag(w.^2) (w = NULL: the identity), the coarse matrix G G' (or G_A G_A' of a row
+   subset), summed for every entry over the dual rows in increasing order. Gt: dual x coarse (AIJ). */
+PetscErrorCode FETIAssembleCoarseMatrix(Mat Gt, Vec w, Mat *M)
+{
+  MPI_Comm              comm = PetscObjectComm((PetscObject)Gt);
+  Mat                   G, *sub;
+  FETIRowSum            rows; /* G's rows in the canonical order */
+  IS                    isrow, iscol;
+  PetscInt              nc, ncl, cstart, nd, mrows;
+  std::vector<PetscInt> need, dnz, onz, cols;
+  std::vector<PetscScalar> acc, wr, vals;
+  std::vector<char>        used;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetSize(Gt, &nd, &nc));
+  PetscCall(MatGetLocalSize(Gt, NULL, &ncl));
+  PetscCall(MatTranspose(Gt, MAT_INITIAL_MATRIX, &G));
+  PetscCall(FETIRowSumCreate(G, PETSC_FALSE, rows));
+  PetscCall(MatDestroy(&G));
+  PetscCall(MatGetOwnershipRange(rows.A, &cstart, NULL));
+  PetscCall(MatGetLocalSize(rows.A, &mrows, NULL));
+  /* the dual rows r that the local coarse rows touch, and those rows of Gt (all columns) */
+  const PetscInt    *dia, *dja, *oia = nullptr, *oja = nullptr;
+  const PetscScalar *da = nullptr, *oa = nullptr;
+  PetscInt           dcstart = rows.cstart;
+  PetscCall(CSR(rows.Ad, &dia, &dja, &da));
+  if (rows.Ao) PetscCall(CSR(rows.Ao, &oia, &oja, &oa));
+  for (PetscInt i = 0; i < mrows; i++) {
+    for (PetscInt k = dia[i]; k < dia[i + 1]; k++) PetscCallCXX(need.push_back(dcstart + dja[k]));
+    if (oia)
+      for (PetscInt k = oia[i]; k < oia[i + 1]; k++) PetscCallCXX(need.push_back(rows.garray[oja[k]]));
+  }
+  std::sort(need.begin(), need.end());
+  need.erase(std::unique(need.begin(), need.end()), need.end());
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)need.size(), need.data(), PETSC_COPY_VALUES, &isrow));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, nc, 0, 1, &iscol));
+  PetscCall(MatCreateSubMatrices(Gt, 1, &isrow, &iscol, MAT_INITIAL_MATRIX, &sub));
+  PetscCall(ISDestroy(&iscol));
+  PetscCallCXX(wr.assign(need.size(), 1.0));
+  if (w) { /* w at the needed rows */
+    Vec                wl;
+    VecScatter         sc;
+    const PetscScalar *a;
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, (PetscInt)need.size(), &wl));
+    PetscCall(VecScatterCreate(w, isrow, wl, NULL, &sc));
+    PetscCall(VecScatterBegin(sc, w, wl, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(sc, w, wl, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(wl, &a));
+    for (size_t k = 0; k < need.size(); k++) wr[k] = a[k];
+    PetscCall(VecRestoreArrayRead(wl, &a));
+    PetscCall(VecScatterDestroy(&sc));
+    PetscCall(VecDestroy(&wl));
+  }
+  PetscCall(ISDestroy(&isrow));
+
+  /* row i of M: for r in increasing order, acc[j] += (w_r G(i,r)) (w_r Gt(r,j)) */
+  const PetscInt    *sia, *sja;
+  const PetscScalar *sa = nullptr;
+  PetscCall(CSR(sub[0], &sia, &sja, &sa));
+  PetscCallCXX(acc.assign(nc, 0.0));
+  PetscCallCXX(used.assign(nc, 0));
+  std::vector<std::vector<PetscInt>>    rowcols(mrows);
+  std::vector<std::vector<PetscScalar>> rowvals(mrows);
+  PetscCallCXX(dnz.assign(mrows, 0));
+  PetscCallCXX(onz.assign(mrows, 0));
+  auto position = [&](PetscInt r) { return (PetscInt)(std::lower_bound(need.begin(), need.end(), r) - need.begin()); };
+  for (PetscInt i = 0; i < mrows; i++) {
+    std::vector<PetscInt> touched;
+    auto                  term = [&](PetscInt r, PetscScalar g) {
+      const PetscInt p = position(r);
+      for (PetscInt k = sia[p]; k < sia[p + 1]; k++) {
+        const PetscInt j = sja[k];
+        if (!used[j]) {
+          used[j] = 1;
+          touched.push_back(j);
+        }
+        acc[j] += (wr[p] * g) * (wr[p] * sa[k]);
+      }
+    };
+    if (oia)
+      for (PetscInt k = oia[i]; k < rows.split[i]; k++) term(rows.garray[oja[k]], oa[k]);
+    for (PetscInt k = dia[i]; k < dia[i + 1]; k++) term(dcstart + dja[k], da[k]);
+    if (oia)
+      for (PetscInt k = rows.split[i]; k < oia[i + 1]; k++) term(rows.garray[oja[k]], oa[k]);
+    std::sort(touched.begin(), touched.end());
+    for (PetscInt j : touched) {
+      PetscCallCXX(rowcols[i].push_back(j));
+      PetscCallCXX(rowvals[i].push_back(acc[j]));
+      if (j >= cstart && j < cstart + ncl) dnz[i]++;
+      else onz[i]++;
+      acc[j]  = 0;
+      used[j] = 0;
+    }
+  }
+  PetscCall(MatDestroySubMatrices(1, &sub));
+  PetscCall(FETIRowSumDestroy(rows));
+
+  PetscCall(MatCreate(comm, M));
+  PetscCall(MatSetSizes(*M, ncl, ncl, nc, nc));
+  PetscCall(MatSetType(*M, MATAIJ));
+  PetscCall(MatSeqAIJSetPreallocation(*M, 0, dnz.data()));
+  PetscCall(MatMPIAIJSetPreallocation(*M, 0, dnz.data(), 0, onz.data()));
+  for (PetscInt i = 0; i < mrows; i++) {
+    const PetscInt row = cstart + i;
+    PetscCall(MatSetValues(*M, 1, &row, (PetscInt)rowcols[i].size(), rowcols[i].data(), rowvals[i].data(), INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(*M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(*M, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatSetOption(*M, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(*M, MAT_SPD, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
