@@ -412,7 +412,7 @@ PetscErrorCode FEMSetOptionsPrefix(FEM fem, const char prefix[])
 + -fem_decomposition <structured,metis> - decomposition of every body without `FEMSetDecomposition()`
 . -fem_subdomains <px,py,pz or n>         - subdomain counts (structured: per axis; METIS: total per body)
 . -fem_dirichlet <multipliers,primal>     - Total FETI (Dirichlet by multipliers) or Dirichlet kept in the primal
-. -fem_matrix_type <aij,sbaij>            - storage of the subdomain stiffness matrices (SBAIJ halves it, suits MUMPS; CHOLMOD needs AIJ)
+. -fem_matrix_type <sbaij,aij>            - storage of the subdomain stiffness matrices (SBAIJ, the default, is half of AIJ; CHOLMOD factors a transient AIJ copy)
 . -fem_E <E>                              - Young's modulus of every body without `FEMSetMaterial()`
 . -fem_nu <nu>                            - Poisson's ratio of every body without `FEMSetMaterial()`
 - -fem_view                               - view the model after `FEMSetUp()`

@@ -98,7 +98,7 @@ struct FEMAppendedRow {
 struct FEM_Impl {
   std::vector<FEMBody>                                   bodies;
   FEMDirichletMode                                       dirichletmode = FEM_DIRICHLET_MULTIPLIERS;
-  PetscBool                                              sbaij         = PETSC_FALSE; /* AIJ: what CHOLMOD (the default) factors */
+  PetscBool                                              sbaij         = PETSC_TRUE; /* symmetric storage: half of AIJ (CHOLMOD factors a transient AIJ copy) */
   PetscBool                                              setupcalled   = PETSC_FALSE;
   PetscInt                                               nsubdomains = 0, firstlocal = 0, nlocal = 0;
   std::vector<PetscInt>                                  subprimaloffset; /* nsubdomains + 1 */
