@@ -20,8 +20,7 @@ static PetscErrorCode FETIReset(FETI feti)
   PetscCall(VecDestroy(&impl.f));
   PetscCall(MatDestroy(&impl.R));
   PetscCall(MatDestroy(&impl.Gt));
-  PetscCall(MatDestroy(&impl.GGt));
-  PetscCall(KSPDestroy(&impl.coarse));
+  PetscCall(FETICoarseSolverDestroy(impl.coarse));
   PetscCall(MatDestroy(&impl.F));
   PetscCall(MatDestroy(&impl.G));
   PetscCall(MatDestroy(&impl.P));
@@ -412,7 +411,8 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of `FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8, unpreconditioned norm)
 . -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
 . -feti_sub_pc_factor_mat_solver_type <cholmod,mumps,petsc> - the sparse Cholesky of the subdomains
-- -feti_coarse_ksp_type, -feti_coarse_pc_type ... - the coarse solver of G G' (default: direct, redundant on every rank)
+. -feti_coarse_mode <single,redundant,parallel> - the direct solver of G G': factored once on rank 0 (solves gather there; the same numbers as on one rank), on every rank, or in parallel (MUMPS)
+- -feti_coarse_pc_factor_mat_solver_type ... - its options (single: on rank 0; redundant: -feti_coarse_redundant_...)
 
   Level: beginner
 
@@ -435,6 +435,8 @@ PetscErrorCode FETISetFromOptions(FETI feti)
                              impl.kplusexplicit, &kplusexplicit, NULL));
   PetscCall(PetscOptionsBool("-feti_kplus_explicit_schur", "Build the explicit K+ blocks from a MUMPS Schur complement (false: by solves with the subdomain factor)", "FETISetKplusExplicit",
                              impl.kplusschur, &impl.kplusschur, NULL));
+  PetscCall(PetscOptionsEnum("-feti_coarse_mode", "Direct solver of G G': factored on rank 0 only (single), on every rank (redundant), or in parallel by MUMPS (parallel)", "FETISetUp",
+                             FETICoarseModes, (PetscEnum)impl.coarsemode, (PetscEnum *)&impl.coarsemode, NULL));
   PetscCall(PetscOptionsName("-feti_view", "View the FETI problem after setup", "FETIView", NULL));
   PetscOptionsEnd();
   PetscCall(FETISetKplusExplicit(feti, kplusexplicit));
@@ -582,12 +584,7 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
       PetscCall(PetscViewerASCIIPrintf(viewer, "F products: explicit dense K+ on the dofs B touches (at most %" PetscInt_FMT " per subdomain)\n", nbmax));
     } else PetscCall(PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain\n"));
-    if (impl.coarse) {
-      PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solver (G G'):\n"));
-      PetscCall(PetscViewerASCIIPushTab(viewer));
-      PetscCall(KSPView(impl.coarse, viewer));
-      PetscCall(PetscViewerASCIIPopTab(viewer));
-    }
+    if (impl.ncoarse) PetscCall(FETICoarseSolverView(impl.coarse, viewer));
   }
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);

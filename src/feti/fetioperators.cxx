@@ -123,7 +123,7 @@ PetscErrorCode FETIApplyCoarseInverse(FETI feti, Vec x, Vec y)
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   if (!impl.ncoarse) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(FETI_CoarseSolve, feti, 0, 0, 0));
-  PetscCall(KSPSolve(impl.coarse, x, y));
+  PetscCall(FETICoarseSolverApply(impl.coarse, x, y));
   PetscCall(PetscLogEventEnd(FETI_CoarseSolve, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -368,57 +368,20 @@ PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscErrorCode (*pr
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* A direct solver for a coarse matrix (prefix feti_coarse_): Cholesky on one rank, otherwise every rank
-   factors the whole (small) matrix (one gather per solve, no parallel triangular solves) */
-PetscErrorCode FETICreateCoarseKSP(FETI feti, Mat A, KSP *ksp, PetscBool *failed)
-{
-  FETI_Impl  &impl = *feti->impl;
-  MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
-  PetscMPIInt size;
-  const char *prefix;
-  char        coarseprefix[256];
-  PC          pc;
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCall(KSPCreate(comm, ksp));
-  PetscCall(KSPSetErrorIfNotConverged(*ksp, PETSC_TRUE));
-  PetscCall(KSPSetOperators(*ksp, A, A));
-  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
-  PetscCall(PetscSNPrintf(coarseprefix, sizeof(coarseprefix), "%sfeti_coarse_", prefix ? prefix : ""));
-  PetscCall(KSPSetOptionsPrefix(*ksp, coarseprefix));
-  PetscCall(KSPSetType(*ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(*ksp, &pc));
-  if (size == 1) {
-    PetscCall(PCSetType(pc, PCCHOLESKY));
-    PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
-  } else {
-    KSP inner;
-    PC  innerpc;
-    PetscCall(PCSetType(pc, PCREDUNDANT));
-    PetscCall(PCRedundantGetKSP(pc, &inner));
-    PetscCall(KSPGetPC(inner, &innerpc));
-    PetscCall(PCSetType(innerpc, PCCHOLESKY));
-    PetscCall(PCFactorSetMatSolverType(innerpc, impl.subsolver));
-  }
-  PetscCall(KSPSetFromOptions(*ksp));
-  PetscCall(FETIKSPSetUpFactorization(feti, *ksp, NULL, NULL, failed));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 static PetscErrorCode SetUpCoarse(FETI feti)
 {
   FETI_Impl &impl = *feti->impl;
   PetscBool  failed;
-  Mat        Gt;
+  Mat        Gt, GGt;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
   PetscCall(FETICreateGt(feti, &Gt));
-  PetscCall(FETIAssembleCoarseMatrix(Gt, NULL, &impl.GGt));
+  PetscCall(FETIAssembleCoarseMatrix(Gt, NULL, &GGt));
   PetscCall(MatDestroy(&Gt));
   PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
-  PetscCall(FETICreateCoarseKSP(feti, impl.GGt, &impl.coarse, &failed));
+  PetscCall(FETICoarseSolverCreate(feti, GGt, impl.coarse, &failed));
+  PetscCall(MatDestroy(&GGt));
   PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
              "The coarse matrix G G' is singular: the constraints do not fix every rigid-body mode (a body without Dirichlet condition?)");
   PetscFunctionReturn(PETSC_SUCCESS);

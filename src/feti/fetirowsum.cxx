@@ -125,12 +125,12 @@ PetscErrorCode FETIRowSumDestroy(FETIRowSum &rs)
    subset), summed for every entry over the dual rows in increasing order. Gt: dual x coarse (AIJ). */
 PetscErrorCode FETIAssembleCoarseMatrix(Mat Gt, Vec w, Mat *M)
 {
-  MPI_Comm              comm = PetscObjectComm((PetscObject)Gt);
-  Mat                   G, *sub;
-  FETIRowSum            rows; /* G's rows in the canonical order */
-  IS                    isrow, iscol;
-  PetscInt              nc, ncl, cstart, nd, mrows;
-  std::vector<PetscInt> need, dnz, onz, cols;
+  MPI_Comm                 comm = PetscObjectComm((PetscObject)Gt);
+  Mat                      G, *sub;
+  FETIRowSum               rows; /* G's rows in the canonical order */
+  IS                       isrow, iscol;
+  PetscInt                 nc, ncl, cstart, nd, mrows;
+  std::vector<PetscInt>    need, dnz, onz, cols;
   std::vector<PetscScalar> acc, wr, vals;
   std::vector<char>        used;
 

@@ -46,22 +46,22 @@ PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
     PetscCall(FETIApplyG(feti, impl.residual, impl.wc1));
     PetscCall(FETIApplyCoarseInverse(feti, impl.wc1, alpha));
   } else { /* G_A = G diag(mask): (G_A G_A') alpha = G_A (mask .* residual) */
-    Mat       Gt, M;
-    KSP       ksp;
-    PetscBool failed;
+    Mat              Gt, M;
+    FETICoarseSolver cs;
+    PetscBool        failed;
     PetscCall(FETICreateGt(feti, &Gt));
     PetscCall(FETIAssembleCoarseMatrix(Gt, mask, &M));
     PetscCall(MatDestroy(&Gt));
     PetscCall(VecPointwiseMult(impl.wd3, mask, impl.residual));
     PetscCall(VecPointwiseMult(impl.wd3, mask, impl.wd3));
     PetscCall(FETIApplyG(feti, impl.wd3, impl.wc1));
-    PetscCall(FETICreateCoarseKSP(feti, M, &ksp, &failed));
+    PetscCall(FETICoarseSolverCreate(feti, M, cs, &failed));
     PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_WRONG,
                "FETIComputeAlpha(): the rows in the mask do not determine the rigid-body amplitudes (G_A G_A' is singular); include rows that fix every floating subdomain");
     PetscCall(PetscLogEventBegin(FETI_CoarseSolve, feti, 0, 0, 0));
-    PetscCall(KSPSolve(ksp, impl.wc1, alpha));
+    PetscCall(FETICoarseSolverApply(cs, impl.wc1, alpha));
     PetscCall(PetscLogEventEnd(FETI_CoarseSolve, feti, 0, 0, 0));
-    PetscCall(KSPDestroy(&ksp));
+    PetscCall(FETICoarseSolverDestroy(cs));
     PetscCall(MatDestroy(&M));
   }
   PetscFunctionReturn(PETSC_SUCCESS);

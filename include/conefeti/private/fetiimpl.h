@@ -56,6 +56,21 @@ struct FETIRowSum {
   Vec                   ghosts  = nullptr;
 };
 
+/* the direct solver of the coarse matrix (feticoarse.cxx) */
+typedef enum {
+  FETI_COARSE_SINGLE,
+  FETI_COARSE_REDUNDANT,
+  FETI_COARSE_PARALLEL
+} FETICoarseMode;
+PETSC_INTERN const char *const FETICoarseModes[];
+
+struct FETICoarseSolver {
+  FETICoarseMode mode    = FETI_COARSE_SINGLE;
+  KSP            ksp     = nullptr; /* single mode: on rank 0 only */
+  VecScatter     scatter = nullptr; /* single mode on several ranks: to rank 0 and back */
+  Vec            x0 = nullptr, y0 = nullptr;
+};
+
 struct FETI_Impl {
   std::vector<FETISubdomain> sub;
   Mat                        B = nullptr;
@@ -68,24 +83,24 @@ struct FETI_Impl {
   PetscInt  nprimal = 0, nlocalprimal = 0, ncoarse = 0, nlocalcoarse = 0;
 
   /* options */
-  PetscReal kerneltol         = 1e-8;       /* -feti_kernel_tol */
-  PetscReal checktol          = 1e-6;       /* -feti_check_tol */
-  PetscBool check             = PETSC_TRUE; /* -feti_check */
-  PetscInt  nfixingcandidates = 8;          /* -feti_fixing_nodes */
-  char      subsolver[64]     = "";
-  PetscBool kplusexplicit     = PETSC_FALSE; /* -feti_kplus_explicit */
-  PetscBool kplusschur        = PETSC_TRUE;  /* -feti_kplus_explicit_schur */
+  PetscReal      kerneltol         = 1e-8;       /* -feti_kernel_tol */
+  PetscReal      checktol          = 1e-6;       /* -feti_check_tol */
+  PetscBool      check             = PETSC_TRUE; /* -feti_check */
+  PetscInt       nfixingcandidates = 8;          /* -feti_fixing_nodes */
+  char           subsolver[64]     = "";
+  PetscBool      kplusexplicit     = PETSC_FALSE;        /* -feti_kplus_explicit */
+  PetscBool      kplusschur        = PETSC_TRUE;         /* -feti_kplus_explicit_schur */
+  FETICoarseMode coarsemode        = FETI_COARSE_SINGLE; /* -feti_coarse_mode */
 
   /* global objects */
-  Vec f      = nullptr; /* primal load */
-  Mat R      = nullptr; /* primal x coarse, block diagonal kernel basis (MPIAIJ) */
-  Mat Gt     = nullptr; /* B R, dual x coarse (MPIAIJ): built for the coarse matrix and dropped (FETIGetGt() builds it again) */
-  Mat GGt    = nullptr; /* coarse matrix */
-  KSP coarse = nullptr; /* prefix feti_coarse_ */
-  Mat F = nullptr, G = nullptr, P = nullptr, Q = nullptr, Kplus = nullptr, PFP = nullptr;
-  Vec h = nullptr, e = nullptr, lambdatilde = nullptr;
-  KSP ksp          = nullptr; /* prefix feti_ for FETISolveLinear() */
-  Vec boundarymask = nullptr; /* primal: 1 at dofs touched by B */
+  Vec              f  = nullptr; /* primal load */
+  Mat              R  = nullptr; /* primal x coarse, block diagonal kernel basis (MPIAIJ) */
+  Mat              Gt = nullptr; /* B R, dual x coarse (MPIAIJ): built for the coarse matrix and dropped (FETIGetGt() builds it again) */
+  FETICoarseSolver coarse;       /* of G G' (not kept once factored), prefix feti_coarse_ */
+  Mat              F = nullptr, G = nullptr, P = nullptr, Q = nullptr, Kplus = nullptr, PFP = nullptr;
+  Vec              h = nullptr, e = nullptr, lambdatilde = nullptr;
+  KSP              ksp          = nullptr; /* prefix feti_ for FETISolveLinear() */
+  Vec              boundarymask = nullptr; /* primal: 1 at dofs touched by B */
 
   /* work vectors */
   Vec wp1 = nullptr, wp2 = nullptr, wd1 = nullptr, wd2 = nullptr, wc1 = nullptr, wc2 = nullptr;
@@ -122,8 +137,13 @@ PETSC_INTERN PetscErrorCode FETIApplyP(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyG(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyGt(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETICreateGt(FETI, Mat *);
-PETSC_INTERN PetscErrorCode FETICreateCoarseKSP(FETI, Mat, KSP *, PetscBool *);
 PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscErrorCode (*)(void *), void *, PetscBool *);
+
+/* feticoarse.cxx */
+PETSC_INTERN PetscErrorCode FETICoarseSolverCreate(FETI, Mat, FETICoarseSolver &, PetscBool *);
+PETSC_INTERN PetscErrorCode FETICoarseSolverApply(FETICoarseSolver &, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETICoarseSolverView(FETICoarseSolver &, PetscViewer);
+PETSC_INTERN PetscErrorCode FETICoarseSolverDestroy(FETICoarseSolver &);
 
 /* fetiexplicitkplus.cxx */
 PETSC_INTERN PetscErrorCode FETISetUpExplicitKplus(FETI);
