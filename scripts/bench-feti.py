@@ -137,17 +137,19 @@ def memory_events(exe, ranks, args):
 def memory_table(exe, ranks, quick):
     print("### Where the memory goes (%d ranks, lumped preconditioner)\n" % ranks)
     print("Resident memory each setup stage added (PETSc's `-log_view_memory`, summed over the ranks), in bytes per primal")
-    print("unknown. Mesh = the boxes and the decomposition; K_s, f_s = subdomain assembly; FETI operators = B, the kernels,")
-    print("G and the coarse matrix GG^T (incl. transient products); factors = the subdomain Cholesky factorizations (CHOLMOD);")
-    print("other FETI setup = coarse factorization, the lumped preconditioner's K_bb blocks, work vectors; rest = MPI and")
-    print("PETSc start-up, the solve's vectors and allocator slack (peak RSS minus the stages).\n")
-    print("| H/h | subdomains | primal unknowns | mesh | K_s, f_s | FETI operators | factors | other FETI setup | rest | peak RSS / primal unknown [B] |")
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    print("unknown. Mesh = the boxes and the decomposition; K_s, f_s = subdomain assembly (SBAIJ); FETI operators = global")
+    print("load, R, the arrays of the B and B' products, and the transient G' and G G' (assembled before the factorizations,")
+    print("whose allocations then reuse that memory); factors = the subdomain Cholesky factorizations (CHOLMOD) and the")
+    print("coarse one (on rank 0); other FETI setup = kernels, fixing dofs, work vectors; rest = MPI and PETSc start-up, the")
+    print("preconditioner's index sets, the solve's vectors and allocator slack (peak RSS minus the stages). CG to 1e-8; the")
+    print("times are of the same run (with -log_view_memory on, on a machine with two cores).\n")
+    print("| H/h | subdomains | primal unknowns | mesh | K_s, f_s | FETI operators | factors | other FETI setup | rest | peak RSS / primal unknown [B] | CG iterations | setup [s] | solve [s] |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     configs = [(4, 14), (6, 10), (8, 8)] if not quick else [(4, 4), (8, 2)]
     for m, p in configs:
         res = memory_events(exe, ranks, ["-cells", str(m * p), "-fem_subdomains", "%d,%d,%d" % (p, p, p), "-feti_pc_type", "lumped"])
         if res is None:
-            print("| %d | %d | failed | | | | | | | |" % (m, p ** 3))
+            print("| %d | %d | failed | | | | | | | | | | |" % (m, p ** 3))
             continue
         r, e = res
         n = r["primal"]
@@ -157,7 +159,8 @@ def memory_table(exe, ranks, quick):
         factors = e.get("FETIFactor", 0)
         other = e.get("FETISetUp", 0) - operators - factors
         rest = r["rss"] - mesh - assembly - e.get("FETISetUp", 0)
-        print("| %d | %d | %d | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f |" % (m, r["subdomains"], n, mesh / n, assembly / n, operators / n, factors / n, other / n, rest / n, r["rss"] / n))
+        print("| %d | %d | %d | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f | %d | %.2f | %.2f |" % (m, r["subdomains"], n, mesh / n, assembly / n, operators / n, factors / n, other / n, rest / n,
+                                                                                   r["rss"] / n, r["iterations"], r["setup"], r["solve"]))
     print()
 
 
