@@ -710,12 +710,12 @@ PetscErrorCode FEMGetNodeCopies(FEM fem, PetscInt body, PetscInt node, PetscInt 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
   PetscCall(CheckSetUpBody(fem, body));
-  auto it = fem->impl->copies.find({body, node});
-  PetscCheck(it != fem->impl->copies.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
-             "Node %" PetscInt_FMT " of body %" PetscInt_FMT " is neither on the body's boundary nor on a subdomain interface", node, body);
-  if (ncopies) *ncopies = (PetscInt)it->second.subdomains.size();
-  if (subdomains) *subdomains = it->second.subdomains.data();
-  if (dofs) *dofs = it->second.dofs.data();
+  const FEMCopyTable &t = fem->impl->copies;
+  const PetscInt      i = t.Find(body, node);
+  PetscCheck(i >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Node %" PetscInt_FMT " of body %" PetscInt_FMT " is neither on the body's boundary nor on a subdomain interface", node, body);
+  if (ncopies) *ncopies = t.Count(i);
+  if (subdomains) *subdomains = t.Subdomains(i);
+  if (dofs) *dofs = t.Dofs(i);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -826,7 +826,7 @@ PetscErrorCode FEMAddConstraintRows(FEM fem, PetscInt nrows, const FETIRowKind k
     for (PetscInt t = rowptr[r]; t < rowptr[r + 1]; t++) {
       PetscCall(CheckSetUpBody(fem, body[t]));
       PetscCheck(comp[t] >= 0 && comp[t] < 3, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Appended row %" PetscInt_FMT ": component %" PetscInt_FMT " must be 0, 1 or 2", r, comp[t]);
-      PetscCheck(impl.copies.count({body[t], node[t]}), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+      PetscCheck(impl.copies.Find(body[t], node[t]) >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
                  "Appended row %" PetscInt_FMT ": node %" PetscInt_FMT " of body %" PetscInt_FMT " is not on the body's boundary", r, node[t], body[t]);
       PetscCallCXX(row.body.push_back(body[t]));
       PetscCallCXX(row.node.push_back(node[t]));

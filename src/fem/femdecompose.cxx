@@ -118,6 +118,39 @@ PetscErrorCode FEMDecomposeBody(MPI_Comm comm, FEMBody &b)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The table of copies from (body, node, subdomain, dof) quadruples, in any order */
+static PetscErrorCode BuildCopyTable(const std::vector<PetscInt> &quad, FEMCopyTable &t)
+{
+  const size_t        n = quad.size() / 4;
+  std::vector<size_t> order(n);
+
+  PetscFunctionBegin;
+  for (size_t i = 0; i < n; i++) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    for (size_t c = 0; c < 3; c++)
+      if (quad[4 * a + c] != quad[4 * b + c]) return quad[4 * a + c] < quad[4 * b + c];
+    return false;
+  });
+  t = FEMCopyTable();
+  PetscCallCXX(t.subdomains.reserve(n));
+  PetscCallCXX(t.dofs.reserve(n));
+  for (size_t k = 0; k < n; k++) {
+    const PetscInt *q = &quad[4 * order[k]];
+    if (t.body.empty() || t.body.back() != q[0] || t.node.back() != q[1]) {
+      PetscCallCXX(t.body.push_back(q[0]));
+      PetscCallCXX(t.node.push_back(q[1]));
+      PetscCallCXX(t.offset.push_back((PetscInt)k));
+    }
+    PetscCallCXX(t.subdomains.push_back(q[2]));
+    PetscCallCXX(t.dofs.push_back(q[3]));
+  }
+  PetscCallCXX(t.offset.push_back((PetscInt)n));
+  PetscCallCXX(t.body.shrink_to_fit());
+  PetscCallCXX(t.node.shrink_to_fit());
+  PetscCallCXX(t.offset.shrink_to_fit());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Build the subdomains of this rank (elements, nodes, connectivity), the primal offsets of all
    subdomains, and the replicated table of copies of nodes on body boundaries and interfaces. */
 PetscErrorCode FEMBuildLocalSubdomains(FEM fem)
@@ -200,12 +233,6 @@ PetscErrorCode FEMBuildLocalSubdomains(FEM fem)
   for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
   PetscCallCXX(all.resize(displs[size]));
   PetscCallMPI(MPI_Allgatherv(mine.data(), nmine, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, comm));
-  impl.copies.clear();
-  /* entries arrive in increasing subdomain order (ranks own increasing ranges), so copies stay sorted */
-  for (size_t i = 0; i < all.size(); i += 4) {
-    FEMNodeCopies &c = impl.copies[{all[i], all[i + 1]}];
-    PetscCallCXX(c.subdomains.push_back(all[i + 2]));
-    PetscCallCXX(c.dofs.push_back(all[i + 3]));
-  }
+  PetscCall(BuildCopyTable(all, impl.copies));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

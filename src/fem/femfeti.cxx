@@ -28,9 +28,10 @@ struct LocalRow {
 static PetscErrorCode FirstCopyDof(FEM_Impl &impl, PetscInt body, PetscInt node, PetscInt comp, PetscInt *dof, PetscInt *sub)
 {
   PetscFunctionBegin;
-  const FEMNodeCopies &c = impl.copies.at({body, node});
-  *dof                   = c.dofs[0] + comp;
-  *sub                   = c.subdomains[0];
+  const PetscInt i = impl.copies.Find(body, node);
+  PetscCheck(i >= 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Node %" PetscInt_FMT " of body %" PetscInt_FMT " has no copy entry", node, body);
+  *dof = impl.copies.Dofs(i)[0] + comp;
+  *sub = impl.copies.Subdomains(i)[0];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -44,7 +45,7 @@ static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
     const FEMAppendedRow &r      = impl.appended[a];
     PetscInt              anchor = PETSC_MAX_INT;
     for (size_t t = 0; t < r.body.size(); t++) {
-      PetscInt dof, sub;
+      PetscInt dof = -1, sub = -1;
       PetscCall(FirstCopyDof(impl, r.body[t], r.node[t], r.comp[t], &dof, &sub));
       anchor = std::min(anchor, sub);
     }
@@ -54,20 +55,20 @@ static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
     const FEMSubdomain &sd = impl.local[s];
     const FEMBody      &b  = impl.bodies[sd.body];
     for (PetscInt n : sd.nodes) {
-      auto it = impl.copies.find({sd.body, n});
-      if (it == impl.copies.end() || it->second.subdomains[0] != sd.id) continue; /* rows live with the lowest copy */
-      const FEMNodeCopies &c = it->second;
-      const PetscInt       k = (PetscInt)c.subdomains.size();
+      const PetscInt e = impl.copies.Find(sd.body, n);
+      if (e < 0 || impl.copies.Subdomains(e)[0] != sd.id) continue; /* rows live with the lowest copy */
+      const PetscInt  k    = impl.copies.Count(e);
+      const PetscInt *dofs = impl.copies.Dofs(e);
       for (PetscInt comp = 0; comp < 3; comp++) {
         if (b.dirichletmask[n] & (1u << comp)) {
           if (impl.dirichletmode == FEM_DIRICHLET_PRIMAL) continue; /* every copy is removed from the primal */
-          for (PetscInt j = 0; j < k; j++) PetscCallCXX(rows.push_back({FETI_ROW_DIRICHLET, {{c.dofs[j] + comp, 1.0}}, 0.0, -1}));
+          for (PetscInt j = 0; j < k; j++) PetscCallCXX(rows.push_back({FETI_ROW_DIRICHLET, {{dofs[j] + comp, 1.0}}, 0.0, -1}));
         } else {
           for (PetscInt j = 1; j < k; j++) {
             LocalRow        row{FETI_ROW_GLUING, {}, 0.0, -1};
             const PetscReal scale = 1.0 / std::sqrt((PetscReal)(j * (j + 1)));
-            for (PetscInt i = 0; i < j; i++) PetscCallCXX(row.entries.push_back({c.dofs[i] + comp, scale}));
-            PetscCallCXX(row.entries.push_back({c.dofs[j] + comp, -j * scale}));
+            for (PetscInt i = 0; i < j; i++) PetscCallCXX(row.entries.push_back({dofs[i] + comp, scale}));
+            PetscCallCXX(row.entries.push_back({dofs[j] + comp, -j * scale}));
             PetscCallCXX(rows.push_back(row));
           }
         }
@@ -77,7 +78,7 @@ static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
       const FEMAppendedRow &r = impl.appended[a];
       LocalRow              row{r.kind, {}, r.rhs, a};
       for (size_t t = 0; t < r.body.size(); t++) {
-        PetscInt dof, sub;
+        PetscInt dof = -1, sub = -1;
         PetscCall(FirstCopyDof(impl, r.body[t], r.node[t], r.comp[t], &dof, &sub));
         PetscCallCXX(row.entries.push_back({dof, r.coef[t]}));
       }
