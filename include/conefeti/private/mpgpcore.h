@@ -30,6 +30,8 @@ struct MPGPCore {
   PetscReal   normA       = 0;           /* estimate of ||A||, provided by the owner before the solve */
   PetscBool   bb          = PETSC_FALSE; /* MPGP: try Barzilai-Borwein lengths in gradient projection steps */
   PetscBool   projcg      = PETSC_FALSE; /* expansion: first try the projected full CG step P(x - a_cg p) (see MPGPCoreSolve) */
+  PetscReal   arc         = 0.0;         /* MPGP: > 0 lets CG steps move disk blocks along their circle while alpha |g.nu|/r <= arc (arc steps, see MPGPCoreSolve); 0: off */
+  PetscBool   provisional = PETSC_FALSE; /* set while report() is only asked whether the solve may stop (on an updated gradient) */
   PetscBool   resume      = PETSC_FALSE; /* continue an interrupted solve: iteration 0 is not reported (the owner's test keeps its reference) */
 
   Mat          A   = nullptr; /* not owned */
@@ -42,11 +44,16 @@ struct MPGPCore {
   void              *precondition_ctx = nullptr;
   QPCounters        *counters         = nullptr; /* owner's counters, updated in place */
 
-  Vec      g = nullptr, p = nullptr, Ap = nullptr, phi = nullptr, beta = nullptr, z = nullptr; /* work */
-  Vec      dx    = nullptr;                                                                    /* the step of a projected CG expansion */
-  Vec      xprev = nullptr, gprev = nullptr;                                                   /* the previous iterate and gradient (Barzilai-Borwein lengths) */
-  PetscInt bb_rejected     = 0;                                                                /* BB steps that did not decrease q and fell back to the fixed length */
-  PetscInt projcg_rejected = 0;                                                                /* projected CG steps not kept (q above the feasible half step's) */
+  Vec       g = nullptr, p = nullptr, Ap = nullptr, phi = nullptr, beta = nullptr, z = nullptr; /* work */
+  Vec       dx = nullptr;                                                                       /* the step of a projected CG expansion */
+  Vec       Wp = nullptr, ApW = nullptr;                                                        /* arc steps: the curvature term W p, and Ap + Wp */
+  Vec       xsave = nullptr, gsave = nullptr;                                                   /* arc steps: x and the updated g before a step, for its certificate */
+  PetscBool updated   = PETSC_FALSE;                                                            /* g was updated after steps along arcs, not recomputed */
+  PetscReal drift     = 0;                                                                      /* then a bound on its error: ||A|| times the sum of the retractions' lengths */
+  PetscInt  arc_steps = 0, arc_rejected = 0, arc_refreshed = 0;                                 /* CG steps along arcs; steps not taken or taken again; gradients recomputed for them */
+  Vec       xprev = nullptr, gprev = nullptr;                                                   /* the previous iterate and gradient (Barzilai-Borwein lengths) */
+  PetscInt  bb_rejected     = 0;                                                                /* BB steps that did not decrease q and fell back to the fixed length */
+  PetscInt  projcg_rejected = 0;                                                                /* projected CG steps not kept (q above the feasible half step's) */
 
   /* state after a solve: g = A x - b is valid for the returned x */
   PetscInt   its    = 0;

@@ -39,7 +39,9 @@ struct SeparableSetData {
   std::vector<PetscReal>     eff_center; /* 2 per disk */
   std::vector<PetscReal>     cone_apex;  /* 3 per cone */
   std::vector<PetscReal>     split_work; /* n entries (sized at setup), scratch of SeparableSetSplitGradient_Private() */
-  std::vector<unsigned char> split_free; /* n entries: 1 where the last split found the entry's block free (interior) */
+  std::vector<unsigned char> split_free; /* n entries: 1 where the last split found the entry's block free (interior, or an arc block) */
+  std::vector<unsigned char> disk_arc;   /* per disk: 1 where the last split let the block move along its circle (see SeparableSetSplitGradient_Private()) */
+  std::vector<PetscReal>     disk_curv;  /* per disk: the curvature term -g.nu/r of an arc block (0 otherwise) */
   bool                       has_bounds = false;
   bool                       dirty      = true;
   PetscObjectState           lb_state = 0, ub_state = 0, shift_state = 0; /* of lb, ub, shift when the effective data were made */
@@ -61,12 +63,15 @@ struct SeparableSplit {
   PetscReal phitphi; /* reduced free gradient . free gradient (proportioning test) */
   PetscReal phiAp;   /* phi . Ap when Ap is given (CG update), else 0 */
   PetscReal xg, xb;  /* x.g and x.b when b is given (objective 1/2 x.(g - b)), else 0 */
+  PetscInt  narc;    /* disk blocks that move along their circle (arc blocks; 0 unless asked for) */
 };
 
 PETSC_INTERN PetscErrorCode SeparableSetSetUp_Private(SeparableSet);
 PETSC_INTERN PetscErrorCode SeparableSetGetVersion_Private(SeparableSet, PetscObjectState *);
-PETSC_INTERN PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet, Vec, Vec, PetscReal, Vec, Vec, Vec, Vec, SeparableSplit *);
+PETSC_INTERN PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet, Vec, Vec, PetscReal, PetscReal, PetscBool, Vec, Vec, Vec, Vec, SeparableSplit *);
 PETSC_INTERN PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet, Vec, Vec, PetscReal *);
+PETSC_INTERN PetscErrorCode SeparableSetArcTangent_Private(SeparableSet, Vec, Vec, Vec, PetscReal *);
+PETSC_INTERN PetscErrorCode SeparableSetArcRetraction_Private(SeparableSet, Vec, PetscReal, Vec, Vec, Vec, PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode SeparableSetMaskFree_Private(SeparableSet, Vec);
 PETSC_INTERN PetscErrorCode SeparableSetProjectedStep_Private(SeparableSet, Vec, PetscReal, Vec, Vec);
 PETSC_INTERN PetscErrorCode SeparableSetCheckCompatible_Private(SeparableSet, Vec);

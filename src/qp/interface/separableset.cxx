@@ -478,6 +478,8 @@ PetscErrorCode SeparableSetSetUp_Private(SeparableSet set)
   PetscCallCXX(d->hi.assign(d->n, PETSC_INFINITY));
   PetscCallCXX(d->split_work.resize(d->n));
   PetscCallCXX(d->split_free.assign(d->n, 0));
+  PetscCallCXX(d->disk_arc.assign(d->disk_radius.size(), 0));
+  PetscCallCXX(d->disk_curv.assign(d->disk_radius.size(), 0));
   d->has_bounds = false;
   for (PetscInt i = 0; i < d->n; i++) {
     if (d->kind[i] != SEPARABLE_SCALAR) continue;

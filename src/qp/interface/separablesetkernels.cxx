@@ -151,9 +151,14 @@ struct SplitData {
   const SeparableSetData *d;
   const PetscScalar      *xa, *ga, *apa, *ba;
   PetscScalar            *pa, *ba_;
-  PetscReal              *ta; /* scalar entries' terms of phi~ (zero elsewhere), summed against g in the second pass */
-  unsigned char          *fr; /* 1 where the block is free (interior), for SeparableSetMaskFree_Private() */
+  PetscReal              *ta;   /* scalar entries' terms of phi~ (zero elsewhere), summed against g in the second pass */
+  unsigned char          *fr;   /* 1 where the block is free (interior or arc), for SeparableSetMaskFree_Private() */
+  unsigned char          *arc;  /* per disk: 1 for an arc block */
+  PetscReal              *curv; /* per disk: the curvature term of an arc block */
   PetscReal               alpha;
+  PetscReal               arcmax; /* > 0: disk blocks on their circle may move along it while alpha -g.nu/r <= arcmax */
+  bool                    keep;   /* keep the arc blocks of the last split (during a CG run: the face stays fixed) */
+  PetscInt                narc;
   DoubleDouble            sum[6];
 };
 
@@ -199,7 +204,12 @@ template <bool Fused> CONEFETI_INLINE_KERNEL void SplitKernel(SplitData &sd)
     ta[i]  = t;
   }
 
-  /* disks: interior unless within the relative tolerance of the circle */
+  /* disks: interior unless within the relative tolerance of the circle. On the circle with the gradient
+     pushing outward (g.nu < 0), the block may instead count as free along the circle (an arc block: phi is
+     the tangential part of g, beta = 0), so that CG steps move it along the arc (curvature term -g.nu/r,
+     see SeparableSetArcTangent_Private()); only while alpha -g.nu/r <= arcmax: a block held more firmly
+     is left to the projected steps, which already scale its tangential move by 1/(1 + alpha |g.nu|/r) */
+  sd.narc = 0;
   for (size_t k = 0; k < d->disk_radius.size(); k++) {
     const PetscInt  i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];
     const PetscReal r     = d->disk_radius[k];
@@ -207,7 +217,10 @@ template <bool Fused> CONEFETI_INLINE_KERNEL void SplitKernel(SplitData &sd)
     const PetscReal gg[2] = {PetscRealPart(ga[i]), PetscRealPart(ga[j])};
     PetscReal       f[2] = {0, 0}, c[2] = {0, 0};
     const PetscReal nz = std::hypot(z[0], z[1]);
-    fr[i] = fr[j] = 0;
+    fr[i] = fr[j]      = 0;
+    const bool was_arc = sd.arc[k];
+    sd.arc[k]          = 0;
+    sd.curv[k]         = 0;
     if (r == 0) { /* pinned at the center */
     } else if (nz < r * (1 - tol)) {
       fr[i] = fr[j] = 1;
@@ -218,7 +231,22 @@ template <bool Fused> CONEFETI_INLINE_KERNEL void SplitKernel(SplitData &sd)
       curved.add(((z[0] - w0) * gg[0] + (z[1] - w1) * gg[1]) / alpha);
     } else {
       const PetscReal nu[2] = {z[0] / nz, z[1] / nz};
-      BoundaryProjectedGradient<2>(gg, nu, c);
+      const PetscReal gnu   = nu[0] * gg[0] + nu[1] * gg[1];
+      if (sd.keep ? was_arc : (sd.arcmax > 0 && gnu < 0 && -gnu * alpha <= sd.arcmax * r)) { /* an arc block: the tangential part of g is free */
+        fr[i] = fr[j] = 1;
+        f[0]          = gg[0] - gnu * nu[0];
+        f[1]          = gg[1] - gnu * nu[1];
+        if (gnu > 0) { /* (kept arc block) the gradient now pulls it inward: that part is chopped */
+          c[0] = gnu * nu[0];
+          c[1] = gnu * nu[1];
+        }
+        PetscReal w0 = z[0] - alpha * f[0], w1 = z[1] - alpha * f[1];
+        ProjectDisk(w0, w1, r);
+        curved.add(((z[0] - w0) * f[0] + (z[1] - w1) * f[1]) / alpha);
+        sd.arc[k]  = 1;
+        sd.curv[k] = PetscMax(-gnu, 0) / r;
+        sd.narc++;
+      } else BoundaryProjectedGradient<2>(gg, nu, c);
     }
     pa[i]  = f[0];
     pa[j]  = f[1];
@@ -288,8 +316,10 @@ CONEFETI_TARGET_FMA void SplitKernelFMA(SplitData &sd) { SplitKernel<true>(sd); 
 
 /* One pass: free gradient phi, chopped gradient beta, and the sums of SeparableSplit.
    The reduced free gradient phi~ = (x - P(x - alpha phi))/alpha enters only through phi~.phi.
-   Ap (may be NULL) gives phi.Ap for the CG update; b (may be NULL) gives x.b for the objective. */
-PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g, PetscReal alpha, Vec phi, Vec beta, Vec Ap, Vec b, SeparableSplit *out)
+   arcmax > 0 lets disk blocks on their circle count as free along it (arc blocks, see SplitKernel()),
+   0 keeps Kucera's split. Ap (may be NULL) gives phi.Ap for the CG update; b (may be NULL) gives x.b for
+   the objective. */
+PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g, PetscReal alpha, PetscReal arcmax, PetscBool keep, Vec phi, Vec beta, Vec Ap, Vec b, SeparableSplit *out)
 {
   SeparableSetData  *d;
   const PetscScalar *xa, *ga, *apa = NULL, *ba = NULL;
@@ -305,7 +335,7 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
   if (b) PetscCall(VecGetArrayRead(b, &ba));
   PetscCall(VecGetArrayWrite(phi, &pa));
   PetscCall(VecGetArrayWrite(beta, &ba_));
-  SplitData sd{d, xa, ga, apa, ba, pa, ba_, d->split_work.data(), d->split_free.data(), alpha, {}};
+  SplitData sd{d, xa, ga, apa, ba, pa, ba_, d->split_work.data(), d->split_free.data(), d->disk_arc.data(), d->disk_curv.data(), alpha, arcmax, keep && arcmax > 0 ? true : false, 0, {}};
 #if CONEFETI_FMA_DISPATCH
   if (ReproducibleSumUseFMA()) SplitKernelFMA(sd);
   else
@@ -319,6 +349,8 @@ PetscErrorCode SeparableSetSplitGradient_Private(SeparableSet set, Vec x, Vec g,
   if (Ap) PetscCall(VecRestoreArrayRead(Ap, &apa));
   if (b) PetscCall(VecRestoreArrayRead(b, &ba));
   PetscCall(ReproducibleAllreduce(sum, 6, PetscObjectComm((PetscObject)set)));
+  if (arcmax > 0) PetscCall(MPIU_Allreduce(&sd.narc, &out->narc, 1, MPIU_INT, MPI_SUM, PetscObjectComm((PetscObject)set)));
+  else out->narc = 0;
   out->gp2     = sum[0].value();
   out->beta2   = sum[1].value();
   out->phitphi = sum[2].value();
@@ -344,7 +376,82 @@ PetscErrorCode SeparableSetMaskFree_Private(SeparableSet set, Vec z)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Largest alpha >= 0 such that x - alpha p stays in the set (infinity if unbounded). */
+/* On the arc blocks of the last split (at x): p becomes its tangential part, Wp = curv p there (0 elsewhere),
+   and pWp = p'Wp. Moving an arc block along its circle by the retracted step P(x - a p) has the second
+   derivative p'Ap + p'Wp in a (the circle's curvature times the outward push -g.nu), which the CG step
+   length and the conjugacy then use. */
+PetscErrorCode SeparableSetArcTangent_Private(SeparableSet set, Vec x, Vec p, Vec Wp, PetscReal *pWp)
+{
+  SeparableSetData  *d = set->data;
+  const PetscScalar *xa;
+  PetscScalar       *pa, *wa;
+  DoubleDouble       sum;
+
+  PetscFunctionBegin;
+  PetscCall(VecSet(Wp, 0.0));
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArray(p, &pa));
+  PetscCall(VecGetArray(Wp, &wa));
+  for (size_t k = 0; k < d->disk_arc.size(); k++) {
+    if (!d->disk_arc[k]) continue;
+    const PetscInt  i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];
+    const PetscReal z0 = PetscRealPart(xa[i]) - d->eff_center[2 * k], z1 = PetscRealPart(xa[j]) - d->eff_center[2 * k + 1];
+    const PetscReal nz = std::hypot(z0, z1), n0 = z0 / nz, n1 = z1 / nz;
+    const PetscReal pn = n0 * PetscRealPart(pa[i]) + n1 * PetscRealPart(pa[j]);
+    const PetscReal t0 = PetscRealPart(pa[i]) - pn * n0, t1 = PetscRealPart(pa[j]) - pn * n1;
+    pa[i] = t0;
+    pa[j] = t1;
+    wa[i] = d->disk_curv[k] * t0;
+    wa[j] = d->disk_curv[k] * t1;
+    sum.addProduct(d->disk_curv[k] * t0, t0);
+    sum.addProduct(d->disk_curv[k] * t1, t1);
+  }
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(VecRestoreArray(p, &pa));
+  PetscCall(VecRestoreArray(Wp, &wa));
+  PetscCall(ReproducibleAllreduce(&sum, 1, PetscObjectComm((PetscObject)set)));
+  *pWp = sum.value();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* For the step x - a p of a CG step along arcs: the retraction d = P(x - a p) - (x - a p), nonzero only on
+   arc blocks (it puts them back on their circles). Returns d.(g - a Ap) and |d|^2, with which
+   q(P(x - a p)) - q(x) <= -a g.p + a^2/2 p'Ap + d.(g - a Ap) + ||A||/2 |d|^2 exactly. */
+PetscErrorCode SeparableSetArcRetraction_Private(SeparableSet set, Vec x, PetscReal a, Vec p, Vec g, Vec Ap, PetscReal *dg, PetscReal *dd)
+{
+  SeparableSetData  *d = set->data;
+  const PetscScalar *xa, *pa, *ga, *apa;
+  DoubleDouble       sum[2];
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArrayRead(p, &pa));
+  PetscCall(VecGetArrayRead(g, &ga));
+  PetscCall(VecGetArrayRead(Ap, &apa));
+  for (size_t k = 0; k < d->disk_arc.size(); k++) {
+    if (!d->disk_arc[k]) continue;
+    const PetscInt  i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];
+    const PetscReal y0 = PetscRealPart(xa[i]) - a * PetscRealPart(pa[i]) - d->eff_center[2 * k], y1 = PetscRealPart(xa[j]) - a * PetscRealPart(pa[j]) - d->eff_center[2 * k + 1];
+    PetscReal       w0 = y0, w1 = y1;
+    ProjectDisk(w0, w1, d->disk_radius[k]);
+    const PetscReal d0 = w0 - y0, d1 = w1 - y1;
+    sum[0].addProduct(d0, PetscRealPart(ga[i]) - a * PetscRealPart(apa[i]));
+    sum[0].addProduct(d1, PetscRealPart(ga[j]) - a * PetscRealPart(apa[j]));
+    sum[1].addProduct(d0, d0);
+    sum[1].addProduct(d1, d1);
+  }
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(VecRestoreArrayRead(p, &pa));
+  PetscCall(VecRestoreArrayRead(g, &ga));
+  PetscCall(VecRestoreArrayRead(Ap, &apa));
+  PetscCall(ReproducibleAllreduce(sum, 2, PetscObjectComm((PetscObject)set)));
+  *dg = sum[0].value();
+  *dd = sum[1].value();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Largest alpha >= 0 such that x - alpha p stays in the set (infinity if unbounded). Arc blocks of the
+   last split (at x) do not limit it: their move along the circle is retracted by the projection. */
 PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet set, Vec x, Vec p, PetscReal *alpha_f)
 {
   SeparableSetData  *d;
@@ -370,7 +477,7 @@ PetscErrorCode SeparableSetFeasibleStep_Private(SeparableSet set, Vec x, Vec p, 
   for (size_t k = 0; k < d->disk_radius.size(); k++) {
     const PetscInt  i = d->disk_idx[2 * k], j = d->disk_idx[2 * k + 1];
     const PetscReal p0 = PetscRealPart(pa[i]), p1 = PetscRealPart(pa[j]);
-    if (p0 == 0 && p1 == 0) continue;
+    if ((p0 == 0 && p1 == 0) || d->disk_arc[k]) continue; /* an arc block moves along its circle: the projection after the step retracts it */
     const PetscReal z0 = PetscRealPart(xa[i]) - d->eff_center[2 * k], z1 = PetscRealPart(xa[j]) - d->eff_center[2 * k + 1], r = d->disk_radius[k];
     /* |z - alpha p|^2 <= r^2 */
     amin = PetscMin(amin, QuadraticStep(-(p0 * p0 + p1 * p1), -(z0 * p0 + z1 * p1), r * r - (z0 * z0 + z1 * z1)));
@@ -428,7 +535,7 @@ PetscErrorCode SeparableSetProjectedGradient(SeparableSet set, Vec x, Vec g, Vec
   PetscValidHeaderSpecific(set, SEPARABLESET_CLASSID, 1);
   PetscCall(SeparableSetCheckCompatible_Private(set, x));
   PetscCall(VecDuplicate(gp, &beta));
-  PetscCall(SeparableSetSplitGradient_Private(set, x, g, 1.0, gp, beta, NULL, NULL, &s));
+  PetscCall(SeparableSetSplitGradient_Private(set, x, g, 1.0, 0.0, PETSC_FALSE, gp, beta, NULL, NULL, &s));
   PetscCall(VecAXPY(gp, 1.0, beta));
   PetscCall(VecDestroy(&beta));
   PetscFunctionReturn(PETSC_SUCCESS);

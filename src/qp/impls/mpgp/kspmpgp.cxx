@@ -28,6 +28,18 @@ PetscErrorCode KSPQPReport(void *ctx, PetscInt it, PetscReal, PetscReal gpnorm, 
   KSP ksp = static_cast<KSP>(ctx);
 
   PetscFunctionBegin;
+  if (GetQP(ksp)->core.provisional) { /* only whether the test would stop here: no monitor, no history, the state as it was */
+    const PetscInt     its    = ksp->its;
+    const PetscReal    rnorm  = ksp->rnorm;
+    KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
+    ksp->its                  = it;
+    ksp->rnorm                = gpnorm;
+    PetscCall((*ksp->converged)(ksp, it, gpnorm, &reason, ksp->cnvP));
+    *stop      = (reason || it >= ksp->max_it) ? PETSC_TRUE : PETSC_FALSE;
+    ksp->its   = its;
+    ksp->rnorm = rnorm;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   ksp->its   = it;
   ksp->rnorm = gpnorm;
   PetscCall(KSPLogResidualHistory(ksp, gpnorm));

@@ -15,9 +15,27 @@
      more;
    - proportioning step when not proportional: along the chopped gradient with exact line search
      (MPRGP; cut at the opposite bound of a box), or a projected gradient step (MPGP, which is what curved
-     boundaries need), of Kucera's fixed length alpha. With -tao_mpgp_bb the proportioning step
-     first tries the Barzilai-Borwein length s's/s'(As) of the last step (free: As = g - g_prev for
-     a QP) and keeps it only if q decreased. Measured: BB shortens long runs of proportioning steps
+     boundaries need), of Kucera's fixed length alpha.
+   Arc steps (MPGP, -tao_mpgp_arc, on by default): a disk block on its circle with the gradient pushing
+   outward (a slipping friction node) has a free direction too, along the circle. Kucera's split puts its
+   whole projected gradient into the chopped gradient, so only the fixed-length projected steps move it
+   (the brick, F = 0.3, k = 12: 52 proportioning steps in 122 iterations; with arc steps 7 in 96, expansions
+   then dominate). Here such a block counts as free along the circle (its tangential gradient is in phi,
+   see SeparableSetSplitGradient_Private()) and CG steps move it: the direction is made tangent there, the step x - a p is retracted onto the circle by the
+   projection, and its second derivative in a is p'Ap + p'Wp, W the circle's curvature 1/r times the outward
+   push |g.nu| (conjugate gradients on the curved face, with the step length and conjugacy of A + W). A
+   block held much more firmly than ||A|| (alpha |g.nu|/r > arc) stays with the projected steps, which
+   already scale its move by 1/(1 + alpha |g.nu|/r), and would make A + W ill conditioned. The gradient
+   after an arc step is updated, g - a Ap, and misses A d for the retraction d (second order in the step):
+   its error is bounded by drift = ||A|| sum |d|. With that bound every step keeps q from rising: an arc
+   step whose upper bound on q's change is not negative is replaced by a projected gradient step, and a
+   fixed-length step taken from an updated gradient is certified afterwards (or taken again from the exact
+   gradient); the stopping test only ever accepts the exact gradient (a provisional test first, then one
+   product). Measured (scripts/bench-brick.py, monolithic, k = 4..12): n_A 86-102 against 103-125 at
+   F = 0.1 and 101-167 against 129-183 at F = 0.3; the disks QP of scripts/bench-qp.py (n = 224) 5161
+   products against 20006. On random disk QPs with cond 1e4 (tests/qp) it can cost ~15% more.
+   With -tao_mpgp_bb the proportioning step first tries the Barzilai-Borwein length s's/s'(As) of the last
+     step (free: As = g - g_prev for a QP) and keeps it only if q decreased. Measured: BB shortens long runs of proportioning steps
      on random cone problems (docs/qp-benchmark.md) but costs products on the brick's friction disks,
      so it is off by default.
    Math: ../shared/ALGORITHMS.md section 3. */
@@ -42,6 +60,8 @@ static PetscErrorCode MPGPCoreGradient(MPGPCore *c, Vec x)
   PetscFunctionBegin;
   PetscCall(MPGPCoreMult(c, x, c->g));
   PetscCall(VecAXPY(c->g, -1.0, c->b));
+  c->updated = PETSC_FALSE;
+  c->drift   = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -79,14 +99,26 @@ PetscErrorCode MPGPCoreReset(MPGPCore *c)
   PetscCall(VecDestroy(&c->dx));
   PetscCall(VecDestroy(&c->xprev));
   PetscCall(VecDestroy(&c->gprev));
+  PetscCall(VecDestroy(&c->Wp));
+  PetscCall(VecDestroy(&c->ApW));
+  PetscCall(VecDestroy(&c->xsave));
+  PetscCall(VecDestroy(&c->gsave));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Computes phi, beta and the sums at (x, g); Ap may be NULL. */
+/* Computes phi, beta and the sums at (x, g); Ap may be NULL. keep: after a CG step, the arc blocks stay those
+   of the last split (the face of a CG run is fixed, as for MPRGP's free set) */
+static PetscErrorCode MPGPCoreSplitKeep(MPGPCore *c, Vec x, PetscReal alpha, Vec Ap, PetscBool keep, SeparableSplit *s)
+{
+  PetscFunctionBegin;
+  PetscCall(SeparableSetSplitGradient_Private(c->set, x, c->g, alpha, c->variant == MPGPVariant::MPGP ? c->arc : 0.0, keep, c->phi, c->beta, Ap, c->b, s));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode MPGPCoreSplit(MPGPCore *c, Vec x, PetscReal alpha, Vec Ap, SeparableSplit *s)
 {
   PetscFunctionBegin;
-  PetscCall(SeparableSetSplitGradient_Private(c->set, x, c->g, alpha, c->phi, c->beta, Ap, c->b, s));
+  PetscCall(MPGPCoreSplitKeep(c, x, alpha, Ap, PETSC_FALSE, s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -131,6 +163,19 @@ static PetscErrorCode MPGPCoreRestartDirection(MPGPCore *c)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The exact gradient after steps along arcs (MPGPCoreSolve()), with the split, q and a new CG direction. */
+static PetscErrorCode MPGPCoreRefreshGradient(MPGPCore *c, Vec x, PetscReal alpha, SeparableSplit *s)
+{
+  PetscFunctionBegin;
+  PetscCall(MPGPCoreGradient(c, x));
+  PetscCall(MPGPCoreSplit(c, x, alpha, NULL, s));
+  PetscCall(MPGPCoreRestartDirection(c));
+  c->f      = 0.5 * (s->xg - s->xb);
+  c->gpnorm = PetscSqrtReal(s->gp2);
+  c->arc_refreshed++;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
 {
   SeparableSplit s;
@@ -143,9 +188,17 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
              (double)c->normA);
   PetscCheck(c->alpha_scale > 0 && c->alpha_scale <= 2, PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: step length factor %g is outside (0, 2]", (double)c->alpha_scale);
   PetscCheck(c->gamma > 0, PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: proportioning parameter Gamma = %g must be positive", (double)c->gamma);
+  PetscCheck(c->arc >= 0 && !PetscIsInfOrNanReal(c->arc), PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: the curvature bound of arc steps must be finite and >= 0, got %g",
+             (double)c->arc);
   PetscCall(MPGPCoreSetUp(c, x));
   if (c->precondition && !c->z) PetscCall(VecDuplicate(x, &c->z));
   if (c->projcg && !c->dx) PetscCall(VecDuplicate(x, &c->dx));
+  if (c->variant == MPGPVariant::MPGP && c->arc > 0 && !c->Wp) {
+    PetscCall(VecDuplicate(x, &c->Wp));
+    PetscCall(VecDuplicate(x, &c->ApW));
+    PetscCall(VecDuplicate(x, &c->xsave));
+    PetscCall(VecDuplicate(x, &c->gsave));
+  }
   PetscCall(PetscLogEventBegin(QP_Solve, 0, 0, 0, 0));
   alpha = c->alpha_scale / c->normA;
   if (!c->resume) c->counters->solves++;
@@ -166,41 +219,86 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
       c->status = MPGPStatus::NOT_A_NUMBER;
       break;
     }
+    const PetscReal qnoise  = 1e-10 * (PetscAbsReal(s.xg) + PetscAbsReal(s.xb)); /* the rounding of q's terms at x (below: changes of q smaller than that say nothing) */
+    const PetscBool updated = c->updated;                                        /* this step starts from an updated gradient (after steps along arcs) */
+    const PetscReal drift   = c->drift;
+    PetscBool       cg_step = PETSC_FALSE, arc_half = PETSC_FALSE, exact = PETSC_FALSE; /* exact: a projected step from the exact gradient */
+    if (updated || s.narc > 0) {                                                        /* for the certificate of a fixed-length step (below) */
+      PetscCall(VecCopy(x, c->xsave));
+      PetscCall(VecCopy(c->g, c->gsave));
+    }
     if (s.beta2 <= c->gamma * c->gamma * s.phitphi) { /* proportional: CG or expansion */
       if (c->bb) {                                    /* the iterate before this step, for the next Barzilai-Borwein length */
         PetscCall(VecCopy(x, c->xprev));
         PetscCall(VecCopy(c->g, c->gprev));
       }
-      PetscReal pAp, gp, acg, af;
+      PetscReal pAp, pWp = 0, gp, acg, af;
+      if (s.narc > 0) PetscCall(SeparableSetArcTangent_Private(c->set, x, c->p, c->Wp, &pWp));
       PetscCall(MPGPCoreMult(c, c->p, c->Ap));
       PetscCall(ReproducibleDot2(c->Ap, c->p, c->g, c->p, &pAp, &gp));
       PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->p, &af));
-      if (!(pAp > 0)) {
+      const PetscReal pHp = pAp + pWp; /* the second derivative of q along the (retracted) step */
+      if (!(pHp > 0)) {
         MPGPStatus flat;
-        PetscCall(MPGPCoreFlatDirection(c, c->p, pAp, af, &flat));
+        PetscCall(MPGPCoreFlatDirection(c, c->p, pHp, af, &flat));
         if (flat != MPGPStatus::STOPPED) {
           c->status = flat;
           break;
         }
         acg = PETSC_INFINITY; /* q falls linearly along -p: go to the boundary (expansion) */
-      } else acg = gp / pAp;
-      if (acg <= af) { /* conjugate gradient step */
+      } else acg = gp / pHp;
+      /* with arc blocks p is tangent there and af ignores them: every step along p is retracted (also where W is 0) */
+      const PetscBool along_arcs = s.narc > 0 ? PETSC_TRUE : PETSC_FALSE;
+      PetscReal       dd_arc     = 0;
+      PetscBool       rejected   = (s.narc > 0 && !(gp > 0)) ? PETSC_TRUE : PETSC_FALSE; /* made tangent, -p does not descend (rounding, an updated gradient) */
+      if (acg <= af && along_arcs && !rejected) {
+        /* q at the retracted point P(x - a p) = x - a p + d is bounded above by the second-order expansion with
+           ||A|| for d'Ad (SeparableSetArcRetraction_Private()), plus |e| |d - a p| for the error e of an updated
+           gradient: a step that may not lower q (the arc too long for the model) is not taken */
+        PetscReal dg, dd, pp;
+        PetscCall(SeparableSetArcRetraction_Private(c->set, x, acg, c->p, c->g, c->Ap, &dg, &dd));
+        dd_arc = dd;
+        PetscCall(ReproducibleDot(c->p, c->p, &pp));
+        const PetscReal dq = -acg * gp + 0.5 * acg * acg * pAp + dg + 0.5 * c->normA * dd + drift * (acg * PetscSqrtReal(pp) + PetscSqrtReal(dd));
+        rejected           = dq <= qnoise ? PETSC_FALSE : PETSC_TRUE;
+        if (rejected) PetscCall(PetscInfo(NULL, "MPGP: a CG step along arcs may raise q (bound %g): a projected gradient step instead\n", (double)dq));
+        else c->drift += c->normA * PetscSqrtReal(dd); /* the gradient update below misses A d, |A d| <= ||A|| |d| */
+      }
+      if (rejected) c->arc_rejected++;
+      if (acg <= af && !rejected) { /* conjugate gradient step */
         PetscReal gamma_cg;
+        Vec       Aq = along_arcs ? c->ApW : c->Ap; /* conjugacy with respect to A + W */
         PetscCall(ReproducibleAXPY(x, -acg, c->p));
         PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
-        PetscCall(MPGPCoreSplit(c, x, alpha, c->Ap, &s));
+        if (along_arcs) { /* back onto the circles: the gradient is now updated, not exact */
+          PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
+          PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
+          if (dd_arc > 0) c->updated = PETSC_TRUE;
+          c->arc_steps++;
+        }
+        PetscCall(MPGPCoreSplitKeep(c, x, alpha, Aq, PETSC_TRUE, &s));
         if (c->precondition) {
           PetscReal zAp;
           PetscCall(MPGPCorePrecondition(c));
-          PetscCall(ReproducibleDot(c->z, c->Ap, &zAp));
-          gamma_cg = zAp / pAp;
+          PetscCall(ReproducibleDot(c->z, Aq, &zAp));
+          gamma_cg = zAp / pHp;
           PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->z));
         } else {
-          gamma_cg = s.phiAp / pAp;
+          gamma_cg = s.phiAp / pHp;
           PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->phi));
         }
-        step = acg;
+        step    = acg;
+        cg_step = PETSC_TRUE;
         c->counters->cg_steps++;
+      } else if (rejected) { /* Kucera's projected gradient step, from the exact gradient */
+        if (c->updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+        PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->g, x));
+        PetscCall(MPGPCoreGradient(c, x));
+        PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+        PetscCall(MPGPCoreRestartDirection(c));
+        step  = alpha;
+        exact = PETSC_TRUE;
+        c->counters->proportioning_steps++;
       } else { /* expansion: feasible half step, then a projected step along the free gradient */
         PetscBool projected = PETSC_FALSE;
         if (c->projcg && acg < PETSC_INFINITY &&
@@ -231,6 +329,10 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
         else {
           PetscCall(ReproducibleAXPY(x, -af, c->p));
           PetscCall(ReproducibleAXPY(c->g, -af, c->Ap));
+          if (along_arcs) { /* the half step moved arc blocks along their tangent: back onto the circles (g is updated) */
+            PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
+            arc_half = PETSC_TRUE;
+          }
           PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
           PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->phi, x));
           PetscCall(MPGPCoreGradient(c, x));
@@ -289,13 +391,42 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
       PetscCall(MPGPCoreRestartDirection(c));
       c->counters->proportioning_steps++;
     }
+    PetscBool fallback = PETSC_FALSE;
+    if (!cg_step && !exact && (updated || arc_half)) {
+      /* a fixed-length step from an updated gradient g~ (error e, |e| <= drift), or whose half step was retracted
+         onto circles, ends at the exact gradient g1. Its step d changes q by d.(g~ + e + g1)/2 <= d.(g~ + g1)/2 +
+         |d| drift/2: unless that bound is not positive, the step is undone and Kucera's projected gradient step
+         from the exact gradient taken instead */
+      PetscReal t1, t0, dd;
+      PetscCall(VecAYPX(c->xsave, -1.0, x)); /* d */
+      PetscCall(ReproducibleDot2(c->xsave, c->g, c->xsave, c->gsave, &t1, &t0));
+      PetscCall(ReproducibleDot(c->xsave, c->xsave, &dd));
+      const PetscReal dq = 0.5 * (t0 + t1) + 0.5 * PetscSqrtReal(dd) * drift;
+      if (!(dq <= qnoise)) {
+        PetscCall(PetscInfo(NULL, "MPGP: a step from an updated gradient or along arcs may have raised q (bound %g): a projected gradient step instead\n", (double)dq));
+        PetscCall(VecAXPY(x, -1.0, c->xsave));
+        if (updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+        else {
+          PetscCall(VecCopy(c->gsave, c->g));
+          PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+          c->f = 0.5 * (s.xg - s.xb);
+        }
+        PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->g, x));
+        PetscCall(MPGPCoreGradient(c, x));
+        PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+        PetscCall(MPGPCoreRestartDirection(c));
+        c->arc_rejected++;
+        fallback = PETSC_TRUE;
+      }
+    }
     it++;
     c->counters->iterations++;
     {
       /* every step lowers q when alpha <= 2/||A||: a rise beyond the rounding of q's terms means the
-         estimate of ||A|| is too small (e.g. a MATSHELL whose action changed without a new object state) */
+         estimate of ||A|| is too small (e.g. a MATSHELL whose action changed without a new object state).
+         Steps from or to an updated gradient know q only to second order: the certificates above watch them */
       const PetscReal fnew = 0.5 * (s.xg - s.xb), noise = 1e-10 * (PetscAbsReal(s.xg) + PetscAbsReal(s.xb));
-      if (fnew > c->f + noise) {
+      if (((!updated && !arc_half) || exact || fallback) && !c->updated && fnew > c->f + noise) {
         PetscCall(PetscInfo(NULL, "MPGP: q rose from %g to %g in iteration %" PetscInt_FMT ": the norm estimate %g of A is too small\n", (double)c->f, (double)fnew, it, (double)c->normA));
         c->f      = fnew;
         c->gpnorm = PetscSqrtReal(s.gp2);
@@ -305,8 +436,17 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
     }
     c->f      = 0.5 * (s.xg - s.xb);
     c->gpnorm = PetscSqrtReal(s.gp2);
+    if (c->updated) { /* the solve stops only on the exact gradient: ask whether it may, and if so recompute it */
+      PetscBool may_stop;
+      c->provisional = PETSC_TRUE;
+      PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, step, &may_stop));
+      c->provisional = PETSC_FALSE;
+      if (may_stop) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+    }
     PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, step, &stop));
   }
+  /* a stop other than the convergence test (a flat direction, a rise of q) may leave an updated gradient */
+  if (c->updated && c->status != MPGPStatus::NOT_A_NUMBER) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
   c->its = it;
   PetscCall(PetscLogEventEnd(QP_Solve, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

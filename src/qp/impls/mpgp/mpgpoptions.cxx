@@ -19,6 +19,10 @@ PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject,
   if (core->variant == MPGPVariant::MPGP) {
     PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_bb", kind, name));
     PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "MPGP", core->bb, &core->bb, NULL));
+    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_arc", kind, name));
+    PetscCall(PetscOptionsReal(opt, "CG steps also move a disk block on its circle along the circle while alpha |g.nu|/r <= this (0: such blocks move only in projected steps)", "MPGP", core->arc,
+                               &core->arc, NULL));
+    PetscCheck(core->arc >= 0 && !PetscIsInfOrNanReal(core->arc), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and >= 0, got %g", opt, (double)core->arc);
   }
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_expansion_projcg", kind, name));
   PetscCall(PetscOptionsBool(opt, "Expansion steps first try the projected full CG step P(x - a_cg p), kept when q is no higher than at the feasible half step (default: Dostal's expansion only)",
@@ -59,12 +63,18 @@ PetscErrorCode QPNormSettingsApply(QPNormSettings *norm, Mat A, const char *objp
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* one line on how expansion steps are done */
+/* one line on how expansion steps are done, one on arc steps (MPGP) */
 PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *core, PetscViewer viewer)
 {
   PetscFunctionBegin;
   if (core->projcg)
     PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: projected full CG step first (%" PetscInt_FMT " not kept), else feasible half step and fixed-length projected step\n", core->projcg_rejected));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: feasible half step and fixed-length projected step\n"));
+  if (core->variant == MPGPVariant::MPGP && core->arc > 0)
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "arc steps: CG steps move disk blocks on their circle along it while alpha |g.nu|/r <= %g: %" PetscInt_FMT " steps, %" PetscInt_FMT
+                                     " replaced by projected steps, %" PetscInt_FMT " gradients recomputed for them\n",
+                                     (double)core->arc, core->arc_steps, core->arc_rejected, core->arc_refreshed));
+  else if (core->variant == MPGPVariant::MPGP) PetscCall(PetscViewerASCIIPrintf(viewer, "arc steps: off (disk blocks on their circle move only in projected steps)\n"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -41,6 +41,20 @@ PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm
   Tao tao = static_cast<Tao>(ctx);
 
   PetscFunctionBegin;
+  if (GetQP(tao)->core.provisional) { /* only whether the test would stop here: no monitor, no history, the state as it was */
+    const PetscInt  niter = tao->niter;
+    const PetscReal fc = tao->fc, residual = tao->residual;
+    tao->niter    = it;
+    tao->fc       = f;
+    tao->residual = gpnorm;
+    PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
+    *stop         = tao->reason != TAO_CONTINUE_ITERATING ? PETSC_TRUE : PETSC_FALSE;
+    tao->reason   = TAO_CONTINUE_ITERATING;
+    tao->niter    = niter;
+    tao->fc       = fc;
+    tao->residual = residual;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   if (it == 0) {
     TaoQP *qp = GetQP(tao);
     qp->gref  = qp->bnorm > 0 ? qp->bnorm : gpnorm;
