@@ -33,6 +33,19 @@ static PetscErrorCode ReleaseFactoredMatrix(KSP ksp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* KSPPREONLY with a direct Cholesky of A, options prefix feti_coarse_; pc: its PC, to pick the package */
+static PetscErrorCode CreateDirectKSP(MPI_Comm comm, Mat A, const char prefix[], KSP *ksp, PC *pc)
+{
+  PetscFunctionBegin;
+  PetscCall(KSPCreate(comm, ksp));
+  PetscCall(KSPSetErrorIfNotConverged(*ksp, PETSC_TRUE));
+  PetscCall(KSPSetOperators(*ksp, A, A));
+  PetscCall(KSPSetOptionsPrefix(*ksp, prefix));
+  PetscCall(KSPSetType(*ksp, KSPPREONLY));
+  PetscCall(KSPGetPC(*ksp, pc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Factor A (coarse x coarse, AIJ, SPD) as -feti_coarse_mode asks; *failed: A is singular */
 PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, PetscBool *failed)
 {
@@ -68,12 +81,7 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
     }
     *failed = PETSC_FALSE;
     if (rank == 0) {
-      PetscCall(KSPCreate(PETSC_COMM_SELF, &cs.ksp));
-      PetscCall(KSPSetErrorIfNotConverged(cs.ksp, PETSC_TRUE));
-      PetscCall(KSPSetOperators(cs.ksp, Aseq, Aseq));
-      PetscCall(KSPSetOptionsPrefix(cs.ksp, coarseprefix));
-      PetscCall(KSPSetType(cs.ksp, KSPPREONLY));
-      PetscCall(KSPGetPC(cs.ksp, &pc));
+      PetscCall(CreateDirectKSP(PETSC_COMM_SELF, Aseq, coarseprefix, &cs.ksp, &pc));
       PetscCall(PCSetType(pc, PCCHOLESKY));
       PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
       PetscCall(KSPSetFromOptions(cs.ksp));
@@ -97,12 +105,7 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
     } else PetscCall(ierr);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(KSPCreate(comm, &cs.ksp));
-  PetscCall(KSPSetErrorIfNotConverged(cs.ksp, PETSC_TRUE));
-  PetscCall(KSPSetOperators(cs.ksp, A, A));
-  PetscCall(KSPSetOptionsPrefix(cs.ksp, coarseprefix));
-  PetscCall(KSPSetType(cs.ksp, KSPPREONLY));
-  PetscCall(KSPGetPC(cs.ksp, &pc));
+  PetscCall(CreateDirectKSP(comm, A, coarseprefix, &cs.ksp, &pc));
   if (cs.mode == FETI_COARSE_REDUNDANT) {
     KSP inner;
     PC  innerpc;
@@ -141,19 +144,11 @@ PetscErrorCode FETICoarseSolverView(FETICoarseSolver &cs, PetscViewer viewer)
   PetscFunctionBegin;
   PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solver (G G'), -feti_coarse_mode %s%s:\n", FETICoarseModes[cs.mode], cs.scatter ? " (factored on rank 0)" : ""));
   PetscCall(PetscViewerASCIIPushTab(viewer));
-  if (cs.scatter) {
-    PetscMPIInt rank;
-    PetscCall(MPI_Comm_rank(PetscObjectComm((PetscObject)viewer), &rank));
-    if (rank == 0) {
-      PetscViewer sub;
-      PetscCall(PetscViewerGetSubViewer(viewer, PETSC_COMM_SELF, &sub));
-      PetscCall(KSPView(cs.ksp, sub));
-      PetscCall(PetscViewerRestoreSubViewer(viewer, PETSC_COMM_SELF, &sub));
-    } else {
-      PetscViewer sub;
-      PetscCall(PetscViewerGetSubViewer(viewer, PETSC_COMM_SELF, &sub));
-      PetscCall(PetscViewerRestoreSubViewer(viewer, PETSC_COMM_SELF, &sub));
-    }
+  if (cs.scatter) { /* the factor exists on rank 0 only (cs.ksp is NULL elsewhere) */
+    PetscViewer sub;
+    PetscCall(PetscViewerGetSubViewer(viewer, PETSC_COMM_SELF, &sub));
+    if (cs.ksp) PetscCall(KSPView(cs.ksp, sub));
+    PetscCall(PetscViewerRestoreSubViewer(viewer, PETSC_COMM_SELF, &sub));
   } else if (cs.ksp) PetscCall(KSPView(cs.ksp, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);

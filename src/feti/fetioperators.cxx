@@ -162,6 +162,20 @@ PetscErrorCode FETICreateGt(FETI feti, Mat *Gt)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* M = G W G' (W = diag(w.^2), w = NULL: the identity), reproducible (FETIAssembleCoarseMatrix()), from
+   the Gt that FETIGetGt() keeps, else from a transient one */
+PetscErrorCode FETICreateCoarseMatrix(FETI feti, Vec w, Mat *M)
+{
+  FETI_Impl &impl = *feti->impl;
+  Mat        Gt   = impl.Gt;
+
+  PetscFunctionBegin;
+  if (!Gt) PetscCall(FETICreateGt(feti, &Gt));
+  PetscCall(FETIAssembleCoarseMatrix(Gt, w, M));
+  if (Gt != impl.Gt) PetscCall(MatDestroy(&Gt));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* y = Q x = Gt (G Gt)^-1 G x */
 static PetscErrorCode ApplyQ(FETI feti, Vec x, Vec y)
 {
@@ -372,13 +386,11 @@ static PetscErrorCode SetUpCoarse(FETI feti)
 {
   FETI_Impl &impl = *feti->impl;
   PetscBool  failed;
-  Mat        Gt, GGt;
+  Mat        GGt;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
-  PetscCall(FETICreateGt(feti, &Gt));
-  PetscCall(FETIAssembleCoarseMatrix(Gt, NULL, &GGt));
-  PetscCall(MatDestroy(&Gt));
+  PetscCall(FETICreateCoarseMatrix(feti, NULL, &GGt));
   PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
   PetscCall(FETICoarseSolverCreate(feti, GGt, impl.coarse, &failed));
   PetscCall(MatDestroy(&GGt));

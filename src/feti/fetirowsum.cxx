@@ -130,8 +130,8 @@ PetscErrorCode FETIAssembleCoarseMatrix(Mat Gt, Vec w, Mat *M)
   FETIRowSum               rows; /* G's rows in the canonical order */
   IS                       isrow, iscol;
   PetscInt                 nc, ncl, cstart, nd, mrows;
-  std::vector<PetscInt>    need, dnz, onz, cols;
-  std::vector<PetscScalar> acc, wr, vals;
+  std::vector<PetscInt>    need, dnz, onz, touched;
+  std::vector<PetscScalar> acc, wr;
   std::vector<char>        used;
 
   PetscFunctionBegin;
@@ -188,8 +188,8 @@ PetscErrorCode FETIAssembleCoarseMatrix(Mat Gt, Vec w, Mat *M)
   PetscCallCXX(onz.assign(mrows, 0));
   auto position = [&](PetscInt r) { return (PetscInt)(std::lower_bound(need.begin(), need.end(), r) - need.begin()); };
   for (PetscInt i = 0; i < mrows; i++) {
-    std::vector<PetscInt> touched;
-    auto                  term = [&](PetscInt r, PetscScalar g) {
+    touched.clear(); /* the columns row i reaches; the capacity is reused from row to row */
+    auto term = [&](PetscInt r, PetscScalar g) {
       const PetscInt p = position(r);
       for (PetscInt k = sia[p]; k < sia[p + 1]; k++) {
         const PetscInt j = sja[k];

@@ -46,12 +46,10 @@ PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
     PetscCall(FETIApplyG(feti, impl.residual, impl.wc1));
     PetscCall(FETIApplyCoarseInverse(feti, impl.wc1, alpha));
   } else { /* G_A = G diag(mask): (G_A G_A') alpha = G_A (mask .* residual) */
-    Mat              Gt, M;
+    Mat              M;
     FETICoarseSolver cs;
     PetscBool        failed;
-    PetscCall(FETICreateGt(feti, &Gt));
-    PetscCall(FETIAssembleCoarseMatrix(Gt, mask, &M));
-    PetscCall(MatDestroy(&Gt));
+    PetscCall(FETICreateCoarseMatrix(feti, mask, &M));
     PetscCall(VecPointwiseMult(impl.wd3, mask, impl.residual));
     PetscCall(VecPointwiseMult(impl.wd3, mask, impl.wd3));
     PetscCall(FETIApplyG(feti, impl.wd3, impl.wc1));
