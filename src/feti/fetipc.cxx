@@ -169,32 +169,12 @@ static PetscErrorCode PCApply_FETI(PC pc, Vec x, Vec y)
       for (PetscInt k = 0; k < nb; k++) out[sd.localoffset + b[k]] = y[b[k]];
       PetscCall(VecRestoreArrayRead(sd.y, &y));
     }
-    if (data->dirichlet && sd.Fii) { /* S x_b = K_bb x_b - K_bi K_ii^-1 K_ib x_b */
-      const PetscInt *i;
-      PetscInt        ni;
-      PetscScalar    *xi;
-      PetscCall(ISGetLocalSize(sd.interior, &ni));
-      PetscCall(ISGetIndices(sd.interior, &i));
-      {
-        const PetscScalar *y;
-        PetscCall(VecGetArrayRead(sd.y, &y));
-        PetscCall(VecGetArray(sd.xi, &xi));
-        for (PetscInt k = 0; k < ni; k++) xi[k] = y[i[k]];
-        PetscCall(VecRestoreArray(sd.xi, &xi));
-        PetscCall(VecRestoreArrayRead(sd.y, &y));
-      }
+    if (data->dirichlet && sd.Fii) {                                   /* S x_b = K_bb x_b - K_bi K_ii^-1 K_ib x_b */
+      PetscCall(VecISCopy(sd.y, sd.interior, SCATTER_REVERSE, sd.xi)); /* K_ib x_b */
       PetscCall(MatSolve(sd.Fii, sd.xi, sd.yi));
       /* K_bi y_i: the b part of K_V [0; y_i] */
       PetscCall(VecSet(sd.x, 0.0));
-      {
-        const PetscScalar *yi;
-        PetscCall(VecGetArray(sd.x, &x));
-        PetscCall(VecGetArrayRead(sd.yi, &yi));
-        for (PetscInt k = 0; k < ni; k++) x[i[k]] = yi[k];
-        PetscCall(VecRestoreArrayRead(sd.yi, &yi));
-        PetscCall(VecRestoreArray(sd.x, &x));
-      }
-      PetscCall(ISRestoreIndices(sd.interior, &i));
+      PetscCall(VecISCopy(sd.x, sd.interior, SCATTER_FORWARD, sd.yi));
       PetscCall(FETISubdomainApplyK(sd, sd.x, sd.y));
       {
         const PetscScalar *y;
