@@ -16,7 +16,7 @@
    - proportioning step when not proportional: along the chopped gradient with exact line search
      (MPRGP; cut at the opposite bound of a box), or a projected gradient step (MPGP, which is what curved
      boundaries need), of Kucera's fixed length alpha.
-   Arc steps (MPGP, -tao_mpgp_arc, on by default): a disk block on its circle with the gradient pushing
+   Arc steps (MPGP, -tao_mpgp_arc a, off by default): a disk block on its circle with the gradient pushing
    outward (a slipping friction node) has a free direction too, along the circle. Kucera's split puts its
    whole projected gradient into the chopped gradient, so only the fixed-length projected steps move it
    (the brick, F = 0.3, k = 12: 52 proportioning steps in 122 iterations; with arc steps 7 in 96, expansions
@@ -176,6 +176,18 @@ static PetscErrorCode MPGPCoreRefreshGradient(MPGPCore *c, Vec x, PetscReal alph
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Kucera's projected gradient step x = P(x - alpha g) from the gradient in c->g, then the exact gradient,
+   the split and a new CG direction at the new x (the fallback of arc steps that may raise q). */
+static PetscErrorCode MPGPCoreProjectedGradientStep(MPGPCore *c, Vec x, PetscReal alpha, SeparableSplit *s)
+{
+  PetscFunctionBegin;
+  PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->g, x));
+  PetscCall(MPGPCoreGradient(c, x));
+  PetscCall(MPGPCoreSplit(c, x, alpha, NULL, s));
+  PetscCall(MPGPCoreRestartDirection(c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
 {
   SeparableSplit s;
@@ -292,10 +304,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
         c->counters->cg_steps++;
       } else if (rejected) { /* Kucera's projected gradient step, from the exact gradient */
         if (c->updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
-        PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->g, x));
-        PetscCall(MPGPCoreGradient(c, x));
-        PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
-        PetscCall(MPGPCoreRestartDirection(c));
+        PetscCall(MPGPCoreProjectedGradientStep(c, x, alpha, &s));
         step  = alpha;
         exact = PETSC_TRUE;
         c->counters->proportioning_steps++;
@@ -411,10 +420,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
           PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
           c->f = 0.5 * (s.xg - s.xb);
         }
-        PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->g, x));
-        PetscCall(MPGPCoreGradient(c, x));
-        PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
-        PetscCall(MPGPCoreRestartDirection(c));
+        PetscCall(MPGPCoreProjectedGradientStep(c, x, alpha, &s));
         c->arc_rejected++;
         fallback = PETSC_TRUE;
       }
