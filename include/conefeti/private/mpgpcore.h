@@ -30,7 +30,7 @@ struct MPGPCore {
   PetscReal   normA       = 0;           /* estimate of ||A||, provided by the owner before the solve */
   PetscBool   bb          = PETSC_FALSE; /* MPGP: try Barzilai-Borwein lengths in gradient projection steps */
   PetscBool   projcg      = PETSC_FALSE; /* expansion: first try the projected full CG step P(x - a_cg p) (see MPGPCoreSolve) */
-  PetscReal   arc         = 0.0;         /* MPGP: > 0 lets CG steps move disk blocks along their circle while alpha |g.nu|/r <= arc (arc steps, see MPGPCoreSolve); 0: off */
+  PetscReal   arc         = 1.0;         /* MPGP: > 0 lets CG steps move disk blocks along their circle while alpha |g.nu|/r <= arc (arc steps, see MPGPCoreSolve); 0: off */
   PetscBool   provisional = PETSC_FALSE; /* set while report() is only asked whether the solve may stop (on an updated gradient) */
   PetscBool   resume      = PETSC_FALSE; /* continue an interrupted solve: iteration 0 is not reported (the owner's test keeps its reference) */
 

@@ -367,7 +367,7 @@ PETSC_INTERN PetscErrorCode KSPCreate_MPRGP(KSP ksp)
   cones; Kucera's MPGP); without constraints it is CG.
 
   Options Database Keys:
-  Those of `KSPMPRGP`, with the prefix -ksp_mpgp_.
+  Those of `KSPMPRGP`, with the prefix -ksp_mpgp_, and -ksp_mpgp_arc <1> as -tao_mpgp_arc of `TAOMPGP`.
 
   Notes:
   The set comes from `KSPQPSetConstraints()`; bounds as for `KSPMPRGP`.

@@ -16,7 +16,7 @@
    - proportioning step when not proportional: along the chopped gradient with exact line search
      (MPRGP; cut at the opposite bound of a box), or a projected gradient step (MPGP, which is what curved
      boundaries need), of Kucera's fixed length alpha.
-   Arc steps (MPGP, -tao_mpgp_arc a, off by default): a disk block on its circle with the gradient pushing
+   Arc steps (MPGP, -tao_mpgp_arc a, default 1; 0 turns them off): a disk block on its circle with the gradient pushing
    outward (a slipping friction node) has a free direction too, along the circle. Kucera's split puts its
    whole projected gradient into the chopped gradient, so only the fixed-length projected steps move it
    (the brick, F = 0.3, k = 12: 52 proportioning steps in 122 iterations; with arc steps 7 in 96, expansions

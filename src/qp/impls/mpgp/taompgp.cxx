@@ -532,6 +532,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_norm_method <slepc> - slepc or power
 . -tao_mpgp_norm_margin         - safety margin on the estimate
 . -tao_mpgp_bb <false>          - try Barzilai-Borwein lengths in gradient projection steps, kept only when q decreases
+. -tao_mpgp_arc <1>            - CG steps also move a disk block on its circle along the circle while alpha |g.nu|/r <= this; 0 turns arc steps off
 . -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
 . -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
 . -tao_mpgp_expansion_projcg <false> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`)
