@@ -69,14 +69,44 @@ PetscErrorCode RelativeChange(MPI_Comm comm, const std::vector<PetscReal> &a, co
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A tangential pair that slipped sits on its circle of radius r0 = F l_n. When the next radius r1 is
+   larger, the projection leaves the pair inside the new disk, where it is free, and the inner solve spends
+   one expansion step per few such pairs to bring them back to the circle they most likely still slip on.
+   Scaling the pair by r1/|l_t| puts it there at once (a shrinking radius needs nothing: the projection
+   does it). */
+PetscErrorCode FollowGrownRadii(ContactProblem cp, const std::vector<PetscReal> &old, Vec lambda)
+{
+  ContactProblemData *d = Data(cp);
+  PetscScalar        *l;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArray(lambda, &l));
+  for (size_t k = 0; k < d->disk_node.size(); k++) {
+    const PetscInt  j  = d->disk_node[k];
+    const PetscReal r0 = old[k], r1 = d->radius[k];
+    if (d->law[j] != CONTACT_COULOMB || !(r0 > 0) || !(r1 > r0)) continue;
+    PetscScalar    &a = l[d->t1[j] - d->rstart], &b = l[d->t2[j] - d->rstart];
+    const PetscReal t = PetscSqrtReal(PetscRealPart(a * a + b * b));
+    if (t >= r0 * (1 - 1e-10)) { /* on the old circle (up to the projection's rounding) */
+      a *= r1 / t;
+      b *= r1 / t;
+    }
+  }
+  PetscCall(VecRestoreArray(lambda, &l));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* pre-solve hook: set radii F l_n before the tangential block (merged) or every inner solve (monolithic) */
 PetscErrorCode PreSolve(Tao, PetscInt block, Vec lambda, void *ctx)
 {
-  ContactProblem cp = static_cast<ContactProblem>(ctx);
+  ContactProblem      cp = static_cast<ContactProblem>(ctx);
+  ContactProblemData *d  = Data(cp);
 
   PetscFunctionBegin;
-  if (Data(cp)->algorithm == CONTACT_COULOMB_MERGED && block != 1) PetscFunctionReturn(PETSC_SUCCESS);
+  if (d->algorithm == CONTACT_COULOMB_MERGED && block != 1) PetscFunctionReturn(PETSC_SUCCESS);
+  const std::vector<PetscReal> old = d->radius;
   PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, NULL));
+  if (d->follow_radii) PetscCall(FollowGrownRadii(cp, old, lambda));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -221,6 +251,7 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_msa_rtol <rtol>              - MSA: stop when the slip bounds change by less than this, relatively
 . -contact_msa_max_it <100>             - MSA: most successive approximations
 . -contact_fixed_point_rtol <rtol>      - monolithic: radii must agree with F l_n to this relative tolerance
+. -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
 . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); default 1 for monolithic, 0 for merged's blocks, 3 otherwise; see
 `TaoSMALXESetAnderson()`
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
@@ -243,6 +274,8 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscCall(PetscOptionsReal("-contact_msa_rtol", "MSA: relative change of the slip bounds at which the successive approximations stop (-1: -contact_rtol)", "ContactProblemSolve", d->msa_rtol,
                              &d->msa_rtol, NULL));
   PetscCall(PetscOptionsInt("-contact_msa_max_it", "MSA: most successive approximations", "ContactProblemSolve", d->msa_max_it, &d->msa_max_it, NULL));
+  PetscCall(PetscOptionsBool("-contact_coulomb_follow_radii", "Coulomb: tangential pairs on their circle move onto the new circle when F l_n grows", "ContactProblemSolve", d->follow_radii,
+                             &d->follow_radii, NULL));
   PetscCall(PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance (-1: -contact_rtol)", "ContactProblemSolve", d->fixed_point_rtol,
                              &d->fixed_point_rtol, NULL));
   PetscOptionsEnd();
@@ -440,12 +473,14 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
       PetscCall(TaoGetIterationNumber(d->tao, &its));
       al += its + 1;
       if (reason <= 0) break;
+      const std::vector<PetscReal> old = d->radius;
       PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, &change));
       PetscCall(PetscInfo(cp, "MSA step %" PetscInt_FMT ": %" PetscInt_FMT " outer iterations, relative change of the slip bounds %g\n", outer + 1, its + 1, (double)change));
       if (change <= msa_rtol) {
         outer++;
         break;
       }
+      if (d->follow_radii) PetscCall(FollowGrownRadii(cp, old, lambda));
     }
     d->stats.fixed_point = change;
     PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol));
