@@ -57,6 +57,8 @@ BOUND_SOLVERS = [
 ]
 DISK_SOLVERS = [
     ("mpgp", ["-tao_type", "mpgp"]),
+    # Kucera's MPGP as published: no arc steps (on by default since they cut the products on the disks and the brick)
+    ("mpgp, -tao_mpgp_arc 0", ["-tao_type", "mpgp", "-tao_mpgp_arc", "0"]),
     # the default takes fixed steps 1.95/||A|| in its gradient projections; BB lengths and the shorter
     # 1/||A|| are options (BB is off by default: it did not pay on the contact problems)
     ("mpgp, -tao_mpgp_bb 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1"]),
