@@ -250,6 +250,7 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_rtol <1e-6>                  - projected gradient and equality residual relative to |h| (smalxe's gttol)
 . -contact_msa_rtol <rtol>              - MSA: stop when the slip bounds change by less than this, relatively
 . -contact_msa_max_it <100>             - MSA: most successive approximations
+. -contact_msa_recycle <true>           - MSA: each Tresca solve after the first starts from the previous one's multiplier of the equality (`TaoSetRecycleHistory()`)
 . -contact_fixed_point_rtol <rtol>      - monolithic: radii must agree with F l_n to this relative tolerance
 . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
 . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); default 1 for monolithic, 0 for merged's blocks, 3 otherwise; see
@@ -274,6 +275,8 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscCall(PetscOptionsReal("-contact_msa_rtol", "MSA: relative change of the slip bounds at which the successive approximations stop (-1: -contact_rtol)", "ContactProblemSolve", d->msa_rtol,
                              &d->msa_rtol, NULL));
   PetscCall(PetscOptionsInt("-contact_msa_max_it", "MSA: most successive approximations", "ContactProblemSolve", d->msa_max_it, &d->msa_max_it, NULL));
+  PetscCall(PetscOptionsBool("-contact_msa_recycle", "MSA: each Tresca solve after the first starts from the previous one's multiplier of the equality (TaoSetRecycleHistory())", "ContactProblemSolve",
+                             d->msa_recycle, &d->msa_recycle, NULL));
   PetscCall(PetscOptionsBool("-contact_coulomb_follow_radii", "Coulomb: tangential pairs on their circle move onto the new circle when F l_n grows", "ContactProblemSolve", d->follow_radii,
                              &d->follow_radii, NULL));
   PetscCall(PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance (-1: -contact_rtol)", "ContactProblemSolve", d->fixed_point_rtol,
@@ -467,7 +470,11 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
     PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, NULL));
     /* each Tresca solve a decade tighter than the test on the slip bounds, so the change is not noise */
     PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, 0.1 * PetscMin(msa_rtol, d->rtol)));
+    PetscBool recycle;
+    PetscCall(TaoGetRecycleHistory(d->tao, &recycle));
     for (outer = 0; outer < d->msa_max_it; outer++) {
+      /* a Tresca solve after the first starts from the previous one's multiplier of G l = e, not only from its l */
+      if (outer == 1 && d->msa_recycle) PetscCall(TaoSetRecycleHistory(d->tao, PETSC_TRUE));
       PetscCall(TaoSolve(d->tao));
       PetscCall(TaoGetConvergedReason(d->tao, &reason));
       PetscCall(TaoGetIterationNumber(d->tao, &its));
@@ -483,6 +490,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
       if (d->follow_radii) PetscCall(FollowGrownRadii(cp, old, lambda));
     }
     d->stats.fixed_point = change;
+    PetscCall(TaoSetRecycleHistory(d->tao, recycle));
     PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol));
     PetscCall(CollectStatistics(cp, outer, al));
     if (reason <= 0) PetscCall(DescribeReason(cp, reason, its + 1));

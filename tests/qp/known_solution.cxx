@@ -10,6 +10,9 @@
      -blocks      tao_smalxe: inner solves as a Gauss-Seidel sweep over two blocks (disk entries, the rest)
      -equality_routines  tao_smalxe: give C x = d through TAO's equality-constraint routines
      -tol <t>     asserted bound on |x - x*| / |x*|
+     -resolve     TAO solvers: solve again from the solution (a warm start) and print that solve's
+                  iteration count as "RESOLVE its=<n>" (smalxe: with -tao_recycle_history it also keeps
+                  the multiplier of the equality); the checks below apply to the second solution
 
    Assertions (each can fail):
    - x is feasible (distance to the set <= 1e-12 (1 + |x|));
@@ -73,7 +76,7 @@ int main(int argc, char **argv)
   Vec         x, g, gp;
   QPCounters  counters;
   std::string reason;
-  PetscBool   blocks = PETSC_FALSE, routines = PETSC_FALSE;
+  PetscBool   blocks = PETSC_FALSE, routines = PETSC_FALSE, resolve = PETSC_FALSE;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "QP with a known solution"));
   PetscCall(ConeFETIInitializePackage());
@@ -87,6 +90,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-tol", &tol, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-blocks", &blocks, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-equality_routines", &routines, NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-resolve", &resolve, NULL));
   PetscCall(KnownQPCreate(PETSC_COMM_WORLD, kind, units, cond, scale, m, &qp));
   PetscCall(VecDuplicate(qp.xstar, &x));
   PetscCall(VecSet(x, 0.0));
@@ -126,6 +130,14 @@ int main(int argc, char **argv)
     PetscCall(TaoQPGetCounters(tao, &counters));
     reason = TaoConvergedReasons[r];
     PetscCheck(r > 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "TAO did not converge: %s", reason.c_str());
+    if (resolve) {
+      PetscInt again;
+      PetscCall(TaoSolve(tao));
+      PetscCall(TaoGetConvergedReason(tao, &r));
+      PetscCall(TaoGetIterationNumber(tao, &again));
+      PetscCheck(r > 0, PETSC_COMM_WORLD, PETSC_ERR_NOT_CONVERGED, "TAO did not converge when solving again: %s", TaoConvergedReasons[r]);
+      PetscCall(PetscPrintf(PETSC_COMM_WORLD, "RESOLVE its=%" PetscInt_FMT " reason=%s\n", again, TaoConvergedReasons[r]));
+    }
     PetscCall(TaoDestroy(&tao));
   } else {
     KSP                ksp;

@@ -106,8 +106,9 @@ struct TaoSMALXE {
   /* work: hq, hp, hr for products with H; bin, bout for block products; wf for feasibility; w for the rest */
   Vec hq = nullptr, hp = nullptr, hr = nullptr, r = nullptr, bin = nullptr, bout = nullptr, wf = nullptr, w = nullptr;
 
-  QPCounters counters = {};
-  PetscBool  setup    = PETSC_FALSE;
+  QPCounters counters  = {};
+  PetscBool  setup     = PETSC_FALSE;
+  PetscBool  have_mult = PETSC_FALSE; /* the multiplier of a previous solve is finite: TaoSetRecycleHistory() starts from it */
 };
 
 TaoSMALXE *Get(Tao tao) { return static_cast<TaoSMALXE *>(tao->data); }
@@ -367,6 +368,13 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* With TaoSetRecycleHistory() a solve starts from the multiplier of the previous one (the iterate is
+   the user's warm start anyway). Without it, the multiplier starts at 0 and the first inner solve drives
+   a warm-started iterate back to the solution of the problem without the equality's forces, which
+   undoes the warm start: a sequence of nearby problems (the Tresca solves of successive
+   approximations, load steps) then pays the whole outer loop each time. */
+bool RecycleMultiplier(Tao tao, TaoSMALXE *s) { return tao->recycle && s->have_mult; }
 
 PetscErrorCode Tolerances(Tao tao, TaoSMALXE *s, PetscReal *tol_g, PetscReal *tol_e)
 {
@@ -862,12 +870,12 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     PetscCall(MatMult(s->Q, s->w, s->hq));
     PetscCall(VecWAXPY(s->bconst, -1.0, s->hq, s->w));
     PetscCall(Norm(s->bconst, &s->beff));
-    PetscCall(VecSet(s->nu, 0.0));
+    if (!RecycleMultiplier(tao, s)) PetscCall(VecSet(s->nu, 0.0));
   } else {
     PetscCall(Norm(s->b, &s->beff));
     PetscCall(ReproducibleDot(s->d, s->d, &s->dnorm2));
     s->qxt = 0;
-    PetscCall(VecSet(s->mu, 0.0));
+    if (!RecycleMultiplier(tao, s)) PetscCall(VecSet(s->mu, 0.0));
   }
   PetscCall(UpdateNormH(s));
   s->M   = s->M_rel * s->normH;
@@ -931,6 +939,11 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
       }
     }
     Lprev = L;
+  }
+  {
+    PetscReal mn;
+    PetscCall(Norm(s->projector ? s->nu : s->mu, &mn));
+    s->have_mult = PetscIsInfOrNanReal(mn) ? PETSC_FALSE : PETSC_TRUE;
   }
   if (s->counters_view) {
     PetscViewer viewer;
@@ -1018,6 +1031,7 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
         viewer, "Anderson acceleration of the multiplier, depth %" PetscInt_FMT " from outer iteration %" PetscInt_FMT ": %" PetscInt_FMT " accelerated updates, %" PetscInt_FMT " restarts\n",
         AndersonDepth(s), s->anderson_start, s->aAccelerated, s->aRestarts));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "plain multiplier update (no Anderson acceleration)\n"));
+  if (tao->recycle) PetscCall(PetscViewerASCIIPrintf(viewer, "recycles the multiplier: a solve starts from the previous solve's multiplier\n"));
   if (s->stagnated) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stagnated: the equality cannot be met over the set (or rho is far too small)\n"));
   if (s->stalled) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stalled: no progress in %" PetscInt_FMT " outer iterations, the multiplier settled\n", s->stagnation_its));
   PetscCall(QPCountersView(&s->counters, NULL, viewer));
@@ -1320,6 +1334,10 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   and |Cx - d| <= max(catol, crtol |b| / ||H||), crtol defaulting to gttol (|b| is |P(b - A x~)| in
   projector form). `-tao_monitor` prints the augmented Lagrangian L(x, mu, rho) and |gP|
   (`-tao_cmonitor` also |Cx - d|). Counters: outer iterations and own products, nested solvers' products separately.
+  A solve starts from the solution vector (a warm start) and from the multiplier 0 of the equality;
+  with `TaoSetRecycleHistory()` (`-tao_recycle_history`) it starts from the multiplier the previous
+  solve ended with, which a sequence of nearby problems needs for the warm start to pay: from
+  multiplier 0 the first inner solve undoes it.
 
   Level: beginner
 
