@@ -250,6 +250,7 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_rtol <1e-6>                  - projected gradient and equality residual relative to |h| (smalxe's gttol)
 . -contact_msa_rtol <rtol>              - MSA: stop when the slip bounds change by less than this, relatively
 . -contact_msa_max_it <100>             - MSA: most successive approximations
+. -contact_msa_start_rtol <1e-2>        - MSA: tolerance of the first Tresca solve, whose slip bounds come from the initial multipliers (it only supplies the first bounds F l_n)
 . -contact_msa_recycle <true>           - MSA: each Tresca solve after the first starts from the previous one's multiplier of the equality (`TaoSetRecycleHistory()`)
 . -contact_fixed_point_rtol <rtol>      - monolithic: radii must agree with F l_n to this relative tolerance
 . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
@@ -275,6 +276,8 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscCall(PetscOptionsReal("-contact_msa_rtol", "MSA: relative change of the slip bounds at which the successive approximations stop (-1: -contact_rtol)", "ContactProblemSolve", d->msa_rtol,
                              &d->msa_rtol, NULL));
   PetscCall(PetscOptionsInt("-contact_msa_max_it", "MSA: most successive approximations", "ContactProblemSolve", d->msa_max_it, &d->msa_max_it, NULL));
+  PetscCall(PetscOptionsReal("-contact_msa_start_rtol", "MSA: tolerance of the first Tresca solve, whose slip bounds come from the initial multipliers (it only supplies the first bounds F l_n)",
+                             "ContactProblemSolve", d->msa_start_rtol, &d->msa_start_rtol, NULL));
   PetscCall(PetscOptionsBool("-contact_msa_recycle", "MSA: each Tresca solve after the first starts from the previous one's multiplier of the equality (TaoSetRecycleHistory())", "ContactProblemSolve",
                              d->msa_recycle, &d->msa_recycle, NULL));
   PetscCall(PetscOptionsBool("-contact_coulomb_follow_radii", "Coulomb: tangential pairs on their circle move onto the new circle when F l_n grows", "ContactProblemSolve", d->follow_radii,
@@ -284,6 +287,8 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscOptionsEnd();
   PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_rtol must be in (0, 1), got %g", (double)d->rtol);
   PetscCheck(d->msa_rtol > 0 || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_rtol must be positive, got %g", (double)d->msa_rtol);
+  PetscCheck(d->msa_start_rtol > 0 && d->msa_start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_start_rtol must be in (0, 1), got %g",
+             (double)d->msa_start_rtol);
   PetscCheck(d->msa_max_it > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_max_it must be positive, got %" PetscInt_FMT, d->msa_max_it);
   PetscCheck(d->fixed_point_rtol > 0 || d->fixed_point_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_fixed_point_rtol must be positive, got %g",
              (double)d->fixed_point_rtol);
@@ -469,12 +474,18 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
     /* successive approximations: g from the current multipliers, a full Tresca solve, repeat */
     PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, NULL));
     /* each Tresca solve a decade tighter than the test on the slip bounds, so the change is not noise */
-    PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, 0.1 * PetscMin(msa_rtol, d->rtol)));
-    PetscBool recycle;
+    const PetscReal tresca_rtol = 0.1 * PetscMin(msa_rtol, d->rtol);
+    /* The first Tresca solve has the bounds of the initial multipliers, a guess (0, or the particular
+       solution of G l = e); it only supplies the first bounds F l_n of a solution, and the next solve
+       starts from its l (and multiplier) and is done to full tolerance. So it is done to
+       -contact_msa_start_rtol only, and the loop never stops after it. */
+    PetscBool loose = PETSC_FALSE, recycle;
     PetscCall(TaoGetRecycleHistory(d->tao, &recycle));
     for (outer = 0; outer < d->msa_max_it; outer++) {
       /* a Tresca solve after the first starts from the previous one's multiplier of G l = e, not only from its l */
       if (outer == 1 && d->msa_recycle) PetscCall(TaoSetRecycleHistory(d->tao, PETSC_TRUE));
+      loose = outer == 0 && d->msa_start_rtol > tresca_rtol ? PETSC_TRUE : PETSC_FALSE;
+      PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, loose ? d->msa_start_rtol : tresca_rtol));
       PetscCall(TaoSolve(d->tao));
       PetscCall(TaoGetConvergedReason(d->tao, &reason));
       PetscCall(TaoGetIterationNumber(d->tao, &its));
@@ -483,7 +494,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
       const std::vector<PetscReal> old = d->radius;
       PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, &change));
       PetscCall(PetscInfo(cp, "MSA step %" PetscInt_FMT ": %" PetscInt_FMT " outer iterations, relative change of the slip bounds %g\n", outer + 1, its + 1, (double)change));
-      if (change <= msa_rtol) {
+      if (change <= msa_rtol && !loose) {
         outer++;
         break;
       }
