@@ -479,12 +479,12 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
        solution of G l = e); it only supplies the first bounds F l_n of a solution, and the next solve
        starts from its l (and multiplier) and is done to full tolerance. So it is done to
        -contact_msa_start_rtol only, and the loop never stops after it. */
-    PetscBool loose = PETSC_FALSE, recycle;
+    PetscBool recycle;
     PetscCall(TaoGetRecycleHistory(d->tao, &recycle));
     for (outer = 0; outer < d->msa_max_it; outer++) {
       /* a Tresca solve after the first starts from the previous one's multiplier of G l = e, not only from its l */
       if (outer == 1 && d->msa_recycle) PetscCall(TaoSetRecycleHistory(d->tao, PETSC_TRUE));
-      loose = outer == 0 && d->msa_start_rtol > tresca_rtol ? PETSC_TRUE : PETSC_FALSE;
+      const bool loose = outer == 0 && d->msa_start_rtol > tresca_rtol;
       PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, loose ? d->msa_start_rtol : tresca_rtol));
       PetscCall(TaoSolve(d->tao));
       PetscCall(TaoGetConvergedReason(d->tao, &reason));

@@ -106,9 +106,8 @@ struct TaoSMALXE {
   /* work: hq, hp, hr for products with H; bin, bout for block products; wf for feasibility; w for the rest */
   Vec hq = nullptr, hp = nullptr, hr = nullptr, r = nullptr, bin = nullptr, bout = nullptr, wf = nullptr, w = nullptr;
 
-  QPCounters counters  = {};
-  PetscBool  setup     = PETSC_FALSE;
-  PetscBool  have_mult = PETSC_FALSE; /* the multiplier of a previous solve is finite: TaoSetRecycleHistory() starts from it */
+  QPCounters counters = {};
+  PetscBool  setup    = PETSC_FALSE;
 };
 
 TaoSMALXE *Get(Tao tao) { return static_cast<TaoSMALXE *>(tao->data); }
@@ -373,8 +372,9 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
    the user's warm start anyway). Without it, the multiplier starts at 0 and the first inner solve drives
    a warm-started iterate back to the solution of the problem without the equality's forces, which
    undoes the warm start: a sequence of nearby problems (the Tresca solves of successive
-   approximations, load steps) then pays the whole outer loop each time. */
-bool RecycleMultiplier(Tao tao, TaoSMALXE *s) { return tao->recycle && s->have_mult; }
+   approximations, load steps) then pays the whole outer loop each time. Called before the histories are
+   cleared: mult_history.back() is |multiplier| at the end of the previous solve (none: no solve yet). */
+bool RecycleMultiplier(Tao tao, TaoSMALXE *s) { return tao->recycle && !s->mult_history.empty() && !PetscIsInfOrNanReal(s->mult_history.back()); }
 
 PetscErrorCode Tolerances(Tao tao, TaoSMALXE *s, PetscReal *tol_g, PetscReal *tol_e)
 {
@@ -939,11 +939,6 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
       }
     }
     Lprev = L;
-  }
-  {
-    PetscReal mn;
-    PetscCall(Norm(s->projector ? s->nu : s->mu, &mn));
-    s->have_mult = PetscIsInfOrNanReal(mn) ? PETSC_FALSE : PETSC_TRUE;
   }
   if (s->counters_view) {
     PetscViewer viewer;
