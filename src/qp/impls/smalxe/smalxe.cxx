@@ -376,11 +376,16 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
    cleared: mult_history.back() is |multiplier| at the end of the previous solve (none: no solve yet). */
 bool RecycleMultiplier(Tao tao, TaoSMALXE *s) { return tao->recycle && !s->mult_history.empty() && !PetscIsInfOrNanReal(s->mult_history.back()); }
 
+/* |Cx - d| is measured against |b| over ||H|| at the default penalty (rho = ||A|| / ||C||^2, so ||H|| is
+   ||PAP|| in projector form and 2 ||A|| otherwise), not over the current ||H||: the accuracy a tolerance
+   asks for must not depend on rho, which -tao_smalxe_rho sets and SMALBE's rho updates raise */
 PetscErrorCode Tolerances(Tao tao, TaoSMALXE *s, PetscReal *tol_g, PetscReal *tol_e)
 {
+  const PetscReal scale = s->projector ? s->normA : 2 * s->normA;
+
   PetscFunctionBegin;
   *tol_g = PetscMax(tao->gatol, tao->gttol * s->beff);
-  *tol_e = PetscMax(tao->catol, (tao->crtol_changed ? tao->crtol : tao->gttol) * s->beff / s->normH);
+  *tol_e = PetscMax(tao->catol, (tao->crtol_changed ? tao->crtol : tao->gttol) * s->beff / scale);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -420,8 +425,9 @@ PetscErrorCode InnerConvergenceTest(Tao sub, void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Outer: |gP| <= max(gatol, gttol |b_eff|) and |Cx - d| <= max(catol, crtol |b_eff|/||H||) (crtol
-   defaults to gttol); both relative, so scaling A and b does not change the iterations. */
+/* Outer: |gP| <= max(gatol, gttol |b_eff|) and |Cx - d| <= max(catol, crtol |b_eff|/||H_0||) (crtol
+   defaults to gttol, H_0 the Hessian at the default penalty); both relative, so scaling A and b does not
+   change the iterations. */
 PetscErrorCode OuterConvergenceTest(Tao tao, void *)
 {
   TaoSMALXE *s = Get(tao);
@@ -1020,6 +1026,11 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "smalxe: %s form, %s update (beta %g), rho %g, M %g, eta %g, ||%s|| %s %g\n", s->projector ? "projector" : "penalty", SMALXEUpdates[s->update],
                                    (double)s->beta, (double)s->rho, (double)s->M, (double)s->eta, s->projector ? "PAP" : "A", s->norm_user > 0 ? "given" : "estimated", (double)s->normA));
+  if (s->normA > 0) { /* the tolerances exist once a solve has estimated the norm */
+    PetscReal tol_g, tol_e;
+    PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "stops when |projected gradient| <= %g and |Cx - d| <= %g\n", (double)tol_g, (double)tol_e));
+  }
   PetscCall(PetscViewerASCIIPrintf(viewer, "last iterate: |projected gradient| %g, |Cx - d| %g\n", (double)s->gpnorm, (double)s->feas));
   if (AndersonDepth(s) > 0)
     PetscCall(PetscViewerASCIIPrintf(
@@ -1326,8 +1337,9 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   `TaoSMALXESetProjector()` (projector form with a given projector and particular solution), or
   from TAO's equality routines (`TaoSetEqualityConstraintsRoutine()` with c(x) = C x - d, and
   `TaoSetJacobianEqualityRoutine()` giving C). The solver stops when |gP| <= max(gatol, gttol |b|)
-  and |Cx - d| <= max(catol, crtol |b| / ||H||), crtol defaulting to gttol (|b| is |P(b - A x~)| in
-  projector form). `-tao_monitor` prints the augmented Lagrangian L(x, mu, rho) and |gP|
+  and |Cx - d| <= max(catol, crtol |b| / ||H_0||), crtol defaulting to gttol (|b| is |P(b - A x~)| in
+  projector form; H_0 is the inner Hessian at the default penalty, ||H_0|| = ||PAP|| in projector form and
+  2 ||A|| otherwise, so that the tolerance does not change with rho). `-tao_monitor` prints the augmented Lagrangian L(x, mu, rho) and |gP|
   (`-tao_cmonitor` also |Cx - d|). Counters: outer iterations and own products, nested solvers' products separately.
   A solve starts from the solution vector (a warm start) and from the multiplier 0 of the equality;
   with `TaoSetRecycleHistory()` (`-tao_recycle_history`) it starts from the multiplier the previous
