@@ -30,7 +30,7 @@ int main(int argc, char **argv)
   ContactResiduals  r;
   PetscInt          k = 4, cells[3], sub[3] = {3, 1, 1}, b, n, m;
   PetscReal         lo[3] = {0, 0, 0}, hi[3] = {3, 1, 1}, friction = 0.3, p = 4e7, tau = 2e6, gap = 1e-3, tilt = 0;
-  char              law[32] = "coulomb";
+  ContactLaw        law = CONTACT_COULOMB;
   Vec               lambda, u;
   PetscLogDouble    t0, t1, t2;
   PetscBool         converged, paperm = PETSC_FALSE;
@@ -38,17 +38,25 @@ int main(int argc, char **argv)
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "The paper's brick"));
   PetscCall(ConeFETIInitializePackage());
-  PetscCall(PetscOptionsGetInt(NULL, NULL, "-k", &k, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-friction", &friction, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-pressure", &p, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-shear", &tau, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-gap", &gap, NULL));
-  PetscCall(PetscOptionsGetReal(NULL, NULL, "-tilt", &tilt, NULL));
-  PetscCall(PetscOptionsGetString(NULL, NULL, "-law", law, sizeof(law), NULL));
+  /* the tutorial's own options, listed by -help and checked before anything is built */
+  PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "The paper's brick", "brick");
+  PetscCall(PetscOptionsBoundedInt("-k", "Cells per cube edge (n = 9k(k+1)^2)", "brick", k, &k, NULL, 1));
+  PetscCall(PetscOptionsEnum("-law", "Contact law of the bottom", "brick", ContactLaws, (PetscEnum)law, (PetscEnum *)&law, NULL));
+  PetscCall(PetscOptionsReal("-friction", "Coulomb coefficient F (with -law tresca: the slip bound)", "brick", friction, &friction, NULL));
+  PetscCall(PetscOptionsReal("-pressure", "Pressure on the top face z = 1", "brick", p, &p, NULL));
+  PetscCall(PetscOptionsReal("-shear", "Traction along x on the end face x = 3", "brick", tau, &tau, NULL));
+  PetscCall(PetscOptionsReal("-gap", "Distance of the foundation below the bottom z = 0", "brick", gap, &gap, NULL));
+  PetscCall(PetscOptionsReal("-tilt", "Slope of the foundation along x (the gap grows with x)", "brick", tilt, &tilt, NULL));
   /* The paper's m = 6(k+1)^2 gluing rows + 3 (k+1)(k-2) contact rows: its contact zone (Figure 1, lost)
      had k - 2 node columns across the full width. -paper_m takes the strip of the third cube from one
      cell after the interface to two cells before the end, x in [2 + 1/k, 3 - 2/k]: same n and m */
-  PetscCall(PetscOptionsGetBool(NULL, NULL, "-paper_m", &paperm, NULL));
+  PetscCall(PetscOptionsBool("-paper_m", "Contact on a strip of the third cube with the paper's m instead of the whole bottom of the free cubes", "brick", paperm, &paperm, NULL));
+  PetscOptionsEnd();
+  {
+    const char     *name[]  = {"-pressure", "-shear", "-gap", "-tilt"};
+    const PetscReal value[] = {p, tau, gap, tilt};
+    for (int i = 0; i < 4; i++) PetscCheck(!PetscIsInfOrNanReal(value[i]), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "%s must be a finite number, got %g", name[i], (double)value[i]);
+  }
   if (paperm) {
     PetscCheck(k >= 4, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-paper_m needs -k >= 4 (the strip has k - 2 node columns), got -k %" PetscInt_FMT, k);
     xrange[0] = 2.0 + 1.0 / k; /* face centroids lie strictly inside their cells */
@@ -83,10 +91,8 @@ int main(int argc, char **argv)
   zone.point[2]  = -gap;
   zone.normal[0] = tilt; /* a tilted plane: the gap grows along x */
   zone.normal[2] = 1;
-  if (!strcmp(law, "frictionless")) zone.law = CONTACT_FRICTIONLESS;
-  else if (!strcmp(law, "tresca")) zone.law = CONTACT_TRESCA;
-  else zone.law = CONTACT_COULOMB;
-  zone.coef = friction;
+  zone.law       = law;
+  zone.coef      = friction;
   PetscCall(ContactModelAddZone(cm, &zone));
   PetscCall(ContactModelSetUp(cm));
   PetscCall(PetscTime(&t1));
