@@ -126,6 +126,35 @@ PetscErrorCode Consistent(Tao, Vec lambda, PetscBool *ok, void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The layer drives smalxe's API (sub-solvers, pre-solve hook, multiplier) and hands its inner solvers a
+   QP (Hessian, linear term, separable set) rather than an objective: other TAO types would fail deep
+   inside with messages about callbacks the user never set, so the types are checked here by option name */
+static PetscErrorCode CheckSolverTypes(Tao tao, PetscInt nblocks)
+{
+  PetscBool   ok;
+  const char *prefix, *type;
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  PetscCall(TaoGetType(tao, &type));
+  PetscCall(PetscObjectTypeCompare((PetscObject)tao, TAOSMALXE, &ok));
+  PetscCheck(ok, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG,
+             "-%stao_type %s: the contact solver is the augmented Lagrangian smalxe (its inner solvers are chosen by -%stao_smalxe_subsolver_tao_type)", prefix ? prefix : "", type,
+             prefix ? prefix : "");
+  for (PetscInt k = 0; k < PetscMax(nblocks, 1); k++) {
+    Tao sub;
+    if (nblocks > 1) PetscCall(TaoSMALXEGetBlockSubsolver(tao, k, &sub));
+    else PetscCall(TaoSMALXEGetSubsolver(tao, &sub));
+    PetscCall(TaoGetOptionsPrefix(sub, &prefix));
+    PetscCall(TaoGetType(sub, &type));
+    if (!type) continue; /* not chosen by the user: smalxe picks mprgp or mpgp from the set at the first solve */
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)sub, &ok, TAOMPRGP, TAOMPGP, ""));
+    PetscCheck(ok, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG,
+               "-%stao_type %s: the inner solvers of the contact problem are conefeti's QP solvers, mprgp (bounds) or mpgp (bounds, disks and cones)", prefix ? prefix : "", type);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode BuildSet(ContactProblem cp)
 {
   ContactProblemData   *d = Data(cp);
@@ -286,12 +315,13 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
                              &d->fixed_point_rtol, NULL));
   PetscOptionsEnd();
   PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_rtol must be in (0, 1), got %g", (double)d->rtol);
-  PetscCheck(d->msa_rtol > 0 || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_rtol must be positive, got %g", (double)d->msa_rtol);
+  PetscCheck((d->msa_rtol > 0 && d->msa_rtol < 1) || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
+             "-contact_msa_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", (double)d->msa_rtol);
   PetscCheck(d->msa_start_rtol > 0 && d->msa_start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_start_rtol must be in (0, 1), got %g",
              (double)d->msa_start_rtol);
   PetscCheck(d->msa_max_it > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_max_it must be positive, got %" PetscInt_FMT, d->msa_max_it);
-  PetscCheck(d->fixed_point_rtol > 0 || d->fixed_point_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_fixed_point_rtol must be positive, got %g",
-             (double)d->fixed_point_rtol);
+  PetscCheck((d->fixed_point_rtol > 0 && d->fixed_point_rtol < 1) || d->fixed_point_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
+             "-contact_fixed_point_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", (double)d->fixed_point_rtol);
   if (d->tao) PetscCall(TaoSetFromOptions(d->tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -362,6 +392,7 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
     }
   }
   PetscCall(TaoSetFromOptions(d->tao));
+  PetscCall(CheckSolverTypes(d->tao, d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED ? 2 : 1));
   d->setup = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

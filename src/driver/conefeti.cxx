@@ -20,12 +20,14 @@
 #include <conefeti/private/compat.h>
 #include <cerrno>
 #include <cstring>
+#include <string>
 
 static const char usage[] = "conefeti: 3D contact problems of linear elasticity with Coulomb friction by FETI.\n"
                             "Give a scene with -options_file petsc-options/<scene>.opts (docs/scenes.md).\n\n";
 
-/* rank 0 writes the JSON line to a file */
-static PetscErrorCode WriteJSONFile(MPI_Comm comm, const char *path, const char *json)
+/* Rank 0 creates and removes `path`: run before the solve, so that a missing directory or a read-only
+   place fails in a second, naming the option, and not after a long solve */
+static PetscErrorCode CheckWritable(MPI_Comm comm, const char *option, const std::string &path)
 {
   PetscMPIInt rank;
   int         err = 0;
@@ -33,15 +35,59 @@ static PetscErrorCode WriteJSONFile(MPI_Comm comm, const char *path, const char 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank) {
-    FILE *f = fopen(path, "w");
+    FILE *f = fopen(path.c_str(), "w");
+    if (!f) err = errno ? errno : EIO;
+    else {
+      if (fclose(f) != 0) err = errno ? errno : EIO;
+      (void)remove(path.c_str());
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
+  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "%s: cannot write %s: %s (checked before the solve)", option, path.c_str(), strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* rank 0 writes the JSON line to <path>.tmp and renames it: a reader never sees half a line */
+static PetscErrorCode WriteJSONFile(MPI_Comm comm, const char *path, const char *json)
+{
+  PetscMPIInt       rank;
+  int               err = 0;
+  const std::string tmp = std::string(path) + ".tmp";
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    FILE *f = fopen(tmp.c_str(), "w");
     if (!f) err = errno ? errno : EIO;
     else {
       if (fprintf(f, "%s\n", json) < 0) err = errno ? errno : EIO;
       if (fclose(f) != 0 && !err) err = errno ? errno : EIO;
+      if (!err && rename(tmp.c_str(), path) != 0) err = errno ? errno : EIO;
+      if (err) (void)remove(tmp.c_str());
     }
   }
   PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
   PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "-summary_json: cannot write %s: %s", path, strerror(err));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A misspelt solver option in a scene file (-contact_coulomb_algoritm merged) would otherwise run the
+   default method without a word: this PETSc build does not print -options_left by default. The scene's
+   own options are checked strictly when it is read; the others may legitimately go unused (contact
+   options in a scene without contact), so they get a warning, as a PETSc debug build gives. */
+static PetscErrorCode WarnUnusedOptions(MPI_Comm comm)
+{
+  PetscInt  n;
+  char    **names, **values;
+  PetscBool given;
+
+  PetscFunctionBegin;
+  PetscCall(PetscOptionsHasName(NULL, NULL, "-options_left", &given)); /* PETSc reports them itself (or was told not to) */
+  if (given) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscOptionsLeftGet(NULL, &n, &names, &values));
+  if (n) PetscCall(PetscPrintf(comm, "WARNING: %" PetscInt_FMT " option(s) set but not used (misspelt, or not needed by this scene; -options_left 0 silences this):\n", n));
+  for (PetscInt i = 0; i < n; i++) PetscCall(PetscPrintf(comm, "  -%s %s\n", names[i], values[i] ? values[i] : ""));
+  PetscCall(PetscOptionsLeftRestore(NULL, &n, &names, &values));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -81,6 +127,8 @@ int main(int argc, char **argv)
       return 0;
     }
   }
+  if (hasoutput) PetscCall(CheckWritable(comm, "-output", std::string(output) + ".xmf.tmp"));
+  if (hasjson) PetscCall(CheckWritable(comm, "-summary_json", std::string(jsonfile) + ".tmp"));
   PetscCall(ConeFETIGetVersion(&major, &minor, &patch));
   PetscCall(ContactSceneSetUp(scene));
   PetscCall(ContactSceneGetPipelineDescription(scene, &pipeline, &algorithm, description, sizeof(description)));
@@ -98,6 +146,7 @@ int main(int argc, char **argv)
     } else PetscCall(PetscPrintf(comm, "output: not written, the solve did not converge (-output_unconverged writes it anyway)\n"));
   }
   PetscCall(ContactSceneDestroy(&scene));
+  PetscCall(WarnUnusedOptions(comm));
   PetscCall(PetscFinalize());
   return summary.converged ? 0 : 2;
 }
