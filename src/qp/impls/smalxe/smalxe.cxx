@@ -602,7 +602,9 @@ PetscErrorCode SetUpOnce(Tao tao, TaoSMALXE *s)
     PetscCall(VecDuplicate(s->r, &s->mu));
   }
   if (s->projector && !s->Q) { /* projector form from C with orthonormal rows: Q = C'C, x~ = C'd */
-    PetscCheck(s->C, comm, PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: -tao_smalxe_projector needs C");
+    const char *prefix;
+    PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+    PetscCheck(s->C, comm, PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: -%stao_smalxe_projector needs C", prefix ? prefix : "");
     PetscCall(MatCreateShell(comm, n, n, N, N, s, &s->Q));
     PetscCall(MatShellSetOperation(s->Q, MATOP_MULT, (void (*)(void))QFromCMult));
     PetscCall(VecDuplicate(tao->solution, &s->xt));
@@ -964,11 +966,15 @@ PetscErrorCode TaoSetUp_SMALXE(Tao tao)
 
 PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  TaoSMALXE *s = Get(tao);
-  PetscReal  value;
-  PetscBool  set;
+  TaoSMALXE  *s = Get(tao);
+  PetscReal   value;
+  PetscBool   set;
+  const char *p; /* the options prefix, for the messages */
+  MPI_Comm    comm = PetscObjectComm((PetscObject)tao);
 
   PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &p));
+  if (!p) p = "";
   PetscOptionsHeadBegin(PetscOptionsObject, "smalxe: semi-monotonic augmented Lagrangian for C x = d (conefeti)");
   PetscCall(PetscOptionsReal("-tao_smalxe_rho", "Penalty rho relative to ||A|| (||PAP|| in projector form, ||A||/||C||^2 otherwise)", "TaoSMALXE", s->rho_rel, &s->rho_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_M", "Initial M relative to ||H||: inner solves stop when |gP| <= min(M |Cx - d|, eta)", "TaoSMALXE", s->M_rel, &s->M_rel, NULL));
@@ -987,25 +993,24 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsReal("-tao_smalxe_norm_margin", "Relative safety margin of the norm estimate", "MatQPEstimateNorm", s->norm_margin, &s->norm_margin, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_inner_floor", "Inner solves also stop when |gP| <= this fraction of the final tolerance max(gatol, gttol |b|) (0: never; at most 1)", "TaoSMALXE",
                              s->inner_floor, &s->inner_floor, NULL));
-  PetscCheck(s->inner_floor >= 0 && s->inner_floor <= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_inner_floor must be in [0, 1], got %g", (double)s->inner_floor);
+  PetscCheck(s->inner_floor >= 0 && s->inner_floor <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_inner_floor must be in [0, 1], got %g", p, (double)s->inner_floor);
   PetscCall(PetscOptionsInt("-tao_smalxe_anderson", "Anderson acceleration of the multiplier update: depth (0: the plain update mu += rho (Cx - d); -1: 3, or 0 with Gauss-Seidel blocks)",
                             "TaoSMALXESetAnderson", s->anderson, &s->anderson, NULL));
-  PetscCheck(s->anderson >= -1 && s->anderson <= 20, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
-             "-tao_smalxe_anderson: the depth must be in [0, 20] (or -1: automatic), got %" PetscInt_FMT, s->anderson);
+  PetscCheck(s->anderson >= -1 && s->anderson <= 20, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_anderson: the depth must be in [0, 20] (or -1: automatic), got %" PetscInt_FMT, p, s->anderson);
   PetscCall(PetscOptionsInt("-tao_smalxe_anderson_start", "First outer iteration (from 0) whose multiplier update is accelerated (the first inner solves are loose and make poor history)",
                             "TaoSMALXESetAnderson", s->anderson_start, &s->anderson_start, NULL));
-  PetscCheck(s->anderson_start >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_anderson_start: must be >= 1, got %" PetscInt_FMT, s->anderson_start);
+  PetscCheck(s->anderson_start >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_anderson_start: must be >= 1, got %" PetscInt_FMT, p, s->anderson_start);
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
                             "Stop when |Cx - d| makes less than 1% progress in this many outer iterations: infeasible if the multiplier grew by a quarter meanwhile, stalled if it settled (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_counters_view", "Print the counters as one JSON line after each solve", "QPCountersViewJSON", s->counters_view, &s->counters_view, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(s->rho_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_rho must be positive, got %g", (double)s->rho_rel);
-  PetscCheck(s->M_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_M must be positive, got %g", (double)s->M_rel);
-  PetscCheck(s->eta_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_eta must be positive, got %g", (double)s->eta_rel);
-  PetscCheck(s->beta > 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_beta must be > 1, got %g", (double)s->beta);
-  PetscCheck(s->sweeps >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_sweeps must be >= 1, got %" PetscInt_FMT, s->sweeps);
-  PetscCheck(s->norm_method != QP_NORM_USER || s->norm_user > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_smalxe_norm_method user needs -tao_smalxe_norm <value>");
+  PetscCheck(s->rho_rel > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_rho must be positive, got %g", p, (double)s->rho_rel);
+  PetscCheck(s->M_rel > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_M must be positive, got %g", p, (double)s->M_rel);
+  PetscCheck(s->eta_rel > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_eta must be positive, got %g", p, (double)s->eta_rel);
+  PetscCheck(s->beta > 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_beta must be > 1, got %g", p, (double)s->beta);
+  PetscCheck(s->sweeps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_sweeps must be >= 1, got %" PetscInt_FMT, p, s->sweeps);
+  PetscCheck(s->norm_method != QP_NORM_USER || s->norm_user > 0, comm, PETSC_ERR_ARG_WRONG, "-%stao_smalxe_norm_method user needs -%stao_smalxe_norm <value>", p, p);
   /* the nested solvers read their options with ours (their type: from the options, else decided at setup) */
   for (auto &blk : s->blocks) {
     PetscBool typed;
