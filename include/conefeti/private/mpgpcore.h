@@ -82,3 +82,5 @@ PETSC_INTERN PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS, MPI_C
 /* ||A|| for a solve: the given value, or the cached or new estimate (products added to the counters). */
 PETSC_INTERN PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *, PetscViewer);
 PETSC_INTERN PetscErrorCode QPNormSettingsApply(QPNormSettings *, Mat, const char *, const char *, const char *, QPCounters *);
+/* At the start of a solve: TAO's gatol, gttol and grtol (or with an equality catol and crtol) are finite and >= 0. */
+PETSC_INTERN PetscErrorCode TaoQPCheckTolerances_Private(Tao, PetscBool);

@@ -1,6 +1,7 @@
 /* Options and the norm estimate of the MPRGP/MPGP core, shared by the TAO and KSP types. */
 #include <cstring>
 #include <conefeti/private/mpgpcore.h>
+#include <petsc/private/taoimpl.h>
 
 namespace {
 
@@ -35,6 +36,8 @@ PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject,
   PetscOptionsHeadBegin(PetscOptionsObject, title);
   PetscCall(MakeOptionName(prefix, kind, name, "gamma", &gamma));
   PetscCall(PetscOptionsReal(gamma.key, "Proportioning parameter Gamma > 0 (|beta|^2 <= Gamma^2 phi~.phi means proportional)", "MPGP", core->gamma, &core->gamma, NULL));
+  /* an infinite Gamma would call every iterate proportional (and Gamma^2 phi~.phi is NaN when phi~ = 0) */
+  PetscCheck(core->gamma > 0 && !PetscIsInfOrNanReal(core->gamma), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and > 0, got %g", gamma.shown, (double)core->gamma);
   PetscCall(MakeOptionName(prefix, kind, name, "alpha", &alpha));
   PetscCall(PetscOptionsReal(alpha.key, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "MPGP", core->alpha_scale, &core->alpha_scale, NULL));
   if (core->variant == MPGPVariant::MPGP) {
@@ -59,10 +62,11 @@ PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject,
   PetscCheck(norm->method != QP_NORM_USER || norm->user > 0, comm, PETSC_ERR_ARG_WRONG, "%s user needs %s <value>", opt.shown, normopt.shown);
   PetscCall(MakeOptionName(prefix, kind, name, "norm_margin", &opt));
   PetscCall(PetscOptionsReal(opt.key, "Relative safety margin added to the norm estimate (default 0.01 for slepc, 0.05 for power)", "MatQPEstimateNorm", norm->margin, &norm->margin, NULL));
+  /* a negative margin stands for the method's default; a NaN would silently become that default too */
+  PetscCheck(!PetscIsInfOrNanReal(norm->margin), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite (>= 0, or negative for the method's default), got %g", opt.shown, (double)norm->margin);
   PetscCall(MakeOptionName(prefix, kind, name, "counters_view", &opt));
   PetscCall(PetscOptionsBool(opt.key, "Print the counters as one JSON line after each solve", "QPCountersViewJSON", *counters_view, counters_view, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(core->gamma > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be positive, got %g", gamma.shown, (double)core->gamma);
   PetscCheck(core->alpha_scale > 0 && core->alpha_scale <= 2, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be in (0, 2], got %g", alpha.shown, (double)core->alpha_scale);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -97,5 +101,26 @@ PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *core, PetscViewer viewer)
                                      " replaced by projected steps, %" PetscInt_FMT " gradients recomputed for them\n",
                                      (double)core->arc, core->arc_steps, core->arc_rejected, core->arc_refreshed));
   else if (core->variant == MPGPVariant::MPGP) PetscCall(PetscViewerASCIIPrintf(viewer, "arc steps: off (disk blocks on their circle move only in projected steps)\n"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* TAO's tolerances as the QP types read them: gatol and gttol, and grtol (mprgp, mpgp) or catol and crtol
+   (equality, smalxe). TaoSetFromOptions() and TaoSetTolerances() take a NaN, which makes every test false
+   and the solve run to its iteration limit, so they are checked when a solve starts. */
+PetscErrorCode TaoQPCheckTolerances_Private(Tao tao, PetscBool equality)
+{
+  const char *prefix;
+  struct {
+    const char *name;
+    PetscReal   value;
+  } const tols[] = {{"gatol", tao->gatol}, {"gttol", tao->gttol}, {equality ? "catol" : "grtol", equality ? tao->catol : tao->grtol}, {equality ? "crtol" : NULL, tao->crtol}};
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  for (const auto &t : tols) {
+    if (!t.name) continue;
+    PetscCheck(t.value >= 0 && !PetscIsInfOrNanReal(t.value), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-%stao_%s must be finite and >= 0, got %g", prefix ? prefix : "", t.name,
+               (double)t.value);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

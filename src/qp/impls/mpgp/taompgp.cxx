@@ -214,6 +214,7 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   PetscFunctionBegin;
   PetscCall(TaoGetOptionsPrefix(tao, &prefix));
   if (!prefix) prefix = "";
+  PetscCall(TaoQPCheckTolerances_Private(tao, PETSC_FALSE));
   PetscCall(TaoQPPrepareSet(tao, qp));
   if (qp->core.variant == MPGPVariant::MPRGP) {
     PetscCall(SeparableSetHasCurvedBlocks(qp->set, &curved));
@@ -326,8 +327,8 @@ PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptions
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_cone_mu", qp->name));
   PetscCall(PetscOptionsReal(opt, "Cone coefficient for -tao_mpgp_block_type cone", "TaoQPSetConstraints", qp->cone_mu, &qp->cone_mu, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(qp->block_type != QP_BLOCK_CONE || qp->cone_mu >= 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-%stao_%s_cone_mu must be >= 0, got %g", prefix, qp->name,
-             (double)qp->cone_mu);
+  PetscCheck(qp->block_type != QP_BLOCK_CONE || (qp->cone_mu >= 0 && !PetscIsInfOrNanReal(qp->cone_mu)), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
+             "-%stao_%s_cone_mu must be finite and >= 0, got %g", prefix, qp->name, (double)qp->cone_mu);
   if (qp->block_type != QP_BLOCK_SCALAR && qp->core.variant == MPGPVariant::MPRGP)
     SETERRQ(PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-%stao_mprgp_block_type %s: mprgp handles bounds only; use -%stao_type mpgp", prefix, QPBlockTypes[qp->block_type], prefix);
   PetscFunctionReturn(PETSC_SUCCESS);
