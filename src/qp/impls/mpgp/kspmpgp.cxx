@@ -113,6 +113,11 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   PetscFunctionBegin;
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
   if (!prefix) prefix = "";
+  /* KSPSetFromOptions() takes a NaN tolerance, with which the test never holds and the solve ends in a
+     misleading reason (an indefinite operator) */
+  PetscCheck(ksp->rtol >= 0 && !PetscIsInfOrNanReal(ksp->rtol), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-%sksp_rtol must be finite and >= 0, got %g", prefix, (double)ksp->rtol);
+  PetscCheck(ksp->abstol >= 0 && !PetscIsInfOrNanReal(ksp->abstol), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-%sksp_atol must be finite and >= 0, got %g", prefix,
+             (double)ksp->abstol);
   PetscCall(PCGetOperators(ksp->pc, &A, NULL));
   PetscCall(KSPQPPrepareSet(ksp, qp));
   if (qp->core.variant == MPGPVariant::MPRGP) {
