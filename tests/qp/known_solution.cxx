@@ -10,6 +10,8 @@
      -blocks      tao_smalxe: inner solves as a Gauss-Seidel sweep over two blocks (disk entries, the rest)
      -equality_routines  tao_smalxe: give C x = d through TAO's equality-constraint routines
      -tol <t>     asserted bound on |x - x*| / |x*|
+     -prefix <p>  options prefix of the Tao or KSP (as the contact layer gives smalxe contact_): its
+                  options are then -<p>tao_*, and error messages must name them so
      -resolve     TAO solvers: solve again from the solution (a warm start) and print that solve's
                   iteration count as "RESOLVE its=<n>" (smalxe: with -tao_recycle_history it also keeps
                   the multiplier of the equality); the checks below apply to the second solution
@@ -70,7 +72,7 @@ static PetscErrorCode DiskAndRestBlocks(KnownQP *qp, IS blocks[2])
 int main(int argc, char **argv)
 {
   KnownQP     qp;
-  char        kind[64] = "bounds", solver[64] = "tao_mpgp";
+  char        kind[64] = "bounds", solver[64] = "tao_mpgp", prefix[64] = "";
   PetscInt    units = 20, m = 0, its = 0;
   PetscReal   cond = 100, scale = 1, rtol = 1e-10, tol = 1e-6, err, dist, xnorm, xsnorm, gpnorm, bound, bnorm;
   Vec         x, g, gp;
@@ -91,6 +93,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-blocks", &blocks, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-equality_routines", &routines, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-resolve", &resolve, NULL));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-prefix", prefix, sizeof(prefix), NULL));
   PetscCall(KnownQPCreate(PETSC_COMM_WORLD, kind, units, cond, scale, m, &qp));
   PetscCall(VecDuplicate(qp.xstar, &x));
   PetscCall(VecSet(x, 0.0));
@@ -101,6 +104,7 @@ int main(int argc, char **argv)
     Tao                tao;
     TaoConvergedReason r;
     PetscCall(TaoCreate(PETSC_COMM_WORLD, &tao));
+    if (prefix[0]) PetscCall(TaoSetOptionsPrefix(tao, prefix));
     PetscCall(TaoSetType(tao, s.substr(4).c_str()));
     PetscCall(TaoSetSolution(tao, x));
     PetscCall(TaoSetHessian(tao, qp.A, qp.A, NULL, NULL));
@@ -143,6 +147,7 @@ int main(int argc, char **argv)
     KSP                ksp;
     KSPConvergedReason r;
     PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
+    if (prefix[0]) PetscCall(KSPSetOptionsPrefix(ksp, prefix));
     PetscCall(KSPSetType(ksp, s.substr(4).c_str()));
     PetscCall(KSPSetOperators(ksp, qp.A, qp.A));
     PetscCall(KSPQPSetConstraints(ksp, qp.set));

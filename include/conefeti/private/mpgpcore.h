@@ -76,8 +76,11 @@ struct QPNormSettings {
   PetscReal    used   = 0;  /* the value of the last solve */
 };
 
-/* Options -<kind>_<name>_{gamma,alpha,bb,norm,norm_method,norm_margin,counters_view} (kind tao or ksp). */
-PETSC_INTERN PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS, MPI_Comm, const char *, const char *, MPGPCore *, QPNormSettings *, PetscBool *);
+/* Options -<kind>_<name>_{gamma,alpha,bb,norm,norm_method,norm_margin,counters_view} (kind tao or ksp); the
+   object's options prefix (may be NULL) only for the messages: PetscOptions*() add it themselves. */
+PETSC_INTERN PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS, MPI_Comm, const char *, const char *, const char *, MPGPCore *, QPNormSettings *, PetscBool *);
 /* ||A|| for a solve: the given value, or the cached or new estimate (products added to the counters). */
 PETSC_INTERN PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *, PetscViewer);
 PETSC_INTERN PetscErrorCode QPNormSettingsApply(QPNormSettings *, Mat, const char *, const char *, const char *, QPCounters *);
+/* At the start of a solve: TAO's gatol, gttol and grtol (or with an equality catol and crtol) are finite and >= 0. */
+PETSC_INTERN PetscErrorCode TaoQPCheckTolerances_Private(Tao, PetscBool);

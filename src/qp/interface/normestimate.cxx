@@ -194,7 +194,8 @@ PetscErrorCode MatQPEstimateNorm(Mat A, QPNormMethod method, PetscReal margin, c
   PetscFunctionBegin;
   PetscValidHeaderSpecific(A, MAT_CLASSID, 1);
   PetscCheck(method == QP_NORM_SLEPC || method == QP_NORM_POWER, PetscObjectComm((PetscObject)A), PETSC_ERR_ARG_WRONG, "MatQPEstimateNorm: method must be slepc or power");
-  PetscCheck(margin >= 0, PetscObjectComm((PetscObject)A), PETSC_ERR_ARG_OUTOFRANGE, "MatQPEstimateNorm: negative safety margin %g", (double)margin);
+  PetscCheck(margin >= 0 && !PetscIsInfOrNanReal(margin), PetscObjectComm((PetscObject)A), PETSC_ERR_ARG_OUTOFRANGE, "MatQPEstimateNorm: the safety margin must be finite and >= 0, got %g",
+             (double)margin);
   PetscCall(PetscObjectStateGet((PetscObject)A, &state));
   PetscCall(PetscObjectQuery((PetscObject)A, kCacheKey, (PetscObject *)&container));
   if (container) {

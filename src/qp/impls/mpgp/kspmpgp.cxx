@@ -104,17 +104,25 @@ PetscErrorCode KSPSetUp_QP(KSP ksp)
 
 PetscErrorCode KSPSolve_QP(KSP ksp)
 {
-  KSPQP    *qp = GetQP(ksp);
-  Mat       A;
-  PCType    pctype;
-  PetscBool pcnone, curved;
+  KSPQP      *qp = GetQP(ksp);
+  Mat         A;
+  PCType      pctype;
+  PetscBool   pcnone, curved;
+  const char *prefix;
 
   PetscFunctionBegin;
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  if (!prefix) prefix = "";
+  /* KSPSetFromOptions() takes a NaN tolerance, with which the test never holds and the solve ends in a
+     misleading reason (an indefinite operator) */
+  PetscCheck(ksp->rtol >= 0 && !PetscIsInfOrNanReal(ksp->rtol), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-%sksp_rtol must be finite and >= 0, got %g", prefix, (double)ksp->rtol);
+  PetscCheck(ksp->abstol >= 0 && !PetscIsInfOrNanReal(ksp->abstol), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-%sksp_atol must be finite and >= 0, got %g", prefix,
+             (double)ksp->abstol);
   PetscCall(PCGetOperators(ksp->pc, &A, NULL));
   PetscCall(KSPQPPrepareSet(ksp, qp));
   if (qp->core.variant == MPGPVariant::MPRGP) {
     PetscCall(SeparableSetHasCurvedBlocks(qp->set, &curved));
-    PetscCheck(!curved, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_WRONG, "KSP mprgp handles bounds only, but the set has disk or cone blocks; use -ksp_type mpgp");
+    PetscCheck(!curved, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_WRONG, "KSP mprgp handles bounds only, but the set has disk or cone blocks; use -%sksp_type mpgp", prefix);
   }
   PetscCall(PCGetType(ksp->pc, &pctype));
   PetscCall(PetscStrcmp(pctype, PCNONE, &pcnone));
@@ -122,11 +130,7 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
 
   /* the fixed step length matters only when there are constraints: without them every step is CG */
   if (qp->unconstrained) qp->norm.used = qp->norm.user > 0 ? qp->norm.user : 1.0;
-  else {
-    const char *kprefix;
-    PetscCall(KSPGetOptionsPrefix(ksp, &kprefix));
-    PetscCall(QPNormSettingsApply(&qp->norm, A, kprefix, "ksp", qp->name, &qp->counters));
-  }
+  else PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, "ksp", qp->name, &qp->counters));
 
   qp->core.A                = A;
   qp->core.b                = ksp->vec_rhs;
@@ -142,11 +146,9 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   if (qp->core.status == MPGPStatus::NORM_TOO_SMALL && qp->norm.user <= 0 && !qp->unconstrained) {
     /* the cached estimate belongs to an operator that has changed behind the same state: estimate
        again and go on from the current iterate (once) */
-    const char *kprefix;
     PetscCall(PetscInfo(ksp, "KSP %s: q rose with ||A|| = %g: estimating ||A|| again\n", qp->name, (double)qp->norm.used));
     PetscCall(MatQPClearNormEstimate(A));
-    PetscCall(KSPGetOptionsPrefix(ksp, &kprefix));
-    PetscCall(QPNormSettingsApply(&qp->norm, A, kprefix, "ksp", qp->name, &qp->counters));
+    PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, "ksp", qp->name, &qp->counters));
     qp->core.normA  = qp->norm.used;
     qp->core.resume = PETSC_TRUE; /* the convergence test keeps the tolerance it set at the first iteration 0 */
     ksp->reason     = KSP_CONVERGED_ITERATING;
@@ -155,8 +157,8 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   }
   if (qp->core.status == MPGPStatus::INDEFINITE) ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
   else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {
-    PetscCall(PetscInfo(ksp, "KSP %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL operator whose action changed needs PetscObjectStateIncrease(), or give -ksp_%s_norm\n", qp->name,
-                        (double)qp->norm.used, qp->name));
+    PetscCall(PetscInfo(ksp, "KSP %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL operator whose action changed needs PetscObjectStateIncrease(), or give -%sksp_%s_norm\n", qp->name,
+                        (double)qp->norm.used, prefix, qp->name));
     ksp->reason = KSP_DIVERGED_BREAKDOWN;
   } else if (qp->core.status == MPGPStatus::UNBOUNDED) { /* as KSPCG on p'Ap = 0 */
     PetscCall(PetscInfo(ksp, "KSP %s: p'Ap = 0 along a descent direction no constraint stops: the problem is unbounded below (a singular operator with an inconsistent right-hand side?)\n", qp->name));
@@ -172,16 +174,16 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
 
 PetscErrorCode KSPSetFromOptions_QP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  KSPQP *qp = GetQP(ksp);
+  KSPQP      *qp = GetQP(ksp);
+  const char *prefix;
 
   PetscFunctionBegin;
-  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)ksp), "ksp", qp->name, &qp->core, &qp->norm, &qp->counters_view));
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)ksp), prefix, "ksp", qp->name, &qp->core, &qp->norm, &qp->counters_view));
   {
     /* KSPSetFromOptions() gives the PC PETSc's default type (ILU, block Jacobi) before -ksp_type makes
        this KSP one of ours: that PC was not chosen, and ours is none unless chosen (-pc_type) */
-    const char *prefix;
-    PetscBool   kspset, pcset, dflt;
-    PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+    PetscBool kspset, pcset, dflt;
     PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, prefix, "-ksp_type", &kspset));
     PetscCall(PetscOptionsHasName(((PetscObject)ksp)->options, prefix, "-pc_type", &pcset));
     PetscCall(PetscObjectTypeCompareAny((PetscObject)ksp->pc, &dflt, PCILU, PCBJACOBI, PCICC, ""));

@@ -1,48 +1,73 @@
 /* Options and the norm estimate of the MPRGP/MPGP core, shared by the TAO and KSP types. */
 #include <cstring>
 #include <conefeti/private/mpgpcore.h>
+#include <petsc/private/taoimpl.h>
 
-/* kind: "tao" or "ksp"; name: "mprgp" or "mpgp" */
-PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject, MPI_Comm comm, const char *kind, const char *name, MPGPCore *core, QPNormSettings *norm, PetscBool *counters_view)
+namespace {
+
+/* An option as PetscOptions*() take it (key: -<kind>_<name>_<what>, the object's prefix added by them)
+   and as the user types it (shown: with the object's prefix, e.g. -contact_tao_smalxe_subsolver_tao_mpgp_gamma),
+   so that error messages name the option that was actually given. */
+struct OptionName {
+  char key[64], shown[320];
+};
+
+PetscErrorCode MakeOptionName(const char *prefix, const char *kind, const char *name, const char *what, OptionName *o)
 {
-  char      opt[64], title[64];
-  PetscReal value;
-  PetscBool set;
+  PetscFunctionBegin;
+  PetscCall(PetscSNPrintf(o->key, sizeof(o->key), "-%s_%s_%s", kind, name, what));
+  PetscCall(PetscSNPrintf(o->shown, sizeof(o->shown), "-%s%s", prefix ? prefix : "", o->key + 1));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
+/* prefix: the object's options prefix (may be NULL); kind: "tao" or "ksp"; name: "mprgp" or "mpgp" */
+PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject, MPI_Comm comm, const char *prefix, const char *kind, const char *name, MPGPCore *core, QPNormSettings *norm,
+                                      PetscBool *counters_view)
+{
+  char       title[64];
+  OptionName opt, gamma, alpha, normopt;
+  PetscReal  value;
+  PetscBool  set;
 
   PetscFunctionBegin;
   PetscCall(PetscSNPrintf(title, sizeof(title), "%s %s: QP over a separable set (conefeti)", kind, name));
   PetscOptionsHeadBegin(PetscOptionsObject, title);
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_gamma", kind, name));
-  PetscCall(PetscOptionsReal(opt, "Proportioning parameter Gamma > 0 (|beta|^2 <= Gamma^2 phi~.phi means proportional)", "MPGP", core->gamma, &core->gamma, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_alpha", kind, name));
-  PetscCall(PetscOptionsReal(opt, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "MPGP", core->alpha_scale, &core->alpha_scale, NULL));
+  PetscCall(MakeOptionName(prefix, kind, name, "gamma", &gamma));
+  PetscCall(PetscOptionsReal(gamma.key, "Proportioning parameter Gamma > 0 (|beta|^2 <= Gamma^2 phi~.phi means proportional)", "MPGP", core->gamma, &core->gamma, NULL));
+  /* an infinite Gamma would call every iterate proportional (and Gamma^2 phi~.phi is NaN when phi~ = 0) */
+  PetscCheck(core->gamma > 0 && !PetscIsInfOrNanReal(core->gamma), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and > 0, got %g", gamma.shown, (double)core->gamma);
+  PetscCall(MakeOptionName(prefix, kind, name, "alpha", &alpha));
+  PetscCall(PetscOptionsReal(alpha.key, "Fixed step length as a multiple of 1/||A||, in (0, 2]", "MPGP", core->alpha_scale, &core->alpha_scale, NULL));
   if (core->variant == MPGPVariant::MPGP) {
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_bb", kind, name));
-    PetscCall(PetscOptionsBool(opt, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "MPGP", core->bb, &core->bb, NULL));
-    PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_arc", kind, name));
-    PetscCall(PetscOptionsReal(opt, "CG steps also move a disk block on its circle along the circle while alpha |g.nu|/r <= this (0: such blocks move only in projected steps)", "MPGP", core->arc,
+    PetscCall(MakeOptionName(prefix, kind, name, "bb", &opt));
+    PetscCall(PetscOptionsBool(opt.key, "Try Barzilai-Borwein lengths in gradient projection steps (kept only when q decreases)", "MPGP", core->bb, &core->bb, NULL));
+    PetscCall(MakeOptionName(prefix, kind, name, "arc", &opt));
+    PetscCall(PetscOptionsReal(opt.key, "CG steps also move a disk block on its circle along the circle while alpha |g.nu|/r <= this (0: such blocks move only in projected steps)", "MPGP", core->arc,
                                &core->arc, NULL));
-    PetscCheck(core->arc >= 0 && !PetscIsInfOrNanReal(core->arc), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and >= 0, got %g", opt, (double)core->arc);
+    PetscCheck(core->arc >= 0 && !PetscIsInfOrNanReal(core->arc), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and >= 0, got %g", opt.shown, (double)core->arc);
   }
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_expansion_projcg", kind, name));
-  PetscCall(PetscOptionsBool(opt, "Expansion steps first try the projected full CG step P(x - a_cg p), kept when q is no higher than at the feasible half step (default: Dostal's expansion only)",
+  PetscCall(MakeOptionName(prefix, kind, name, "expansion_projcg", &opt));
+  PetscCall(PetscOptionsBool(opt.key, "Expansion steps first try the projected full CG step P(x - a_cg p), kept when q is no higher than at the feasible half step (default: Dostal's expansion only)",
                              "MPGP", core->projcg, &core->projcg, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm", kind, name));
-  PetscCall(PetscOptionsReal(opt, "Use this value of ||A|| instead of estimating it", strcmp(kind, "ksp") ? "TaoQPSetNormEstimate" : "KSPQPSetNormEstimate", norm->user, &value, &set));
+  PetscCall(MakeOptionName(prefix, kind, name, "norm", &normopt));
+  PetscCall(PetscOptionsReal(normopt.key, "Use this value of ||A|| instead of estimating it", strcmp(kind, "ksp") ? "TaoQPSetNormEstimate" : "KSPQPSetNormEstimate", norm->user, &value, &set));
   if (set) {
-    PetscCheck(value >= 0 && !PetscIsInfOrNanReal(value), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and > 0 (0 to estimate), got %g", opt, (double)value);
+    PetscCheck(value >= 0 && !PetscIsInfOrNanReal(value), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and > 0 (0 to estimate), got %g", normopt.shown, (double)value);
     norm->user = value;
   }
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm_method", kind, name));
-  PetscCall(PetscOptionsEnum(opt, "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)norm->method, (PetscEnum *)&norm->method, NULL));
-  PetscCheck(norm->method != QP_NORM_USER || norm->user > 0, comm, PETSC_ERR_ARG_WRONG, "-%s_%s_norm_method user needs -%s_%s_norm <value>", kind, name, kind, name);
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_norm_margin", kind, name));
-  PetscCall(PetscOptionsReal(opt, "Relative safety margin added to the norm estimate (default 0.01 for slepc, 0.05 for power)", "MatQPEstimateNorm", norm->margin, &norm->margin, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-%s_%s_counters_view", kind, name));
-  PetscCall(PetscOptionsBool(opt, "Print the counters as one JSON line after each solve", "QPCountersViewJSON", *counters_view, counters_view, NULL));
+  PetscCall(MakeOptionName(prefix, kind, name, "norm_method", &opt));
+  PetscCall(PetscOptionsEnum(opt.key, "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)norm->method, (PetscEnum *)&norm->method, NULL));
+  PetscCheck(norm->method != QP_NORM_USER || norm->user > 0, comm, PETSC_ERR_ARG_WRONG, "%s user needs %s <value>", opt.shown, normopt.shown);
+  PetscCall(MakeOptionName(prefix, kind, name, "norm_margin", &opt));
+  PetscCall(PetscOptionsReal(opt.key, "Relative safety margin added to the norm estimate (default 0.01 for slepc, 0.05 for power)", "MatQPEstimateNorm", norm->margin, &norm->margin, NULL));
+  /* a negative margin stands for the method's default; a NaN would silently become that default too */
+  PetscCheck(!PetscIsInfOrNanReal(norm->margin), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite (>= 0, or negative for the method's default), got %g", opt.shown, (double)norm->margin);
+  PetscCall(MakeOptionName(prefix, kind, name, "counters_view", &opt));
+  PetscCall(PetscOptionsBool(opt.key, "Print the counters as one JSON line after each solve", "QPCountersViewJSON", *counters_view, counters_view, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(core->gamma > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%s_%s_gamma must be positive, got %g", kind, name, (double)core->gamma);
-  PetscCheck(core->alpha_scale > 0 && core->alpha_scale <= 2, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%s_%s_alpha must be in (0, 2], got %g", kind, name, (double)core->alpha_scale);
+  PetscCheck(core->alpha_scale > 0 && core->alpha_scale <= 2, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be in (0, 2], got %g", alpha.shown, (double)core->alpha_scale);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -76,5 +101,26 @@ PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *core, PetscViewer viewer)
                                      " replaced by projected steps, %" PetscInt_FMT " gradients recomputed for them\n",
                                      (double)core->arc, core->arc_steps, core->arc_rejected, core->arc_refreshed));
   else if (core->variant == MPGPVariant::MPGP) PetscCall(PetscViewerASCIIPrintf(viewer, "arc steps: off (disk blocks on their circle move only in projected steps)\n"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* TAO's tolerances as the QP types read them: gatol and gttol, and grtol (mprgp, mpgp) or catol and crtol
+   (equality, smalxe). TaoSetFromOptions() and TaoSetTolerances() take a NaN, which makes every test false
+   and the solve run to its iteration limit, so they are checked when a solve starts. */
+PetscErrorCode TaoQPCheckTolerances_Private(Tao tao, PetscBool equality)
+{
+  const char *prefix;
+  struct {
+    const char *name;
+    PetscReal   value;
+  } const tols[] = {{"gatol", tao->gatol}, {"gttol", tao->gttol}, {equality ? "catol" : "grtol", equality ? tao->catol : tao->grtol}, {equality ? "crtol" : NULL, tao->crtol}};
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  for (const auto &t : tols) {
+    if (!t.name) continue;
+    PetscCheck(t.value >= 0 && !PetscIsInfOrNanReal(t.value), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-%stao_%s must be finite and >= 0, got %g", prefix ? prefix : "", t.name,
+               (double)t.value);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

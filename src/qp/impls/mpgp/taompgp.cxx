@@ -129,24 +129,28 @@ PetscErrorCode BuildBlocksFromBounds(Tao tao, TaoQP *qp)
   const PetscScalar     *l = NULL, *u = NULL;
   std::vector<PetscInt>  idx;
   std::vector<PetscReal> center, radius, mu;
+  const char            *prefix;
 
   PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  if (!prefix) prefix = "";
   PetscCall(VecGetLocalSize(tao->solution, &n));
   PetscCall(VecGetOwnershipRange(tao->solution, &rstart, NULL));
   PetscCheck(n % bs == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
-             "-tao_%s_block_type %s: the local length %" PetscInt_FMT " is not a multiple of the block length %" PetscInt_FMT " (a block never straddles MPI ranks)", qp->name,
+             "-%stao_%s_block_type %s: the local length %" PetscInt_FMT " is not a multiple of the block length %" PetscInt_FMT " (a block never straddles MPI ranks)", prefix, qp->name,
              QPBlockTypes[qp->block_type], n, bs);
   if (qp->block_type == QP_BLOCK_DISK) {
-    PetscCheck(tao->XL && tao->XU, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "-tao_%s_block_type disk needs variable bounds: each pair's box [l,u]^2 gives the inscribed disk",
-               qp->name);
+    PetscCheck(tao->XL && tao->XU, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "-%stao_%s_block_type disk needs variable bounds: each pair's box [l,u]^2 gives the inscribed disk",
+               prefix, qp->name);
     PetscCall(VecGetArrayRead(tao->XL, &l));
     PetscCall(VecGetArrayRead(tao->XU, &u));
     for (PetscInt k = 0; k < n; k += 2) {
       const PetscReal w0 = PetscRealPart(u[k] - l[k]), w1 = PetscRealPart(u[k + 1] - l[k + 1]);
-      PetscCheck(PetscIsNormalReal(w0) || w0 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_block_type disk: entry %" PetscInt_FMT " needs finite bounds l <= u", qp->name, rstart + k);
+      PetscCheck(PetscIsNormalReal(w0) || w0 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_%s_block_type disk: entry %" PetscInt_FMT " needs finite bounds l <= u", prefix, qp->name,
+                 rstart + k);
       PetscCheck(w0 >= 0 && PetscAbsReal(w0 - w1) <= 1e-12 * PetscMax(PetscAbsReal(w0), PetscAbsReal(w1)), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-tao_%s_block_type disk: the box of entries %" PetscInt_FMT ",%" PetscInt_FMT " is not a square with l <= u (widths %g, %g)", qp->name, rstart + k, rstart + k + 1, (double)w0,
-                 (double)w1);
+                 "-%stao_%s_block_type disk: the box of entries %" PetscInt_FMT ",%" PetscInt_FMT " is not a square with l <= u (widths %g, %g)", prefix, qp->name, rstart + k, rstart + k + 1,
+                 (double)w0, (double)w1);
       PetscCallCXX(idx.insert(idx.end(), {rstart + k, rstart + k + 1}));
       PetscCallCXX(center.insert(center.end(), {PetscRealPart(l[k] + u[k]) / 2, PetscRealPart(l[k + 1] + u[k + 1]) / 2}));
       PetscCallCXX(radius.push_back(w0 / 2));
@@ -201,16 +205,20 @@ PetscErrorCode TaoQPPrepareSet(Tao tao, TaoQP *qp)
 
 PetscErrorCode TaoSolve_QP(Tao tao)
 {
-  TaoQP    *qp = GetQP(tao);
-  Mat       A;
-  PetscInt  m, n, N;
-  PetscBool curved;
+  TaoQP      *qp = GetQP(tao);
+  Mat         A;
+  PetscInt    m, n, N;
+  PetscBool   curved;
+  const char *prefix;
 
   PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  if (!prefix) prefix = "";
+  PetscCall(TaoQPCheckTolerances_Private(tao, PETSC_FALSE));
   PetscCall(TaoQPPrepareSet(tao, qp));
   if (qp->core.variant == MPGPVariant::MPRGP) {
     PetscCall(SeparableSetHasCurvedBlocks(qp->set, &curved));
-    PetscCheck(!curved, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "TAO mprgp handles bounds only, but the set has disk or cone blocks; use -tao_type mpgp");
+    PetscCheck(!curved, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "TAO mprgp handles bounds only, but the set has disk or cone blocks; use -%stao_type mpgp", prefix);
   }
 
   /* the Hessian: from the user's routine if there is one, else the Mat given to TaoSetHessian() */
@@ -235,11 +243,7 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   qp->bnorm = PetscSqrtReal(qp->bnorm);
 
   /* the norm estimate for the fixed step length */
-  {
-    const char *tprefix;
-    PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
-    PetscCall(QPNormSettingsApply(&qp->norm, A, tprefix, "tao", qp->name, &qp->counters));
-  }
+  PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, "tao", qp->name, &qp->counters));
 
   qp->core.A          = A;
   qp->core.b          = qp->b;
@@ -263,11 +267,9 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   if (qp->core.status == MPGPStatus::NORM_TOO_SMALL && qp->norm.user <= 0) {
     /* the cached estimate belongs to an operator that has changed behind the same state: estimate
        again and go on from the current iterate (once) */
-    const char *tprefix;
     PetscCall(PetscInfo(tao, "TAO %s: q rose with ||A|| = %g: estimating ||A|| again\n", qp->name, (double)qp->norm.used));
     PetscCall(MatQPClearNormEstimate(A));
-    PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
-    PetscCall(QPNormSettingsApply(&qp->norm, A, tprefix, "tao", qp->name, &qp->counters));
+    PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, "tao", qp->name, &qp->counters));
     qp->core.normA  = qp->norm.used;
     qp->core.resume = PETSC_TRUE; /* the stopping reference (gref) stays that of the first start */
     tao->reason     = TAO_CONTINUE_ITERATING;
@@ -282,8 +284,8 @@ PetscErrorCode TaoSolve_QP(Tao tao)
     PetscCall(PetscInfo(tao, "TAO %s: p'Ap = 0 along a descent direction no constraint stops: q is unbounded below\n", qp->name));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {
-    PetscCall(PetscInfo(tao, "TAO %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL Hessian whose action changed needs PetscObjectStateIncrease(), or give -tao_%s_norm\n", qp->name,
-                        (double)qp->norm.used, qp->name));
+    PetscCall(PetscInfo(tao, "TAO %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL Hessian whose action changed needs PetscObjectStateIncrease(), or give -%stao_%s_norm\n", qp->name,
+                        (double)qp->norm.used, prefix, qp->name));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
   if (qp->counters_view) {
@@ -296,24 +298,25 @@ PetscErrorCode TaoSolve_QP(Tao tao)
 
 PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  TaoQP *qp = GetQP(tao);
-  char   opt[64], title[64];
+  TaoQP      *qp = GetQP(tao);
+  char        opt[64], title[64];
+  const char *prefix;
 
   PetscFunctionBegin;
-  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), "tao", qp->name, &qp->core, &qp->norm, &qp->counters_view));
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  if (!prefix) prefix = "";
+  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), prefix, "tao", qp->name, &qp->core, &qp->norm, &qp->counters_view));
   {
     PC pc;
     PetscCall(TaoQPGetPC_QP(tao, &pc));
     PetscCall(PCSetFromOptions(pc));
   }
   if (qp->core.variant == MPGPVariant::MPRGP) { /* bounds only: no block description to choose, so none in -help */
-    const char *prefix;
-    PetscEnum   type = (PetscEnum)QP_BLOCK_SCALAR;
-    PetscBool   set;
-    PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+    PetscEnum type = (PetscEnum)QP_BLOCK_SCALAR;
+    PetscBool set;
     PetscCall(PetscOptionsGetEnum(((PetscObject)tao)->options, prefix, "-tao_mprgp_block_type", QPBlockTypes, &type, &set));
-    PetscCheck(!set || type == (PetscEnum)QP_BLOCK_SCALAR, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_mprgp_block_type %s: mprgp handles bounds only; use -tao_type mpgp",
-               QPBlockTypes[type]);
+    PetscCheck(!set || type == (PetscEnum)QP_BLOCK_SCALAR, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-%stao_mprgp_block_type %s: mprgp handles bounds only; use -%stao_type mpgp",
+               prefix, QPBlockTypes[type], prefix);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscSNPrintf(title, sizeof(title), "%s: block description from the variable bounds", qp->name));
@@ -324,9 +327,10 @@ PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptions
   PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_cone_mu", qp->name));
   PetscCall(PetscOptionsReal(opt, "Cone coefficient for -tao_mpgp_block_type cone", "TaoQPSetConstraints", qp->cone_mu, &qp->cone_mu, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(qp->block_type != QP_BLOCK_CONE || qp->cone_mu >= 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_%s_cone_mu must be >= 0, got %g", qp->name, (double)qp->cone_mu);
+  PetscCheck(qp->block_type != QP_BLOCK_CONE || (qp->cone_mu >= 0 && !PetscIsInfOrNanReal(qp->cone_mu)), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
+             "-%stao_%s_cone_mu must be finite and >= 0, got %g", prefix, qp->name, (double)qp->cone_mu);
   if (qp->block_type != QP_BLOCK_SCALAR && qp->core.variant == MPGPVariant::MPRGP)
-    SETERRQ(PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_mprgp_block_type %s: mprgp handles bounds only; use -tao_type mpgp", QPBlockTypes[qp->block_type]);
+    SETERRQ(PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-%stao_mprgp_block_type %s: mprgp handles bounds only; use -%stao_type mpgp", prefix, QPBlockTypes[qp->block_type], prefix);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

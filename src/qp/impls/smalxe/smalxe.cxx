@@ -602,7 +602,9 @@ PetscErrorCode SetUpOnce(Tao tao, TaoSMALXE *s)
     PetscCall(VecDuplicate(s->r, &s->mu));
   }
   if (s->projector && !s->Q) { /* projector form from C with orthonormal rows: Q = C'C, x~ = C'd */
-    PetscCheck(s->C, comm, PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: -tao_smalxe_projector needs C");
+    const char *prefix;
+    PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+    PetscCheck(s->C, comm, PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: -%stao_smalxe_projector needs C", prefix ? prefix : "");
     PetscCall(MatCreateShell(comm, n, n, N, N, s, &s->Q));
     PetscCall(MatShellSetOperation(s->Q, MATOP_MULT, (void (*)(void))QFromCMult));
     PetscCall(VecDuplicate(tao->solution, &s->xt));
@@ -834,6 +836,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     PetscCheck(m == n && n == N, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_SIZ,
                "TAO smalxe: the Hessian must be square with the solution's size %" PetscInt_FMT ", it is %" PetscInt_FMT " x %" PetscInt_FMT, N, m, n);
   }
+  PetscCall(TaoQPCheckTolerances_Private(tao, PETSC_TRUE));
   {
     const char *prefix;
     PetscCall(TaoGetOptionsPrefix(tao, &prefix));
@@ -964,11 +967,15 @@ PetscErrorCode TaoSetUp_SMALXE(Tao tao)
 
 PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  TaoSMALXE *s = Get(tao);
-  PetscReal  value;
-  PetscBool  set;
+  TaoSMALXE  *s = Get(tao);
+  PetscReal   value;
+  PetscBool   set;
+  const char *p; /* the options prefix, for the messages */
+  MPI_Comm    comm = PetscObjectComm((PetscObject)tao);
 
   PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &p));
+  if (!p) p = "";
   PetscOptionsHeadBegin(PetscOptionsObject, "smalxe: semi-monotonic augmented Lagrangian for C x = d (conefeti)");
   PetscCall(PetscOptionsReal("-tao_smalxe_rho", "Penalty rho relative to ||A|| (||PAP|| in projector form, ||A||/||C||^2 otherwise)", "TaoSMALXE", s->rho_rel, &s->rho_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_M", "Initial M relative to ||H||: inner solves stop when |gP| <= min(M |Cx - d|, eta)", "TaoSMALXE", s->M_rel, &s->M_rel, NULL));
@@ -982,30 +989,43 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
       PetscOptionsReal("-tao_smalxe_block_rtol", "With blocks: a block solve also stops when its projected gradient fell by this factor", "TaoSMALXESetBlocks", s->block_rtol, &s->block_rtol, NULL));
   PetscCall(PetscOptionsInt("-tao_smalxe_sweeps", "Block Gauss-Seidel sweeps per outer iteration (with TaoSMALXESetBlocks())", "TaoSMALXESetBlocks", s->sweeps, &s->sweeps, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_norm", "Use this ||A|| (||PAP|| in projector form) instead of estimating it", "TaoQPSetNormEstimate", s->norm_user, &value, &set));
-  if (set) PetscCall(TaoQPSetNormEstimate(tao, value));
+  if (set) {
+    /* checked here so that the message names the option, not TaoQPSetNormEstimate() */
+    PetscCheck(value >= 0 && !PetscIsInfOrNanReal(value), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_norm must be finite and > 0 (0 to estimate), got %g", p, (double)value);
+    PetscCall(TaoQPSetNormEstimate(tao, value));
+  }
   PetscCall(PetscOptionsEnum("-tao_smalxe_norm_method", "How ||A|| is estimated", "MatQPEstimateNorm", QPNormMethods, (PetscEnum)s->norm_method, (PetscEnum *)&s->norm_method, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_norm_margin", "Relative safety margin of the norm estimate", "MatQPEstimateNorm", s->norm_margin, &s->norm_margin, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_inner_floor", "Inner solves also stop when |gP| <= this fraction of the final tolerance max(gatol, gttol |b|) (0: never; at most 1)", "TaoSMALXE",
                              s->inner_floor, &s->inner_floor, NULL));
-  PetscCheck(s->inner_floor >= 0 && s->inner_floor <= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_inner_floor must be in [0, 1], got %g", (double)s->inner_floor);
+  PetscCheck(s->inner_floor >= 0 && s->inner_floor <= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_inner_floor must be in [0, 1], got %g", p, (double)s->inner_floor);
   PetscCall(PetscOptionsInt("-tao_smalxe_anderson", "Anderson acceleration of the multiplier update: depth (0: the plain update mu += rho (Cx - d); -1: 3, or 0 with Gauss-Seidel blocks)",
                             "TaoSMALXESetAnderson", s->anderson, &s->anderson, NULL));
-  PetscCheck(s->anderson >= -1 && s->anderson <= 20, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
-             "-tao_smalxe_anderson: the depth must be in [0, 20] (or -1: automatic), got %" PetscInt_FMT, s->anderson);
+  PetscCheck(s->anderson >= -1 && s->anderson <= 20, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_anderson: the depth must be in [0, 20] (or -1: automatic), got %" PetscInt_FMT, p, s->anderson);
   PetscCall(PetscOptionsInt("-tao_smalxe_anderson_start", "First outer iteration (from 0) whose multiplier update is accelerated (the first inner solves are loose and make poor history)",
                             "TaoSMALXESetAnderson", s->anderson_start, &s->anderson_start, NULL));
-  PetscCheck(s->anderson_start >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_anderson_start: must be >= 1, got %" PetscInt_FMT, s->anderson_start);
+  PetscCheck(s->anderson_start >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_anderson_start: must be >= 1, got %" PetscInt_FMT, p, s->anderson_start);
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
                             "Stop when |Cx - d| makes less than 1% progress in this many outer iterations: infeasible if the multiplier grew by a quarter meanwhile, stalled if it settled (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_counters_view", "Print the counters as one JSON line after each solve", "QPCountersViewJSON", s->counters_view, &s->counters_view, NULL));
   PetscOptionsHeadEnd();
-  PetscCheck(s->rho_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_rho must be positive, got %g", (double)s->rho_rel);
-  PetscCheck(s->M_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_M must be positive, got %g", (double)s->M_rel);
-  PetscCheck(s->eta_rel > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_eta must be positive, got %g", (double)s->eta_rel);
-  PetscCheck(s->beta > 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_beta must be > 1, got %g", (double)s->beta);
-  PetscCheck(s->sweeps >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-tao_smalxe_sweeps must be >= 1, got %" PetscInt_FMT, s->sweeps);
-  PetscCheck(s->norm_method != QP_NORM_USER || s->norm_user > 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-tao_smalxe_norm_method user needs -tao_smalxe_norm <value>");
+  /* "x > 0" alone lets inf through: an infinite rho reaches the nested solver as an infinite ||H|| (an
+     error blaming TaoQPSetNormEstimate()), an infinite M or eta never tightens the inner solves (the
+     outer loop then stagnates and is diagnosed as an equality that cannot be met), an infinite beta
+     sends M straight to its floor */
+  PetscCheck(s->rho_rel > 0 && !PetscIsInfOrNanReal(s->rho_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_rho must be finite and > 0, got %g", p, (double)s->rho_rel);
+  PetscCheck(s->M_rel > 0 && !PetscIsInfOrNanReal(s->M_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_M must be finite and > 0, got %g", p, (double)s->M_rel);
+  PetscCheck(s->M_min_rel >= 0 && !PetscIsInfOrNanReal(s->M_min_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_M_min must be finite and >= 0 (0: no floor), got %g", p, (double)s->M_min_rel);
+  PetscCheck(s->eta_rel > 0 && !PetscIsInfOrNanReal(s->eta_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_eta must be finite and > 0, got %g", p, (double)s->eta_rel);
+  PetscCheck(s->beta > 1 && !PetscIsInfOrNanReal(s->beta), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_beta must be finite and > 1, got %g", p, (double)s->beta);
+  PetscCheck(s->block_rtol >= 0 && s->block_rtol < 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_block_rtol must be in [0, 1) (0: off), got %g", p, (double)s->block_rtol);
+  /* a negative margin stands for the method's default; a NaN would silently become that default too */
+  PetscCheck(!PetscIsInfOrNanReal(s->norm_margin), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_norm_margin must be finite (>= 0, or negative for the method's default), got %g", p,
+             (double)s->norm_margin);
+  PetscCheck(s->stagnation_its >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_stagnation_its must be >= 0 (0: never), got %" PetscInt_FMT, p, s->stagnation_its);
+  PetscCheck(s->sweeps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_sweeps must be >= 1, got %" PetscInt_FMT, p, s->sweeps);
+  PetscCheck(s->norm_method != QP_NORM_USER || s->norm_user > 0, comm, PETSC_ERR_ARG_WRONG, "-%stao_smalxe_norm_method user needs -%stao_smalxe_norm <value>", p, p);
   /* the nested solvers read their options with ours (their type: from the options, else decided at setup) */
   for (auto &blk : s->blocks) {
     PetscBool typed;
@@ -1315,7 +1335,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   Options Database Keys:
 + -tao_smalxe_rho <1>          - penalty rho relative to ||A|| (||PAP|| in projector form)
 . -tao_smalxe_M <0.1>          - initial M relative to ||H|| (inner precision |gP| <= min(M |Cx - d|, eta))
-. -tao_smalxe_M_min <1e-4>     - floor of M relative to ||H||
+. -tao_smalxe_M_min <1e-4>     - floor of M relative to ||H|| (0: none)
 . -tao_smalxe_eta <0.1>        - eta relative to |b|
 . -tao_smalxe_beta <10>        - update factor of M or rho
 . -tao_smalxe_update <M>       - M (SMALBE-M, rho fixed) or rho (SMALBE)
@@ -1324,6 +1344,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 . -tao_smalxe_block_rtol <0>    - with blocks, a block solve also stops when its projected gradient fell by this factor (0: off)
 . -tao_smalxe_norm <value>     - ||A|| (||PAP||) given, not estimated
 . -tao_smalxe_norm_method      - slepc or power
+. -tao_smalxe_norm_margin      - safety margin on the estimate (negative: the method's default, 0.01 slepc, 0.05 power)
 . -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
 . -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance (0: only the adaptive precision)
 . -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
