@@ -168,7 +168,7 @@ PetscErrorCode FEMSetMaterial(FEM fem, PetscInt body, PetscReal E, PetscReal nu)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
   PetscCall(CheckBody(fem, body));
-  PetscCheck(E > 0, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Young's modulus E = %g must be positive", (double)E);
+  PetscCheck(E > 0 && !PetscIsInfOrNanReal(E), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Young's modulus E = %g must be a finite positive number", (double)E);
   PetscCheck(nu > -1 && nu < 0.5, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Poisson's ratio nu = %g must lie in (-1, 0.5)", (double)nu);
   fem->impl->bodies[body].E           = E;
   fem->impl->bodies[body].nu          = nu;
@@ -462,6 +462,9 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
   PetscCall(PetscOptionsReal("-fem_nu", "Poisson's ratio of bodies without FEMSetMaterial()", "FEMSetMaterial", nu, &nu, &setnu));
   PetscCall(PetscOptionsName("-fem_view", "View the model after setup", "FEMView", NULL));
   PetscOptionsEnd();
+  /* checked where read, also when every body has its own material: inf passes "E > 0" and fails much later (FETI's K+ check) */
+  PetscCheck(!setE || (E > 0 && !PetscIsInfOrNanReal(E)), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_E %g: Young's modulus must be a finite positive number", (double)E);
+  PetscCheck(!setnu || (nu > -1 && nu < 0.5), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_nu %g: Poisson's ratio must lie in (-1, 0.5)", (double)nu);
   PetscCheck(!strcmp(mattype, "sbaij") || !strcmp(mattype, "aij"), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_matrix_type %s: use sbaij or aij", mattype);
   impl.sbaij = strcmp(mattype, "sbaij") ? PETSC_FALSE : PETSC_TRUE;
   if (setparts && type == FEM_DECOMPOSITION_STRUCTURED)
@@ -476,8 +479,6 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
         PetscCheck(b.parts[d] >= 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_subdomains: count %" PetscInt_FMT " must be positive", b.parts[d]);
     }
     if (!b.materialset) {
-      PetscCheck(!setE || E > 0, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_E %g must be positive", (double)E);
-      PetscCheck(!setnu || (nu > -1 && nu < 0.5), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_nu %g must lie in (-1, 0.5)", (double)nu);
       if (setE) b.E = E;
       if (setnu) b.nu = nu;
     }

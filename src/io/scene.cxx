@@ -317,7 +317,8 @@ PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody
   PetscCall(r.Real(s + "E", "Young's modulus (default -fem_E, else steel 2.12e11)", "Young's modulus E > 0", &body.E, &setE));
   PetscCall(r.Real(s + "nu", "Poisson's ratio (default -fem_nu, else 0.277)", "Poisson's ratio in (-1, 0.5)", &body.nu, &setnu));
   if (exists) {
-    PetscCheck(body.E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: Young's modulus must be positive", setE ? r.Full(s + "E").c_str() : "-fem_E", (double)body.E);
+    PetscCheck(body.E > 0 && !PetscIsInfOrNanReal(body.E), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: Young's modulus must be positive and finite", setE ? r.Full(s + "E").c_str() : "-fem_E",
+               (double)body.E);
     PetscCheck(body.nu > -1 && body.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: Poisson's ratio must lie in (-1, 0.5)", setnu ? r.Full(s + "nu").c_str() : "-fem_nu", (double)body.nu);
   }
   /* decomposition */
