@@ -39,6 +39,9 @@ def run(exe, ranks, args, repeat=1, timeout=3600):
             sys.stderr.write("failed: %s\n%s\n" % (" ".join(cmd), out[-2000:]))
             return None
         r = {k: (float(v) if re.match(r"^-?[0-9.e+-]+$", v) else v) for k, v in (kv.split("=") for kv in m.group(1).split())}
+        if r.get("converged") == "false":  # its counts and times would read as a result
+            sys.stderr.write("not converged: %s\n%s\n" % (" ".join(cmd), out[-2000:]))
+            return None
         if best is None:
             best = r
         else:

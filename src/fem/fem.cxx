@@ -99,6 +99,8 @@ static PetscErrorCode CheckBody(FEM fem, PetscInt body)
   Notes:
   The six faces carry the tags x0, x1, y0, y1, z0, z1 (x = lower[0], x = upper[0], ...).
   The default material is steel (E = 2.12e11, nu = 0.277) and the default decomposition one subdomain.
+  The mesh is numbered by `PetscInt`: its 6 nx ny nz tetrahedra and 3 (nx+1)(ny+1)(nz+1) unknowns (summed over
+  all bodies) must not exceed `PETSC_MAX_INT`, else this is an error.
 
   Level: beginner
 
@@ -112,11 +114,28 @@ PetscErrorCode FEMAddBox(FEM fem, const PetscReal lower[3], const PetscReal uppe
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
   PetscCheck(!fem->impl->setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Add bodies before FEMSetUp()");
   for (PetscInt d = 0; d < 3; d++) {
+    PetscCheck(!PetscIsInfOrNanReal(lower[d]) && !PetscIsInfOrNanReal(upper[d]), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE,
+               "Box side %" PetscInt_FMT ": lower %g and upper %g must be finite numbers", d, (double)lower[d], (double)upper[d]);
     PetscCheck(upper[d] > lower[d], PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Box side %" PetscInt_FMT ": upper %g must exceed lower %g", d, (double)upper[d], (double)lower[d]);
     PetscCheck(cells[d] >= 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Box needs at least one cell along axis %" PetscInt_FMT ", got %" PetscInt_FMT, d, cells[d]);
     b.lower[d] = lower[d];
     b.upper[d] = upper[d];
     b.cells[d] = cells[d];
+  }
+  {
+    /* Node, element and dof numbers are PetscInt: count them in floating point (exact up to 2^53, and an
+       overflowing product stays far above the limit), so a box too large fails here, not in the mesher */
+    const double nodes = ((double)cells[0] + 1) * ((double)cells[1] + 1) * ((double)cells[2] + 1), tets = 6.0 * cells[0] * cells[1] * cells[2];
+    double       total = 3 * nodes; /* the undecomposed dofs of all bodies, numbered together */
+    for (const FEMBody &o : fem->impl->bodies) total += 3.0 * (o.cells[0] + 1) * (o.cells[1] + 1) * (o.cells[2] + 1);
+    PetscCheck(3 * nodes <= PETSC_MAX_INT && tets <= PETSC_MAX_INT, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE,
+               "The box of %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT
+               " cells has %.4g unknowns (3 per node) and %.4g tetrahedra: its mesh does not fit %d-bit PetscInt indices (at most %" PetscInt_FMT "); use fewer cells",
+               cells[0], cells[1], cells[2], 3 * nodes, tets, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT);
+    PetscCheck(total <= PETSC_MAX_INT, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE,
+               "With the box of %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT
+               " cells the model's %d bodies have %.4g unknowns (3 per node): they do not fit %d-bit PetscInt indices (at most %" PetscInt_FMT "); use fewer cells",
+               cells[0], cells[1], cells[2], (int)fem->impl->bodies.size() + 1, total, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT);
   }
   b.E  = 2.12e11;
   b.nu = 0.277;
@@ -149,7 +168,7 @@ PetscErrorCode FEMSetMaterial(FEM fem, PetscInt body, PetscReal E, PetscReal nu)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
   PetscCall(CheckBody(fem, body));
-  PetscCheck(E > 0, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Young's modulus E = %g must be positive", (double)E);
+  PetscCheck(E > 0 && !PetscIsInfOrNanReal(E), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Young's modulus E = %g must be a finite positive number", (double)E);
   PetscCheck(nu > -1 && nu < 0.5, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "Poisson's ratio nu = %g must lie in (-1, 0.5)", (double)nu);
   fem->impl->bodies[body].E           = E;
   fem->impl->bodies[body].nu          = nu;
@@ -443,6 +462,9 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
   PetscCall(PetscOptionsReal("-fem_nu", "Poisson's ratio of bodies without FEMSetMaterial()", "FEMSetMaterial", nu, &nu, &setnu));
   PetscCall(PetscOptionsName("-fem_view", "View the model after setup", "FEMView", NULL));
   PetscOptionsEnd();
+  /* checked where read, also when every body has its own material: inf passes "E > 0" and fails much later (FETI's K+ check) */
+  PetscCheck(!setE || (E > 0 && !PetscIsInfOrNanReal(E)), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_E %g: Young's modulus must be a finite positive number", (double)E);
+  PetscCheck(!setnu || (nu > -1 && nu < 0.5), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_nu %g: Poisson's ratio must lie in (-1, 0.5)", (double)nu);
   PetscCheck(!strcmp(mattype, "sbaij") || !strcmp(mattype, "aij"), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_matrix_type %s: use sbaij or aij", mattype);
   impl.sbaij = strcmp(mattype, "sbaij") ? PETSC_FALSE : PETSC_TRUE;
   if (setparts && type == FEM_DECOMPOSITION_STRUCTURED)
@@ -457,8 +479,6 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
         PetscCheck(b.parts[d] >= 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_subdomains: count %" PetscInt_FMT " must be positive", b.parts[d]);
     }
     if (!b.materialset) {
-      PetscCheck(!setE || E > 0, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_E %g must be positive", (double)E);
-      PetscCheck(!setnu || (nu > -1 && nu < 0.5), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_nu %g must lie in (-1, 0.5)", (double)nu);
       if (setE) b.E = E;
       if (setnu) b.nu = nu;
     }

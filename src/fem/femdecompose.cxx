@@ -212,6 +212,15 @@ PetscErrorCode FEMBuildLocalSubdomains(FEM fem)
     ndofs[sd.id] = 3 * (PetscInt)sd.nodes.size();
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, ndofs.data(), (PetscMPIInt)impl.nsubdomains, MPIU_INT, MPI_SUM, comm));
+  {
+    /* interface nodes have a copy in every subdomain: the primal dofs may not fit PetscInt where the mesh's do */
+    PetscInt64 total = 0;
+    for (PetscInt s = 0; s < impl.nsubdomains; s++) total += ndofs[s];
+    PetscCheck(total <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "The %" PetscInt_FMT " subdomains have %lld primal dofs (interface nodes counted once per subdomain): they do not fit %d-bit PetscInt indices (at most %" PetscInt_FMT
+               "); use fewer cells or fewer subdomains",
+               impl.nsubdomains, (long long)total, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT);
+  }
   PetscCallCXX(impl.subprimaloffset.assign(impl.nsubdomains + 1, 0));
   for (PetscInt s = 0; s < impl.nsubdomains; s++) impl.subprimaloffset[s + 1] = impl.subprimaloffset[s] + ndofs[s];
   for (FEMSubdomain &sd : impl.local) sd.primaloffset = impl.subprimaloffset[sd.id];

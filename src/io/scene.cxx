@@ -317,7 +317,8 @@ PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody
   PetscCall(r.Real(s + "E", "Young's modulus (default -fem_E, else steel 2.12e11)", "Young's modulus E > 0", &body.E, &setE));
   PetscCall(r.Real(s + "nu", "Poisson's ratio (default -fem_nu, else 0.277)", "Poisson's ratio in (-1, 0.5)", &body.nu, &setnu));
   if (exists) {
-    PetscCheck(body.E > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: Young's modulus must be positive", setE ? r.Full(s + "E").c_str() : "-fem_E", (double)body.E);
+    PetscCheck(body.E > 0 && !PetscIsInfOrNanReal(body.E), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: Young's modulus must be positive and finite", setE ? r.Full(s + "E").c_str() : "-fem_E",
+               (double)body.E);
     PetscCheck(body.nu > -1 && body.nu < 0.5, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: Poisson's ratio must lie in (-1, 0.5)", setnu ? r.Full(s + "nu").c_str() : "-fem_nu", (double)body.nu);
   }
   /* decomposition */
@@ -674,13 +675,25 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   PetscOptionsEnd();
   impl.name = name;
   PetscCall(CheckUnused(comm, prefix));
-  /* mesh sizes after refinement, and subdomain counts that fit them */
+  /* mesh sizes after refinement, and subdomain counts that fit them. The sizes are counted in floating point:
+     the products of the refined cell counts can overflow any integer type */
+  const auto full  = [&](const std::string &name) { return "-" + std::string(prefix ? prefix : "") + name.substr(1); };
+  double     total = 0; /* unknowns of all bodies: the FEM numbers them together */
   for (size_t b = 0; b < impl.bodies.size(); b++) {
-    SceneBody &body  = impl.bodies[b];
-    PetscInt64 cells = 1;
-    for (PetscInt d = 0; d < 3; d++) cells *= (PetscInt64)body.cells[d] * impl.refine;
-    PetscCheck(6 * cells < PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE, "body %d: %lld tetrahedra do not fit this build's PetscInt (reduce -scene_body%d_cells or -scene_refine)", (int)b,
-               (long long)(6 * cells), (int)b);
+    SceneBody        &body = impl.bodies[b];
+    double            c[3], nodes = 1, tets = 6;
+    const std::string opt   = full(Format("-scene_body%d_cells", (int)b));
+    std::string       given = Format("%s %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT, opt.c_str(), body.cells[0], body.cells[1], body.cells[2]);
+    if (impl.refine > 1) given += Format(" with %s %" PetscInt_FMT, full("-scene_refine").c_str(), impl.refine);
+    for (PetscInt d = 0; d < 3; d++) {
+      c[d] = (double)body.cells[d] * impl.refine;
+      nodes *= c[d] + 1;
+      tets *= c[d];
+    }
+    total += 3 * nodes;
+    PetscCheck(3 * nodes <= PETSC_MAX_INT && tets <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "%s: body %d's mesh of %.4g x %.4g x %.4g cells has %.4g unknowns and %.4g tetrahedra: it does not fit %d-bit PetscInt indices (at most %" PetscInt_FMT "); reduce %s", given.c_str(),
+               (int)b, c[0], c[1], c[2], 3 * nodes, tets, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT, (impl.refine > 1 ? full("-scene_refine") + " or " + opt : opt).c_str());
     if (!body.decompositionset) continue;
     if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED)
       for (PetscInt d = 0; d < 3; d++)
@@ -688,9 +701,12 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
                    "-%sscene_body%d_subdomains: %" PetscInt_FMT " subdomains along %c but the body has %" PetscInt_FMT " cells there", prefix ? prefix : "", (int)b, body.parts[d], (char)('x' + d),
                    body.cells[d] * impl.refine);
     else
-      PetscCheck(body.parts[0] <= 6 * cells, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sscene_body%d_subdomains: %" PetscInt_FMT " METIS subdomains but the body has %lld tetrahedra", prefix ? prefix : "",
-                 (int)b, body.parts[0], (long long)(6 * cells));
+      PetscCheck(body.parts[0] <= tets, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sscene_body%d_subdomains: %" PetscInt_FMT " METIS subdomains but the body has %lld tetrahedra", prefix ? prefix : "", (int)b,
+                 body.parts[0], (long long)tets);
   }
+  PetscCheck(total <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "the scene's %d bodies have %.4g unknowns together: they do not fit %d-bit PetscInt indices (at most %" PetscInt_FMT "); reduce %s or the bodies' -scene_body<b>_cells",
+             (int)impl.bodies.size(), total, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT, full("-scene_refine").c_str());
   impl.fromoptions = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -116,6 +116,15 @@ static PetscErrorCode RunCase(const char *name)
     PetscCall(FEMCreateFETI(fem, &feti));
     PetscCall(FETISetFromOptions(feti));
     PetscCall(FETISetUp(feti));
+  } else if (!strcmp(name, "huge_box") || !strcmp(name, "bodies_too_large")) {
+    /* meshes too large for PetscInt indices: one huge box (its counts overflow even 64-bit integers), or three
+       boxes that fit alone (2.1e9 tetrahedra, 1.06e9 unknowns each) but not together */
+    const PetscReal lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    const PetscInt  huge[3] = {2000000000, 2000000000, 2000000000}, big[3] = {1000, 1000, 350};
+    PetscCall(FEMCreate(PETSC_COMM_WORLD, &fem));
+    if (!strcmp(name, "huge_box")) PetscCall(FEMAddBox(fem, lo, hi, huge, NULL));
+    else
+      for (int b = 0; b < 3; b++) PetscCall(FEMAddBox(fem, lo, hi, big, NULL));
   } else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "unknown -case %s", name);
   PetscCall(FETIDestroy(&feti));
   PetscCall(FEMDestroy(&fem));

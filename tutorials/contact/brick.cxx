@@ -33,7 +33,7 @@ int main(int argc, char **argv)
   ContactLaw        law = CONTACT_COULOMB;
   Vec               lambda, u;
   PetscLogDouble    t0, t1, t2;
-  PetscBool         converged, paperm = PETSC_FALSE;
+  PetscBool         converged, paperm = PETSC_FALSE, setfriction;
   PetscReal         xrange[2] = {1.0, 3.0}; /* the bottom of the two free cubes */
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "The paper's brick"));
@@ -42,7 +42,7 @@ int main(int argc, char **argv)
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "The paper's brick", "brick");
   PetscCall(PetscOptionsBoundedInt("-k", "Cells per cube edge (n = 9k(k+1)^2)", "brick", k, &k, NULL, 1));
   PetscCall(PetscOptionsEnum("-law", "Contact law of the bottom", "brick", ContactLaws, (PetscEnum)law, (PetscEnum *)&law, NULL));
-  PetscCall(PetscOptionsReal("-friction", "Coulomb coefficient F (with -law tresca: the slip bound)", "brick", friction, &friction, NULL));
+  PetscCall(PetscOptionsReal("-friction", "Coulomb coefficient F (with -law tresca: the slip bound)", "brick", friction, &friction, &setfriction));
   PetscCall(PetscOptionsReal("-pressure", "Pressure on the top face z = 1", "brick", p, &p, NULL));
   PetscCall(PetscOptionsReal("-shear", "Traction along x on the end face x = 3", "brick", tau, &tau, NULL));
   PetscCall(PetscOptionsReal("-gap", "Distance of the foundation below the bottom z = 0", "brick", gap, &gap, NULL));
@@ -57,6 +57,11 @@ int main(int argc, char **argv)
     const PetscReal value[] = {p, tau, gap, tilt};
     for (int i = 0; i < 4; i++) PetscCheck(!PetscIsInfOrNanReal(value[i]), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "%s must be a finite number, got %g", name[i], (double)value[i]);
   }
+  /* as the driver's scene: a frictionless law takes no -friction (it would be ignored silently) */
+  PetscCheck(law != CONTACT_FRICTIONLESS || !setfriction, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-law frictionless takes no -friction (given %g): remove it or choose -law tresca or coulomb",
+             (double)friction);
+  PetscCheck(!PetscIsInfOrNanReal(friction) && friction >= 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-friction %g: the %s must be a finite number >= 0", (double)friction,
+             law == CONTACT_TRESCA ? "slip bound" : "friction coefficient");
   if (paperm) {
     PetscCheck(k >= 4, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-paper_m needs -k >= 4 (the strip has k - 2 node columns), got -k %" PetscInt_FMT, k);
     xrange[0] = 2.0 + 1.0 / k; /* face centroids lie strictly inside their cells */

@@ -22,7 +22,8 @@
    What to expect
      The projected CG converges in about 10 - 20 iterations, nearly independently of -slabs for a
      fixed -cells; the tip deflection printed at the end converges towards the beam value as the mesh
-     is refined. */
+     is refined. When the solve does not converge (e.g. -feti_ksp_max_it 2) it says so instead of printing
+     a deflection and exits with status 2, as the conefeti driver. */
 #include <conefeti.h>
 #include <conefeti/private/compat.h>
 
@@ -105,16 +106,23 @@ int main(int argc, char **argv)
   Vec                      lambda, u;
   KSP                      ksp;
   PetscInt                 its;
+  KSPConvergedReason       reason;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "FETI from your own subdomain matrices"));
   PetscCall(ConeFETIInitializePackage());
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Bar options", NULL);
-  PetscCall(PetscOptionsInt("-slabs", "Subdomains (slabs along x)", NULL, bar.slabs, &bar.slabs, NULL));
-  PetscCall(PetscOptionsInt("-cells", "Hexahedra per slab side", NULL, bar.cells, &bar.cells, NULL));
+  PetscCall(PetscOptionsBoundedInt("-slabs", "Subdomains (slabs along x)", NULL, bar.slabs, &bar.slabs, NULL, 1));
+  PetscCall(PetscOptionsBoundedInt("-cells", "Hexahedra per slab side", NULL, bar.cells, &bar.cells, NULL, 1));
   PetscOptionsEnd();
   PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
   PetscCheck(bar.slabs >= size, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-slabs %d: need at least one slab per rank (%d ranks)", (int)bar.slabs, size);
+  {
+    /* all slabs' dofs are numbered by PetscInt (counted in floating point, which does not overflow) */
+    const double dofs = 3.0 * bar.slabs * ((double)bar.cells + 1) * ((double)bar.cells + 1) * ((double)bar.cells + 1);
+    PetscCheck(dofs <= PETSC_MAX_INT, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-slabs %d -cells %d: %.4g dofs do not fit %d-bit PetscInt indices (at most %d)", (int)bar.slabs, (int)bar.cells,
+               dofs, (int)(8 * sizeof(PetscInt)), (int)PETSC_MAX_INT);
+  }
 
   /* 1. subdomains of this rank: contiguous slabs; the primal vector is all slabs' dofs, slab after slab */
   first    = (bar.slabs * rank) / size;
@@ -177,7 +185,10 @@ int main(int argc, char **argv)
   PetscCall(FETISolveLinear(feti, lambda, u));
   PetscCall(FETIGetKSP(feti, &ksp));
   PetscCall(KSPGetIterationNumber(ksp, &its));
-  {
+  PetscCall(KSPGetConvergedReason(ksp, &reason));
+  if (reason <= 0)
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%d slabs of %d^3 cells: NOT CONVERGED: %s after %d CG iterations\n", (int)bar.slabs, (int)bar.cells, KSPConvergedReasons[reason], (int)its));
+  else {
     PetscReal tip = 0;
     PetscInt  lo, hi, nx = bar.cells + 1;
     PetscCall(VecGetOwnershipRange(u, &lo, &hi));
@@ -198,5 +209,5 @@ int main(int argc, char **argv)
   PetscCall(VecDestroy(&lambda));
   PetscCall(FETIDestroy(&feti));
   PetscCall(PetscFinalize());
-  return 0;
+  return reason > 0 ? 0 : 2;
 }

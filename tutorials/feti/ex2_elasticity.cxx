@@ -7,6 +7,8 @@
      n_s METIS parts and solves by projected CG on P F P; -solver gamg solves the assembled global system
      by CG + GAMG with the rigid-body near-null space; -solver cholesky by a direct MUMPS Cholesky.
      It prints one line "RESULT key=value ..." (times in seconds, memory in bytes) for scripts/bench-feti.py.
+     Exit status: 0 when the solve converged, 2 when it did not (RESULT then says converged=false), as the
+     conefeti driver.
 
    Sample runs
      ./feti_ex2_elasticity -cells 24 -fem_subdomains 3,3,3 -feti_ksp_monitor -log_view
@@ -45,22 +47,25 @@ static PetscErrorCode PeakRSS(PetscLogDouble *bytes)
 
 int main(int argc, char **argv)
 {
-  FEM            fem;
-  PetscInt       n = 16, body, its = 0, nprimal = 0, ndual = 0, ncoarse = 0, nsub = 0, nglobal;
-  PetscReal      lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, t[3] = {2e7, 5e6, 0};
-  char           solver[16] = "feti";
-  PetscLogDouble t0, tsetup = 0, tsolve = 0, tF = 0, rss, tfactor = 0, tkplus = 0;
-  PetscBool      isfeti, isgamg;
+  FEM                fem;
+  PetscInt           n = 16, body, its = 0, nprimal = 0, ndual = 0, ncoarse = 0, nsub = 0, nglobal;
+  PetscReal          lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1}, t[3] = {2e7, 5e6, 0};
+  const char *const  solvers[] = {"feti", "gamg", "cholesky"};
+  PetscInt           solver    = 0;
+  PetscLogDouble     t0, tsetup = 0, tsolve = 0, tF = 0, rss, tfactor = 0, tkplus = 0;
+  PetscBool          isfeti, isgamg;
+  KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "Linear elasticity of a clamped cube by FETI, GAMG or Cholesky"));
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscLogDefaultBegin()); /* event times for the RESULT line */
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Cube benchmark options", NULL);
-  PetscCall(PetscOptionsInt("-cells", "Hexahedra per side of the cube", NULL, n, &n, NULL));
-  PetscCall(PetscOptionsString("-solver", "feti, gamg or cholesky", NULL, solver, solver, sizeof(solver), NULL));
+  PetscCall(PetscOptionsBoundedInt("-cells", "Hexahedra per side of the cube", NULL, n, &n, NULL, 1));
+  /* a list, not a string: a misspelt solver ran Cholesky and printed RESULT solver=<the misspelling> */
+  PetscCall(PetscOptionsEList("-solver", "FETI, CG + GAMG on the assembled system, or a direct Cholesky (MUMPS)", NULL, solvers, 3, solvers[solver], &solver, NULL));
   PetscOptionsEnd();
-  PetscCall(PetscStrcmp(solver, "feti", &isfeti));
-  PetscCall(PetscStrcmp(solver, "gamg", &isgamg));
+  isfeti = solver == 0 ? PETSC_TRUE : PETSC_FALSE;
+  isgamg = solver == 1 ? PETSC_TRUE : PETSC_FALSE;
 
   PetscCall(PetscTime(&t0));
   {
@@ -91,6 +96,7 @@ int main(int argc, char **argv)
     PetscCall(PetscTime(&tsolve));
     tsolve -= t0;
     PetscCall(KSPGetIterationNumber(ksp, &its));
+    PetscCall(KSPGetConvergedReason(ksp, &reason));
     /* time per F product, measured alone */
     PetscCall(FETIGetOperators(feti, &F, NULL, NULL, NULL));
     PetscCall(VecDuplicate(lambda, &x));
@@ -154,6 +160,7 @@ int main(int argc, char **argv)
     PetscCall(PetscTime(&tsolve));
     tsolve -= t0;
     PetscCall(KSPGetIterationNumber(ksp, &its));
+    PetscCall(KSPGetConvergedReason(ksp, &reason));
     nprimal = nglobal;
     PetscCall(KSPDestroy(&ksp));
     PetscCall(VecDestroy(&u));
@@ -161,10 +168,13 @@ int main(int argc, char **argv)
     PetscCall(MatDestroy(&K));
   }
   PetscCall(PeakRSS(&rss));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD,
-                        "RESULT solver=%s cells=%d unknowns=%d primal=%d dual=%d coarse=%d subdomains=%d iterations=%d setup=%.3f solve=%.3f Fproduct=%.5f factor=%.3f Kplus=%.5f rss=%.0f\n", solver,
-                        (int)n, (int)nglobal, (int)nprimal, (int)ndual, (int)ncoarse, (int)nsub, (int)its, (double)tsetup, (double)tsolve, (double)tF, (double)tfactor, (double)tkplus, (double)rss));
+  if (reason <= 0) PetscCall(PetscPrintf(PETSC_COMM_WORLD, "NOT CONVERGED: %s after %d iterations (KSP prefix %s)\n", KSPConvergedReasons[reason], (int)its, isfeti ? "feti_" : "global_"));
+  PetscCall(
+      PetscPrintf(PETSC_COMM_WORLD,
+                  "RESULT solver=%s cells=%d unknowns=%d primal=%d dual=%d coarse=%d subdomains=%d iterations=%d converged=%s setup=%.3f solve=%.3f Fproduct=%.5f factor=%.3f Kplus=%.5f rss=%.0f\n",
+                  solvers[solver], (int)n, (int)nglobal, (int)nprimal, (int)ndual, (int)ncoarse, (int)nsub, (int)its, reason > 0 ? "true" : "false", (double)tsetup, (double)tsolve, (double)tF,
+                  (double)tfactor, (double)tkplus, (double)rss));
   PetscCall(FEMDestroy(&fem));
   PetscCall(PetscFinalize());
-  return 0;
+  return reason > 0 ? 0 : 2; /* as the conefeti driver: 2 when the solve did not converge */
 }

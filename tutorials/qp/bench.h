@@ -42,6 +42,30 @@ static inline PetscLogDouble BenchCPUTime(void)
   return (PetscLogDouble)ts.tv_sec + 1e-9 * (PetscLogDouble)ts.tv_nsec;
 }
 
+/* The real options must be finite and in range, checked before anything is built: a NaN or an infinity
+   would surface deep inside the solver (SLEPc's norm estimate, "indefinite matrix") or as NaN results. */
+static inline PetscErrorCode BenchCheckReal(const char *name, PetscReal value, PetscReal lo, PetscBool loopen, PetscReal hi, PetscBool hiopen, const char *meaning)
+{
+  const PetscBool ok = (PetscBool)(!PetscIsInfOrNanReal(value) && (loopen ? value > lo : value >= lo) && (hiopen ? value < hi : value <= hi));
+
+  PetscFunctionBeginUser;
+  if (hi >= PETSC_MAX_REAL) PetscCheck(ok, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: must be a finite number %s %g (%s)", name, (double)value, loopen ? ">" : ">=", (double)lo, meaning);
+  else
+    PetscCheck(ok, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: must be a finite number in %s%g, %g%s (%s)", name, (double)value, loopen ? "(" : "[", (double)lo, (double)hi, hiopen ? ")" : "]",
+               meaning);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The options every benchmark program shares: the target and how the result is measured */
+static inline PetscErrorCode BenchCheckOptions(PetscReal rtol, PetscReal factor, PetscReal snap)
+{
+  PetscFunctionBeginUser;
+  PetscCall(BenchCheckReal("-bench_rtol", rtol, 0, PETSC_TRUE, 1, PETSC_TRUE, "the target |gP| <= rtol |b| is relative"));
+  PetscCall(BenchCheckReal("-bench_own_factor", factor, 0, PETSC_TRUE, PETSC_MAX_REAL, PETSC_FALSE, "it scales the solver's own tolerance"));
+  PetscCall(BenchCheckReal("-bench_snap", snap, 0, PETSC_FALSE, 1, PETSC_TRUE, "a relative distance to the boundary"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Is this one of conefeti's QP types (which have counters and a |b|-relative stopping test)? */
 static inline PetscBool BenchIsConeFETIType(Tao tao)
 {
@@ -168,6 +192,8 @@ static inline PetscErrorCode BenchReport(Tao tao, const char *problem, PetscInt 
     source          = "log_matmult";
   }
   products = solver_products + estimate;
+  /* an overflow or NaN must not pass the comparison below (inf <= rtol * inf is true) */
+  const PetscBool finite = (PetscBool)(!PetscIsInfOrNanReal(a->gp) && !PetscIsInfOrNanReal(a->objective) && !PetscIsInfOrNanReal(bnorm) && bnorm > 0);
   PetscCall(PetscPrintf(
       PETSC_COMM_WORLD,
       "{\"bench\":\"qp\",\"problem\":\"%s\",\"solver\":\"%s\",\"n\":%" PetscInt_FMT ",\"iterations\":%" PetscInt_FMT ",\"ksp_iterations\":%" PetscInt_FMT ",\"hessian_products\":%" PetscInt_FMT
@@ -175,6 +201,6 @@ static inline PetscErrorCode BenchReport(Tao tao, const char *problem, PetscInt 
       ",\"time\":%.6f,\"cpu_time\":%.6f,\"reason\":\"%s\",\"target_rtol\":%.3e,\"own_factor\":%.3e,\"bnorm\":%.10e,\"gp\":%.6e,\"gp_rel\":%.6e,\"met\":%s,\"objective\":%.15e,"
       "\"moved\":%.3e,\"active\":%" PetscInt_FMT "%s}\n",
       problem, type, n, its, kspits, products, solver_products, estimate, source, c->mults, c->callbacks, (double)c->time, (double)c->cpu, TaoConvergedReasons[reason], (double)rtol, (double)factor,
-      (double)bnorm, (double)a->gp, (double)(a->gp / bnorm), a->gp <= rtol * bnorm ? "true" : "false", (double)a->objective, (double)a->moved, a->active, extra.c_str()));
+      (double)bnorm, (double)a->gp, (double)(a->gp / bnorm), finite && a->gp <= rtol * bnorm ? "true" : "false", (double)a->objective, (double)a->moved, a->active, extra.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

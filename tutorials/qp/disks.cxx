@@ -290,20 +290,26 @@ int main(int argc, char **argv)
   PetscCall(BenchCountsInitialize(&counts));
   app.counts = &counts;
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Disk-constrained QP benchmark", "disks");
-  PetscCall(PetscOptionsInt("-n", "Interior grid nodes per direction (2 n^2 unknowns)", "disks", app.N, &app.N, NULL));
-  PetscCall(PetscOptionsReal("-shift", "Shift c of A = (K + c h^2 I) x I_2", "disks", app.shift, &app.shift, NULL));
-  PetscCall(PetscOptionsReal("-force", "Load amplitude F", "disks", app.force, &app.force, NULL));
+  /* 2 n^2 unknowns must fit PetscInt */
+  PetscCall(PetscOptionsRangeInt("-n", "Interior grid nodes per direction (2 n^2 unknowns)", "disks", app.N, &app.N, NULL, 3, (PetscInt)PetscSqrtReal(PETSC_MAX_INT / 2.0)));
+  PetscCall(PetscOptionsReal("-shift", "Shift c >= 0 of A = (K + c h^2 I) x I_2", "disks", app.shift, &app.shift, NULL));
+  PetscCall(PetscOptionsReal("-force", "Load amplitude F (nonzero)", "disks", app.force, &app.force, NULL));
   PetscCall(PetscOptionsReal("-radius", "Radius scale r0 of r = r0 (rmin + sin(pi x) sin(pi y))", "disks", app.r0, &app.r0, NULL));
   PetscCall(PetscOptionsReal("-radius_min", "rmin in r = r0 (rmin + sin(pi x) sin(pi y)); 0 gives radii near 0 at the boundary", "disks", app.rmin, &app.rmin, NULL));
-  PetscCall(PetscOptionsReal("-scale", "Multiply A and b by this factor (the solution and the relative target do not change)", "disks", app.scale, &app.scale, NULL));
+  PetscCall(PetscOptionsReal("-scale", "Multiply A and b by this factor > 0 (the solution and the relative target do not change)", "disks", app.scale, &app.scale, NULL));
   PetscCall(PetscOptionsReal("-bench_rtol", "Target: |projected gradient| <= rtol |b|, measured by this program", "disks", rtol, &rtol, NULL));
   PetscCall(PetscOptionsReal("-bench_own_factor", "The solver's own tolerance is factor * rtol (|b|-relative, or absolute times |b| for TAO's solvers)", "disks", factor, &factor, NULL));
   PetscCall(PetscOptionsReal("-bench_snap", "Nodes within relative distance snap of their circle count as on it when measuring", "disks", snap, &snap, NULL));
-  PetscCall(PetscOptionsInt("-bench_repeat", "Solve this many times and report the shortest time", "disks", repeat, &repeat, NULL));
+  PetscCall(PetscOptionsBoundedInt("-bench_repeat", "Solve this many times and report the shortest time", "disks", repeat, &repeat, NULL, 1));
   PetscOptionsEnd();
-  PetscCheck(app.N >= 3, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-n must be >= 3, got %" PetscInt_FMT, app.N);
-  PetscCheck(app.r0 >= 0 && app.rmin >= 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-radius and -radius_min must be >= 0");
-  PetscCheck(rtol > 0 && factor > 0 && snap >= 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-bench_rtol and -bench_own_factor must be positive, -bench_snap >= 0");
+  /* A = scale (K + c h^2 I) x I_2 must be positive definite and b nonzero (the target is relative to |b|) */
+  PetscCall(BenchCheckReal("-shift", app.shift, 0, PETSC_FALSE, PETSC_MAX_REAL, PETSC_FALSE, "A = K + c h^2 I must stay positive definite"));
+  PetscCall(BenchCheckReal("-scale", app.scale, 0, PETSC_TRUE, PETSC_MAX_REAL, PETSC_FALSE, "A and b are multiplied by it"));
+  PetscCheck(!PetscIsInfOrNanReal(app.force) && app.force != 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-force %g: must be a finite nonzero number (the target is relative to |b|)",
+             (double)app.force);
+  PetscCall(BenchCheckReal("-radius", app.r0, 0, PETSC_FALSE, PETSC_MAX_REAL, PETSC_FALSE, "a radius"));
+  PetscCall(BenchCheckReal("-radius_min", app.rmin, 0, PETSC_FALSE, PETSC_MAX_REAL, PETSC_FALSE, "a relative radius"));
+  PetscCall(BenchCheckOptions(rtol, factor, snap));
 
   PetscCall(BuildProblem(&app));
   PetscCall(VecNorm(app.b, NORM_2, &bnorm));

@@ -294,19 +294,29 @@ int main(int argc, char **argv)
   app.counts = &counts;
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Obstacle / journal-bearing QP benchmark", "obstacle");
   PetscCall(PetscOptionsEnum("-problem", "Which problem", "obstacle", ProblemTypes, (PetscEnum)app.problem, (PetscEnum *)&app.problem, NULL));
-  PetscCall(PetscOptionsInt("-n", "Interior grid nodes per direction (n^2 unknowns)", "obstacle", app.N, &app.N, NULL));
-  PetscCall(PetscOptionsReal("-bearing_ecc", "Journal bearing: eccentricity e", "obstacle", app.ecc, &app.ecc, NULL));
-  PetscCall(PetscOptionsReal("-bearing_b", "Journal bearing: half width b of the domain (0,2pi) x (0,2b)", "obstacle", app.bearing_b, &app.bearing_b, NULL));
+  /* n^2 unknowns must fit PetscInt */
+  PetscCall(PetscOptionsRangeInt("-n", "Interior grid nodes per direction (n^2 unknowns)", "obstacle", app.N, &app.N, NULL, 3, (PetscInt)PetscSqrtReal((PetscReal)PETSC_MAX_INT)));
+  PetscCall(PetscOptionsReal("-bearing_ecc", "Journal bearing: eccentricity e, 0 < e < 1", "obstacle", app.ecc, &app.ecc, NULL));
+  PetscCall(PetscOptionsReal("-bearing_b", "Journal bearing: half width b > 0 of the domain (0,2pi) x (0,2b)", "obstacle", app.bearing_b, &app.bearing_b, NULL));
   PetscCall(PetscOptionsReal("-upper", "Upper bound of every entry (default: none); a large inactive one changes nothing but helps bqpip", "obstacle", app.upper, &app.upper, NULL));
   PetscCall(PetscOptionsReal("-bench_rtol", "Target: |projected gradient| <= rtol |b|, measured by this program", "obstacle", rtol, &rtol, NULL));
   PetscCall(PetscOptionsReal("-bench_own_factor", "The solver's own tolerance is factor * rtol (|b|-relative, or absolute times |b| for TAO's solvers)", "obstacle", factor, &factor, NULL));
   PetscCall(PetscOptionsReal("-bench_snap", "Entries within snap * max|u| of a bound count as on it when measuring", "obstacle", snap, &snap, NULL));
-  PetscCall(PetscOptionsInt("-bench_repeat", "Solve this many times and report the shortest time", "obstacle", repeat, &repeat, NULL));
+  PetscCall(PetscOptionsBoundedInt("-bench_repeat", "Solve this many times and report the shortest time", "obstacle", repeat, &repeat, NULL, 1));
   PetscOptionsEnd();
-  PetscCheck(app.N >= 3, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-n must be >= 3, got %" PetscInt_FMT, app.N);
-  PetscCheck(rtol > 0 && factor > 0 && snap >= 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-bench_rtol and -bench_own_factor must be positive, -bench_snap >= 0");
+  /* the bearing's weight (1 + e cos x)^3 must stay positive and its load e sin x nonzero: 0 < e < 1 (MINPACK-2's
+     range); b is the domain's half width */
+  PetscCall(BenchCheckReal("-bearing_ecc", app.ecc, 0, PETSC_TRUE, 1, PETSC_TRUE, "the journal bearing's eccentricity"));
+  PetscCall(BenchCheckReal("-bearing_b", app.bearing_b, 0, PETSC_TRUE, PETSC_MAX_REAL, PETSC_FALSE, "the half width of the domain (0,2pi) x (0,2b)"));
+  PetscCheck(!PetscIsNanReal(app.upper), PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-upper %g: must be a number (infinity: no upper bound)", (double)app.upper);
+  PetscCall(BenchCheckOptions(rtol, factor, snap));
 
   PetscCall(BuildProblem(&app));
+  {
+    PetscReal lmax; /* an upper bound below the obstacle leaves no feasible point */
+    PetscCall(VecMax(app.lb, NULL, &lmax));
+    PetscCheck(app.upper >= lmax, PETSC_COMM_WORLD, PETSC_ERR_ARG_OUTOFRANGE, "-upper %g: lies below the lower bound (its maximum is %g): no feasible point", (double)app.upper, (double)lmax);
+  }
   PetscCall(VecNorm(app.b, NORM_2, &bnorm));
   PetscCall(VecGetSize(app.b, &n));
   PetscCall(MatDuplicate(app.A, MAT_COPY_VALUES, &H));
