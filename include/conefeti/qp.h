@@ -154,6 +154,7 @@ PETSC_EXTERN PetscErrorCode TaoSMALXESetConsistencyCheck(Tao, PetscErrorCode (*)
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStalled(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetAnderson(Tao, PetscInt, PetscInt);
+PETSC_EXTERN PetscErrorCode TaoSMALXESetPenaltyPreconditioner(Tao, PetscBool);
 
 /* ---------------------------------------------------------------------------------------------
    KSP types: the same algorithms through KSPSolve(A x = b), i.e. min 1/2 x'Ax - b'x

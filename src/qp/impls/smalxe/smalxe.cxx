@@ -15,12 +15,19 @@
    The inner minimization is one nested TAO (mprgp/mpgp), or a block Gauss-Seidel sweep over
    index sets, each block with its own nested TAO (the seed paper's Algorithm 2 splits the
    multipliers this way). A pre-solve hook runs before every inner solve (the Coulomb friction
-   loop updates disk radii there). Math: ../shared/ALGORITHMS.md section 3. */
+   loop updates disk radii there). Math: ../shared/ALGORITHMS.md section 3.
+
+   Penalty preconditioner (projector form, one inner solver): the CG steps of the inner solve are
+   preconditioned in face by M^-1 = I - theta Q, theta = rho/(||PAP|| + rho), the inverse of
+   (||PAP|| I + rho Q)/||PAP|| restricted to the free set. rho Q adds a rank-m term (m equality rows,
+   the rigid modes in FETI) at the top of the spectrum that the active set mixes with PAP's; M^-1
+   pulls it back for the price of one product with Q. */
 #include <conefeti.h>
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/private/qpadopt.h>
 #include <conefeti/private/reproduciblesum.h>
 #include <petsc/private/taoimpl.h>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -79,6 +86,7 @@ struct TaoSMALXE {
   PetscReal    norm_user = 0, norm_margin = -1;
   QPNormMethod norm_method   = QP_NORM_SLEPC;
   PetscBool    counters_view = PETSC_FALSE;
+  PetscBool    penalty_pc    = PETSC_TRUE; /* projector form: precondition the inner CG steps by I - theta Q */
 
   /* inner solves */
   std::vector<SMALXEBlock> blocks; /* one block with is = NULL: monolithic */
@@ -821,6 +829,47 @@ PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* z = (I - theta Q) g, theta = rho/(||PAP|| + rho): see the penalty preconditioner at the top */
+PetscErrorCode PenaltyPCApply(PC pc, Vec g, Vec z)
+{
+  TaoSMALXE *s;
+
+  PetscFunctionBegin;
+  PetscCall(PCShellGetContext(pc, &s));
+  PetscCall(MatMult(s->Q, g, z));
+  PetscCall(VecAYPX(z, -s->rho / (s->normA + s->rho), g));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+const char kPenaltyPCName[] = "smalxe penalty preconditioner I - rho/(||PAP|| + rho) Q";
+
+/* Puts the penalty preconditioner into the inner solver's PC when that is PCNONE (a PC the user chose
+   stays), or takes it out again when it is off. Only the projector form with one inner solver has it:
+   a Gauss-Seidel block would need Q's block, the penalty form (C C')^-1. */
+PetscErrorCode UpdatePenaltyPC(TaoSMALXE *s)
+{
+  PC          pc;
+  PetscBool   none, shell;
+  const char *name = nullptr;
+
+  PetscFunctionBegin;
+  if (s->blocks.size() != 1 || s->blocks[0].is) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(TaoQPGetPC(s->blocks[0].sub, &pc));
+  if (!pc) PetscFunctionReturn(PETSC_SUCCESS); /* not a QP type of ours */
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCNONE, &none));
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCSHELL, &shell));
+  if (shell) PetscCall(PCShellGetName(pc, &name));
+  const bool ours = shell && name && !std::strcmp(name, kPenaltyPCName);
+  const bool want = s->penalty_pc && s->projector;
+  if (want && none) {
+    PetscCall(PCSetType(pc, PCSHELL));
+    PetscCall(PCShellSetContext(pc, s));
+    PetscCall(PCShellSetApply(pc, PenaltyPCApply));
+    PetscCall(PCShellSetName(pc, kPenaltyPCName));
+  } else if (!want && ours) PetscCall(PCSetType(pc, PCNONE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TaoSolve_SMALXE(Tao tao)
 {
   TaoSMALXE *s     = Get(tao);
@@ -887,6 +936,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     if (!RecycleMultiplier(tao, s)) PetscCall(VecSet(s->mu, 0.0));
   }
   PetscCall(UpdateNormH(s));
+  PetscCall(UpdatePenaltyPC(s));
   s->M   = s->M_rel * s->normH;
   s->eta = s->eta_rel * s->beff;
 
@@ -1008,6 +1058,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
                             "Stop when |Cx - d| makes less than 1% progress in this many outer iterations: infeasible if the multiplier grew by a quarter meanwhile, stalled if it settled (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
+  PetscCall(PetscOptionsBool("-tao_smalxe_penalty_pc", "Projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q in face (unless the inner solver has a PC of its own)",
+                             "TaoSMALXESetPenaltyPreconditioner", s->penalty_pc, &s->penalty_pc, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_counters_view", "Print the counters as one JSON line after each solve", "QPCountersViewJSON", s->counters_view, &s->counters_view, NULL));
   PetscOptionsHeadEnd();
   /* "x > 0" alone lets inf through: an infinite rho reaches the nested solver as an infinite ||H|| (an
@@ -1057,6 +1109,8 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
         viewer, "Anderson acceleration of the multiplier, depth %" PetscInt_FMT " from outer iteration %" PetscInt_FMT ": %" PetscInt_FMT " accelerated updates, %" PetscInt_FMT " restarts\n",
         AndersonDepth(s), s->anderson_start, s->aAccelerated, s->aRestarts));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "plain multiplier update (no Anderson acceleration)\n"));
+  if (s->penalty_pc && s->projector && s->blocks.size() == 1 && !s->blocks[0].is)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "inner CG steps preconditioned in face by I - rho/(||PAP|| + rho) Q, unless the inner solver has a PC of its own\n"));
   if (tao->recycle) PetscCall(PetscViewerASCIIPrintf(viewer, "recycles the multiplier: a solve starts from the previous solve's multiplier\n"));
   if (s->stagnated) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stagnated: the equality cannot be met over the set (or rho is far too small)\n"));
   if (s->stalled) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stalled: no progress in %" PetscInt_FMT " outer iterations, the multiplier settled\n", s->stagnation_its));
@@ -1091,7 +1145,7 @@ const char *const kComposed[] = {"TaoQPSetConstraints_C",     "TaoQPGetConstrain
                                  "TaoSMALXESetPreSolve_C",    "TaoSMALXEGetEqualityMultiplier_C",
                                  "TaoSMALXEGetFeasibility_C", "TaoSMALXESetConsistencyCheck_C",
                                  "TaoSMALXEGetStagnated_C",   "TaoSMALXEGetStalled_C",
-                                 "TaoSMALXESetAnderson_C"};
+                                 "TaoSMALXESetAnderson_C",    "TaoSMALXESetPenaltyPreconditioner_C"};
 
 PetscErrorCode TaoDestroy_SMALXE(Tao tao)
 {
@@ -1304,6 +1358,13 @@ PetscErrorCode SetAnderson_SMALXE(Tao tao, PetscInt depth, PetscInt start)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SetPenaltyPreconditioner_SMALXE(Tao tao, PetscBool flag)
+{
+  PetscFunctionBegin;
+  Get(tao)->penalty_pc = flag;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GetStagnated_SMALXE(Tao tao, PetscBool *flag)
 {
   PetscFunctionBegin;
@@ -1349,6 +1410,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 . -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance (0: only the adaptive precision)
 . -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
 . -tao_smalxe_anderson_start <3> - first outer iteration (from 0) whose update is accelerated
+. -tao_smalxe_penalty_pc <true> - projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`)
 . -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
 . -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner solves)
 - -tao_smalxe_block<k>_tao_*   - options of block k's nested solver
@@ -1415,6 +1477,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStagnated_C", GetStagnated_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStalled_C", GetStalled_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetAnderson_C", SetAnderson_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPenaltyPreconditioner_C", SetPenaltyPreconditioner_SMALXE));
   PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
