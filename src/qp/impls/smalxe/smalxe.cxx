@@ -79,6 +79,7 @@ struct TaoSMALXE {
 
   /* parameters */
   PetscReal    rho_rel = 1.0, M_rel = 0.1, M_min_rel = 1e-4, eta_rel = 0.1, beta = 10.0;
+  PetscReal    rho_first   = 1.0; /* the first outer iteration's penalty relative to rho (see TaoSolve_SMALXE()) */
   SMALXEUpdate update      = SMALXE_UPDATE_M;
   PetscInt     sweeps      = 1;
   PetscReal    block_rtol  = 0.0; /* > 0: a block solve of a sweep also stops at this reduction of its projected gradient */
@@ -910,7 +911,8 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
 
   /* norms, penalty, and the constant part of the linear term */
   PetscCall(EstimateNorms(tao, s));
-  s->rho = s->rho_rel * s->normA / (s->projector ? 1.0 : s->normC2);
+  const PetscReal rho_later = s->rho_rel * s->normA / (s->projector ? 1.0 : s->normC2);
+  s->rho                    = s->rho_first * rho_later;
   if (s->projector) {
     if (!s->Q_from_C) { /* a particular solution in range(Q), then P(b - A x~) */
       PetscCall(MatMult(s->Q, s->xt, s->w));
@@ -998,6 +1000,13 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
       }
     }
     Lprev = L;
+    /* a smaller penalty for the first inner solve, which finds the active set from the multiplier 0: its
+       expansion steps have the fixed length 1.95/||H||, so they pay for a large rho; the later solves mostly follow the
+       multiplier, and a larger rho speeds the multiplier's convergence up (-tao_smalxe_rho_first) */
+    if (k == 0 && s->rho_first != 1) {
+      s->rho = rho_later;
+      PetscCall(UpdateNormH(s));
+    }
   }
   if (s->counters_view) {
     PetscViewer viewer;
@@ -1028,6 +1037,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   if (!p) p = "";
   PetscOptionsHeadBegin(PetscOptionsObject, "smalxe: semi-monotonic augmented Lagrangian for C x = d (conefeti)");
   PetscCall(PetscOptionsReal("-tao_smalxe_rho", "Penalty rho relative to ||A|| (||PAP|| in projector form, ||A||/||C||^2 otherwise)", "TaoSMALXE", s->rho_rel, &s->rho_rel, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_rho_first", "Penalty of the first outer iteration relative to -tao_smalxe_rho (the later ones use -tao_smalxe_rho)", "TaoSMALXE", s->rho_first, &s->rho_first,
+                             NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_M", "Initial M relative to ||H||: inner solves stop when |gP| <= min(M |Cx - d|, eta)", "TaoSMALXE", s->M_rel, &s->M_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_M_min", "Floor of M relative to ||H|| (the semi-monotonicity updates stop there)", "TaoSMALXE", s->M_min_rel, &s->M_min_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_eta", "eta relative to |b| (|P(b - A x~)| in projector form)", "TaoSMALXE", s->eta_rel, &s->eta_rel, NULL));
@@ -1067,6 +1078,7 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
      outer loop then stagnates and is diagnosed as an equality that cannot be met), an infinite beta
      sends M straight to its floor */
   PetscCheck(s->rho_rel > 0 && !PetscIsInfOrNanReal(s->rho_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_rho must be finite and > 0, got %g", p, (double)s->rho_rel);
+  PetscCheck(s->rho_first > 0 && !PetscIsInfOrNanReal(s->rho_first), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_rho_first must be finite and > 0, got %g", p, (double)s->rho_first);
   PetscCheck(s->M_rel > 0 && !PetscIsInfOrNanReal(s->M_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_M must be finite and > 0, got %g", p, (double)s->M_rel);
   PetscCheck(s->M_min_rel >= 0 && !PetscIsInfOrNanReal(s->M_min_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_M_min must be finite and >= 0 (0: no floor), got %g", p, (double)s->M_min_rel);
   PetscCheck(s->eta_rel > 0 && !PetscIsInfOrNanReal(s->eta_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_eta must be finite and > 0, got %g", p, (double)s->eta_rel);
@@ -1104,6 +1116,7 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "stops when |projected gradient| <= %g and |Cx - d| <= %g\n", (double)tol_g, (double)tol_e));
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "last iterate: |projected gradient| %g, |Cx - d| %g\n", (double)s->gpnorm, (double)s->feas));
+  if (s->rho_first != 1) PetscCall(PetscViewerASCIIPrintf(viewer, "the first outer iteration runs at %g rho\n", (double)s->rho_first));
   if (AndersonDepth(s) > 0)
     PetscCall(PetscViewerASCIIPrintf(
         viewer, "Anderson acceleration of the multiplier, depth %" PetscInt_FMT " from outer iteration %" PetscInt_FMT ": %" PetscInt_FMT " accelerated updates, %" PetscInt_FMT " restarts\n",
@@ -1395,6 +1408,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 
   Options Database Keys:
 + -tao_smalxe_rho <1>          - penalty rho relative to ||A|| (||PAP|| in projector form)
+. -tao_smalxe_rho_first <1>    - penalty of the first outer iteration relative to rho (below 1: the first inner solve, which finds the active set, runs at a smaller penalty)
 . -tao_smalxe_M <0.1>          - initial M relative to ||H|| (inner precision |gP| <= min(M |Cx - d|, eta))
 . -tao_smalxe_M_min <1e-4>     - floor of M relative to ||H|| (0: none)
 . -tao_smalxe_eta <0.1>        - eta relative to |b|
