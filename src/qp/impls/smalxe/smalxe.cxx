@@ -121,6 +121,9 @@ struct TaoSMALXE {
 
 TaoSMALXE *Get(Tao tao) { return static_cast<TaoSMALXE *>(tao->data); }
 
+/* one inner solver over all of x (no Gauss-Seidel blocks) */
+bool Monolithic(const TaoSMALXE *s) { return s->blocks.size() == 1 && !s->blocks[0].is; }
+
 /* 2-norm summed the same way on any number of ranks (see reproduciblesum.h) */
 PetscErrorCode Norm(Vec v, PetscReal *n)
 {
@@ -765,7 +768,7 @@ PetscErrorCode EstimateNorms(Tao tao, TaoSMALXE *s)
    Leaves the gradient of L at the new x in s->g and returns the norm of its projected gradient. */
 PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
 {
-  PetscBool monolithic = (s->blocks.size() == 1 && !s->blocks[0].is) ? PETSC_TRUE : PETSC_FALSE;
+  const bool monolithic = Monolithic(s);
 
   PetscFunctionBegin;
   for (PetscInt sweep = 0; sweep < s->sweeps; sweep++) {
@@ -854,7 +857,7 @@ PetscErrorCode UpdatePenaltyPC(TaoSMALXE *s)
   const char *name = nullptr;
 
   PetscFunctionBegin;
-  if (s->blocks.size() != 1 || s->blocks[0].is) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!Monolithic(s)) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(TaoQPGetPC(s->blocks[0].sub, &pc));
   if (!pc) PetscFunctionReturn(PETSC_SUCCESS); /* not a QP type of ours */
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCNONE, &none));
@@ -1122,7 +1125,7 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
         viewer, "Anderson acceleration of the multiplier, depth %" PetscInt_FMT " from outer iteration %" PetscInt_FMT ": %" PetscInt_FMT " accelerated updates, %" PetscInt_FMT " restarts\n",
         AndersonDepth(s), s->anderson_start, s->aAccelerated, s->aRestarts));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "plain multiplier update (no Anderson acceleration)\n"));
-  if (s->penalty_pc && s->projector && s->blocks.size() == 1 && !s->blocks[0].is)
+  if (s->penalty_pc && s->projector && Monolithic(s))
     PetscCall(PetscViewerASCIIPrintf(viewer, "inner CG steps preconditioned in face by I - rho/(||PAP|| + rho) Q, unless the inner solver has a PC of its own\n"));
   if (tao->recycle) PetscCall(PetscViewerASCIIPrintf(viewer, "recycles the multiplier: a solve starts from the previous solve's multiplier\n"));
   if (s->stagnated) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stagnated: the equality cannot be met over the set (or rho is far too small)\n"));
@@ -1281,7 +1284,7 @@ PetscErrorCode GetSubsolver_SMALXE(Tao tao, Tao *sub)
   TaoSMALXE *s = Get(tao);
 
   PetscFunctionBegin;
-  PetscCheck(s->blocks.size() == 1 && !s->blocks[0].is, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: with blocks, use TaoSMALXEGetBlockSubsolver()");
+  PetscCheck(Monolithic(s), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "TAO smalxe: with blocks, use TaoSMALXEGetBlockSubsolver()");
   *sub = s->blocks[0].sub;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
