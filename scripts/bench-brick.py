@@ -11,14 +11,8 @@ usage: scripts/bench-brick.py [--algorithms monolithic,merged,msa] [--sizes 4,6,
 import argparse, os, re, subprocess, sys
 
 import hugepages
+from seedpaper import PAPER
 
-PAPER = {  # n: (m, {F: (Iter, n_A, time)})
-    900: (180, {0.1: (5, 102, 1), 0.3: (7, 140, 2)}),
-    2646: (378, {0.1: (5, 180, 11), 0.3: (7, 186, 12)}),
-    5832: (648, {0.1: (5, 156, 34), 0.3: (7, 169, 38)}),
-    10890: (990, {0.1: (5, 112, 67), 0.3: (7, 153, 94)}),
-    18252: (1404, {0.1: (5, 155, 221), 0.3: (7, 176, 254)}),
-}
 
 def run(build, k, F, algorithm, rtol, extra, env):
     exe = os.path.join(build, "tutorials", "contact", "brick")

@@ -19,10 +19,9 @@ import argparse, itertools, os, re, subprocess, sys
 from concurrent.futures import ThreadPoolExecutor
 
 import hugepages
+from seedpaper import GROWTH_GOAL, ITER_GOAL, PAPER, TIME_GOAL, brick_n
 
-PAPER = {4: (900, {0.1: 102, 0.3: 140}), 6: (2646, {0.1: 180, 0.3: 186}), 8: (5832, {0.1: 156, 0.3: 169}),
-         10: (10890, {0.1: 112, 0.3: 153}), 12: (18252, {0.1: 155, 0.3: 176})}
-ITER_GOAL = {0.1: 5, 0.3: 7}
+SIZES = (4, 6, 8, 10, 12)  # k of the paper's n = 900 ... 18252
 OTHERS = [(k, F) for F in (0.05, 0.2, 0.5) for k in (3, 5, 7, 9, 11, 14)]
 
 
@@ -40,7 +39,7 @@ def run(build, k, F, rtol, options, env):
 def evaluate(a, env, label, options):
     row = dict(label=label, unmet=[], paper_total=0, others=None)
     for F in (0.1, 0.3):
-        rs = [run(a.build, k, F, a.rtol, options, env) for k in sorted(PAPER)]
+        rs = [run(a.build, k, F, a.rtol, options, env) for k in SIZES]
         its, nas = [r["iter"] for r in rs], [r["nA"] for r in rs]
         growth = nas[-1] / nas[0]
         row[F] = dict(its=its, nas=nas, growth=growth, time=rs[-1]["time"])
@@ -49,11 +48,11 @@ def evaluate(a, env, label, options):
             row["unmet"].append("F=%g converged" % F)
         if max(its) > ITER_GOAL[F]:
             row["unmet"].append("F=%g Iter" % F)
-        if any(n > PAPER[k][1][F] for n, k in zip(nas, sorted(PAPER))):
+        if any(n > PAPER[brick_n(k)][1][F][1] for n, k in zip(nas, SIZES)):
             row["unmet"].append("F=%g n_A" % F)
-        if growth > 1.3:
+        if growth > GROWTH_GOAL:
             row["unmet"].append("F=%g growth" % F)
-        if a.jobs == 1 and rs[-1]["time"] >= 1.0:
+        if a.jobs == 1 and rs[-1]["time"] >= TIME_GOAL:
             row["unmet"].append("F=%g time" % F)
     if a.others:
         rs = [run(a.build, k, F, a.rtol, options, env) for k, F in OTHERS]
