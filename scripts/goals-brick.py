@@ -93,8 +93,10 @@ def main():
     env = hugepages.environment(a.hugepages)
     configs = []
     for c in a.config:
-        label, _, opts = c.partition("=")
-        configs.append((label, [] if label == "default" and not opts else opts.split()))
+        label, eq, opts = c.partition("=")
+        if not eq and label != "default":
+            sys.exit("--config: expected label=options (or default), got %r" % c)
+        configs.append((label, opts.split()))
     if a.grid:
         configs += list(grid(a.grid))
     if not configs:
