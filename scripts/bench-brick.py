@@ -8,26 +8,11 @@ the paper's Iter and n_A. Iter and n_A are machine independent; times are this m
 usage: scripts/bench-brick.py [--algorithms monolithic,merged,msa] [--sizes 4,6,8,10,12] [--rtol 1e-4]
                               [--extra "-option value ..."] [--build build] [--hugepages 1]
 """
-import argparse, os, re, subprocess, sys
+import argparse, sys
 
 import hugepages
-from seedpaper import PAPER
+from seedpaper import PAPER, run
 
-
-def run(build, k, F, algorithm, rtol, extra, env):
-    exe = os.path.join(build, "tutorials", "contact", "brick")
-    cmd = [exe, "-k", str(k), "-friction", str(F), "-contact_coulomb_algorithm", algorithm, "-contact_rtol", str(rtol)] + extra
-    out = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    text = out.stdout + out.stderr
-    m = re.search(r"^n (\d+) m (\d+) Iter (\d+) n_A (\d+) \(QPP (\d+) \+ QPQ (\d+) \+ other (\d+)\) estimate (\d+) setup ([\d.]+) s solve ([\d.]+) s", text, re.M)
-    nodes = re.search(r"nodes: (\d+) separated, (\d+) stick, (\d+) slip", text)
-    res = re.search(r"residuals: (.*)", text)
-    conv = out.returncode == 0 and re.search(r"^pipeline \w+; converged\b", text, re.M) is not None
-    if not m or out.returncode not in (0, 2):  # 2: ran, did not converge (the table says so)
-        sys.exit("brick failed (%s):\n%s" % (" ".join(cmd), text[-2000:]))
-    v = [int(x) for x in m.groups()[:8]] + [float(m.group(9)), float(m.group(10))]
-    return dict(n=v[0], m=v[1], iter=v[2], nA=v[3], qpp=v[4], qpq=v[5], other=v[6], est=v[7], setup=v[8], solve=v[9],
-                nodes=tuple(int(x) for x in nodes.groups()), converged=conv, residuals=res.group(1) if res else "")
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -52,7 +37,7 @@ def main():
             print("|---|---|---|---|---|---|---|---|---|---|")
             first = None
             for k in [int(x) for x in a.sizes.split(",")]:
-                r = run(a.build, k, F, alg, a.rtol, extra, env)
+                r = run(a.build, k, F, a.rtol, extra, env, alg)
                 pm, pf = PAPER.get(r["n"], (None, {}))
                 pi, pa, pt = pf.get(F, ("-", "-", "-"))
                 first = first or r["nA"]
