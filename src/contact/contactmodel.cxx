@@ -143,8 +143,10 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::set<Pets
     if (fixed.count(offset + nodes[i])) continue;
     for (int c = 0; c < 3; c++) info.x[c] = X[3 * nodes[i] + c];
     info.area = areas[i];
-    info.law  = zone.law;
-    info.coef = zone.law == CONTACT_TRESCA ? zone.coef * areas[i] : zone.coef;
+    /* only the effects the scene calls for: friction with coefficient (or slip bound) 0 is no friction, so such
+       a node gets no tangential rows and the zone runs the frictionless pipeline */
+    info.law  = zone.coef == 0 ? CONTACT_FRICTIONLESS : zone.law;
+    info.coef = info.law == CONTACT_TRESCA ? zone.coef * areas[i] : zone.coef;
     if (zone.type == CONTACT_ZONE_FOUNDATION) {
       PetscReal nu[3] = {zone.normal[0], zone.normal[1], zone.normal[2]};
       Normalize(nu);
@@ -218,10 +220,16 @@ PetscErrorCode BuildContactProblem(ContactModel cm)
   PetscCall(FEMGetAppendedRows(d.fem, &nrows, &rows));
   PetscCall(VecGetOwnershipRange(d.lambda, &rstart, &rend));
   for (size_t k = 0; k < d.nodes.size(); k++) {
+    const PetscInt r = rows[d.nodes[k].first_row];
+    if (r >= rstart && r < rend) PetscCallCXX(d.local.push_back((PetscInt)k));
+  }
+  /* the contact problem numbers its nodes law by law (ContactProblemAddNodes() below, once per law), and
+     ContactProblemGetSlipBounds() answers in that order: the local nodes must come in the same order, or a
+     scene whose zones mix laws would judge each node with another node's slip bound */
+  PetscCallCXX(std::stable_sort(d.local.begin(), d.local.end(), [&d](PetscInt a, PetscInt b) { return d.nodes[a].law < d.nodes[b].law; }));
+  for (PetscInt k : d.local) {
     const NodeInfo &nd = d.nodes[k];
     const PetscInt  r  = rows[nd.first_row];
-    if (r < rstart || r >= rend) continue;
-    PetscCallCXX(d.local.push_back((PetscInt)k));
     PetscCallCXX(d.mult.insert(d.mult.end(), {r, nd.law == CONTACT_FRICTIONLESS ? -1 : rows[nd.first_row + 1], nd.law == CONTACT_FRICTIONLESS ? -1 : rows[nd.first_row + 2]}));
     PetscCallCXX(d.lbody.push_back(nd.body));
     PetscCallCXX(d.lnode.push_back(nd.node));
