@@ -82,7 +82,11 @@ PETSC_EXTERN const char *const ContactCoulombAlgorithms[];
 . products_other   - products outside the inner solvers (block linear terms, gradients after a sweep, setup)
 . products_estimate- products spent estimating ||F|| (reported apart)
 . fixed_point      - relative Coulomb fixed-point residual |g - F l_n| / |F l_n| at the end (0 if not Coulomb)
-- feasibility      - |G l - e| at the end
+. feasibility      - |G l - e| at the end
+. acceptance       - the largest residual a converged solution may have (`ContactModelSolve()`: the acceptance factor times
+                     the solver's relative tolerance; 0 when the solve was not judged by its residuals)
+. refinements      - tighter solves run after the first because the solver's own test passed but the residuals did not
+- failed_check     - why a solve did not converge: a `ContactChecks` name, "solver" (the solver's own test failed), or "" when it converged
 
   Level: beginner
 
@@ -101,6 +105,9 @@ typedef struct {
   PetscInt                products_estimate;
   PetscReal               fixed_point;
   PetscReal               feasibility;
+  PetscReal               acceptance;
+  PetscInt                refinements;
+  char                    failed_check[32];
 } ContactStatistics;
 
 /*S
@@ -198,29 +205,65 @@ typedef enum {
 } ContactNodeStatus;
 PETSC_EXTERN const char *const ContactNodeStatuses[];
 
-/*S
-  ContactResiduals - The mechanical quality of a solution (ALGORITHMS.md section 4), computed from u
-  and lambda, each relative (dimensionless):
+/*E
+  ContactCheck - One of the mechanical checks of a solution (`ContactResiduals`).
 
-  Fields:
-+ equilibrium     - |K u - f + B'l| / max(|f|, |B'l|) (subdomain by subdomain)
-. gluing          - max |(B u - c)_i| over gluing and Dirichlet rows / max |u|
-. penetration     - max (N u - d)_+ / max |u|
-. normal_sign     - max (-l_n)_+ / max l_n
-. complementarity - max |l_n (d - N u)| / (max l_n max |u|)
-. friction_cone   - max (|l_t| - g)_+ / max l_n (g: Tresca bound or F l_n)
-. slip_rule       - max |l_t - P_g(l_t + k T u)| / max l_n with k = max l_n / max |u|: zero exactly when stick nodes do not move
-                    and slipping nodes move along l_t with |l_t| = g (the friction force -T'l_t opposes the slip)
-. max             - the largest of the above
-- counts[3]       - number of separated, stick and slip nodes
+$ CONTACT_CHECK_EQUILIBRIUM     - K u = f - B'l (per body)
+$ CONTACT_CHECK_GLUING          - B u = c on gluing and Dirichlet rows: subdomain copies agree, supports hold (per body)
+$ CONTACT_CHECK_PENETRATION     - N u <= d: no node passes the obstacle (per zone)
+$ CONTACT_CHECK_NORMAL_SIGN     - l_n >= 0: contact pushes, never pulls (per zone)
+$ CONTACT_CHECK_COMPLEMENTARITY - l_n (d - N u) = 0: no contact force across an open gap (per zone)
+$ CONTACT_CHECK_FRICTION_CONE   - |l_t| <= g: friction within its bound (per zone)
+$ CONTACT_CHECK_SLIP_RULE       - stick nodes do not move, slipping nodes move against their friction force (per zone)
 
   Level: beginner
 
-.seealso: `ContactModelComputeResiduals()`
+.seealso: `ContactResiduals`, `ContactModelComputeResiduals()`
+E*/
+typedef enum {
+  CONTACT_CHECK_EQUILIBRIUM,
+  CONTACT_CHECK_GLUING,
+  CONTACT_CHECK_PENETRATION,
+  CONTACT_CHECK_NORMAL_SIGN,
+  CONTACT_CHECK_COMPLEMENTARITY,
+  CONTACT_CHECK_FRICTION_CONE,
+  CONTACT_CHECK_SLIP_RULE,
+  CONTACT_NUM_CHECKS
+} ContactCheck;
+PETSC_EXTERN const char *const ContactChecks[];
+
+/*S
+  ContactResiduals - The mechanical quality of a solution, computed from u and lambda, each relative
+  (dimensionless) to a scale of the body or zone where it is measured:
+
+  Fields:
++ equilibrium     - max over bodies b of |(K u - f + B'l)_b| / max(|f_b|, |(B'l)_b|, |(K u)_b|)
+. gluing          - max over bodies of max |(B u - c)_i| over the body's gluing and Dirichlet rows / max |u_b|
+. penetration     - max over zones of max (N u - d)_+ / U_z (U_z: the largest displacement of the zone's bodies)
+. normal_sign     - max over zones of max (-l_n)_+ / L_z (L_z: the zone's largest contact multiplier)
+. complementarity - max over zones of max |l_n (d - N u)| / (L_z U_z)
+. friction_cone   - max over zones of max (|l_t| - g)_+ / L_z (g: Tresca bound or F l_n)
+. slip_rule       - max over zones of max |l_t - P_g(l_t + k T u)| / L_z with k = L_z / U_z: zero exactly when stick nodes do not
+                    move and slipping nodes move along l_t with |l_t| = g (the friction force -T'l_t opposes the slip)
+. max             - the largest of the above
+. worst           - the check of max
+. where           - per check, the body (equilibrium, gluing) or zone (the others) where it is largest (-1: not measured)
+- counts[3]       - number of separated, stick and slip nodes
+
+  Notes:
+  A scale below 1e-6 times the largest scale of its kind in the scene is raised to that (double precision cannot
+  resolve smaller forces in one solve of the scene); without any load all scales vanish, and the exact solution
+  u = 0, l = 0 has residuals 0.
+
+  Level: beginner
+
+.seealso: `ContactModelComputeResiduals()`, `ContactCheck`
 S*/
 typedef struct {
-  PetscReal equilibrium, gluing, penetration, normal_sign, complementarity, friction_cone, slip_rule, max;
-  PetscInt  counts[3];
+  PetscReal    equilibrium, gluing, penetration, normal_sign, complementarity, friction_cone, slip_rule, max;
+  ContactCheck worst;
+  PetscInt     where[CONTACT_NUM_CHECKS];
+  PetscInt     counts[3];
 } ContactResiduals;
 
 /*S

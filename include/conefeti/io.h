@@ -52,6 +52,9 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . fixed_point   - Coulomb: relative fixed-point residual |g - F l_n| / |F l_n| at the end
 . feasibility   - |G l - e| at the end
 . rtol          - the contact solver's relative tolerance (-contact_rtol; 0 for the linear pipeline)
+. acceptance    - the largest mechanical residual a converged solve may have (`ContactModelSolve()`)
+. refinements   - tighter solves after the first, run because the solver's test passed before the residuals did
+. failed_check  - why the solve did not converge: a `ContactChecks` name, "solver", or "" when it converged
 . unmatched_nodes - nodes of node-to-node zones' first faces without a partner (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . residuals     - the mechanical residuals (each relative) and the node counts
@@ -72,7 +75,9 @@ typedef struct {
   char                    description[256];
   PetscInt                n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
   PetscInt                iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
-  PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility, rtol;
+  PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
+  PetscInt                refinements;
+  char                    failed_check[32];
   PetscInt                unmatched_nodes;
   PetscReal               max_nu;
   ContactResiduals        residuals;

@@ -21,7 +21,7 @@ FIELDS = {
     "subdomains": int, "rigid_modes": int, "iter": int, "al_iter": int, "n_A": int, "n_A_qpp": int, "n_A_qpq": int,
     "n_A_other": int, "n_A_estimate": int, "norm_F": float, "time_setup": float, "time_solve": float,
     "contact_nodes": int, "separated": int, "stick": int, "slip": int, "fixed_point": float, "feasibility": float,
-    "residuals": dict,
+    "acceptance": float, "refinements": int, "residuals": dict,
 }
 RESIDUALS = ["equilibrium", "gluing", "penetration", "normal_sign", "complementarity", "friction_cone", "slip_rule", "max"]
 
@@ -71,6 +71,13 @@ def main(argv):
                     fail.append("JSON residual %s missing or not a finite number" % k)
             if "algorithm" not in data:
                 fail.append("JSON field algorithm missing")
+            # converged exactly when no check failed; a run that did not converge names the check
+            if "failed_check" not in data:
+                fail.append("JSON field failed_check missing")
+            elif data.get("converged") is True and data["failed_check"] is not None:
+                fail.append("converged with failed_check = %r" % data["failed_check"])
+            elif data.get("converged") is False and not isinstance(data["failed_check"], str):
+                fail.append("not converged without a failed_check")
             # the pipeline line printed before the solve must describe what ran
             pre = [l for l in lines if re.match(r"^conefeti [0-9.]+: pipeline ", l)]
             if pre and isinstance(data.get("description"), str) and pre[0].split(": pipeline ", 1)[1] != data["description"]:

@@ -1,0 +1,48 @@
+/* ContactModel internals shared by the files of the contact layer that build, solve and judge a model. */
+#pragma once
+
+#include <conefeti/private/contactimpl.h>
+#include <vector>
+
+/* one contact node: where it is, its rows' directions and gap, its law */
+struct ContactNodeInfo {
+  PetscInt   zone, body, node, other_body = -1, other_node = -1;
+  PetscReal  x[3], area, n[3], t1[3], t2[3], gap;
+  ContactLaw law;
+  PetscReal  coef; /* Tresca: bound as a nodal force; Coulomb: F */
+  PetscInt   first_row;
+};
+
+struct ContactModelData {
+  FEM                          fem = nullptr;
+  std::vector<ContactZone>     zones;
+  std::vector<ContactNodeInfo> nodes;     /* all contact nodes, the same on every rank */
+  std::vector<PetscInt>        unmatched; /* per zone: nodes of a node-to-node zone's first face without a partner */
+  FETI                         feti   = nullptr;
+  ContactProblem               cp     = nullptr;
+  Vec                          lambda = nullptr, u = nullptr, alpha = nullptr;
+  ContactPipeline              pipeline = CONTACT_PIPELINE_LINEAR;
+  ContactStatistics            stats    = {}; /* of the last ContactModelSolve(): all its solves, and the verdict */
+
+  /* acceptance of a solution by its mechanical residuals (ContactModelSolve()) */
+  PetscReal acceptance_factor = 10; /* every residual <= factor * the solver's relative tolerance */
+  PetscInt  refine_max        = 3;  /* tighter solves, warm started, when the solver's own test passed but the residuals did not */
+
+  /* contact nodes whose multipliers this rank owns, in the contact problem's order (law by law) */
+  std::vector<PetscInt>  local; /* indices into nodes */
+  std::vector<PetscInt>  mult;  /* 3 per local node: normal, t1, t2 multiplier indices (-1 when frictionless) */
+  std::vector<PetscInt>  lbody, lnode;
+  std::vector<PetscReal> lcoords, larea;
+  PetscBool              setup = PETSC_FALSE, solved = PETSC_FALSE;
+};
+
+struct _ContactModelOps {
+  PetscErrorCode (*unused)(void);
+};
+struct _p_ContactModel {
+  PETSCHEADER(struct _ContactModelOps);
+  ContactModelData *data;
+};
+
+/* "<check> of body b is <value> (<what it means>)" for the check c of r */
+PETSC_INTERN PetscErrorCode ContactModelDescribeResidual_Private(ContactModel, const ContactResiduals *, ContactCheck, char[], size_t);

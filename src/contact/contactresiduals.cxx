@@ -1,0 +1,412 @@
+/* Judging a solution of a contact model by its mechanics, independently of the solver's own test:
+   the residuals of equilibrium, gluing and supports, non-penetration, the sign of the contact force,
+   complementarity, the friction cone and the slip rule, computed from u and lambda; and the state of
+   each contact node (separated, stick, slip).
+
+   Each residual is relative to a scale of its own body (equilibrium, gluing) or zone (the contact
+   checks), so that a lightly loaded body next to a heavily loaded one is judged on its own forces and
+   displacements, and the verdict does not depend on the order of the zones. A scale is never smaller
+   than kScaleFloor times the largest scale of its kind in the scene: below that, double precision cannot
+   resolve a body's forces in one solve of the whole scene, so its residual is measured on the floor. A
+   scene without any load has all scales 0; its exact solution is u = 0, lambda = 0, whose residuals are
+   0 (0 over the smallest positive real), not 0/0. */
+#include <conefeti/private/contactmodelimpl.h>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+const char *const ContactChecks[] = {"equilibrium", "gluing", "penetration", "normal_sign", "complementarity", "friction_cone", "slip_rule", "ContactCheck", "CONTACT_CHECK_", NULL};
+
+namespace {
+
+constexpr PetscReal kScaleFloor = 1e-6;
+constexpr PetscReal kTiny       = std::numeric_limits<PetscReal>::min();
+
+/* per local contact node: l_n, l_t (2), (N u - d), T u (2), slip bound g */
+struct NodeValues {
+  std::vector<PetscReal> ln, lt, gapres, tu, g;
+};
+
+PetscErrorCode EvaluateNodes(ContactModel cm, Vec Bu, NodeValues &v)
+{
+  ContactModelData      &d = *cm->data;
+  const PetscScalar     *l, *bu, *c = NULL;
+  PetscInt               rstart;
+  Mat                    B;
+  Vec                    cvec;
+  const FETIRowKind     *kinds;
+  std::vector<PetscReal> bounds(d.local.size());
+
+  PetscFunctionBegin;
+  PetscCall(FETIGetConstraints(d.feti, &B, &cvec, &kinds));
+  PetscCall(VecGetOwnershipRange(d.lambda, &rstart, NULL));
+  PetscCall(VecGetArrayRead(d.lambda, &l));
+  PetscCall(VecGetArrayRead(Bu, &bu));
+  if (cvec) PetscCall(VecGetArrayRead(cvec, &c));
+  PetscCall(ContactProblemGetSlipBounds(d.cp, d.lambda, bounds.data()));
+  const size_t n = d.local.size();
+  v.ln.assign(n, 0);
+  v.lt.assign(2 * n, 0);
+  v.gapres.assign(n, 0);
+  v.tu.assign(2 * n, 0);
+  v.g = bounds;
+  for (size_t j = 0; j < n; j++) {
+    const PetscInt rn = d.mult[3 * j] - rstart;
+    v.ln[j]           = PetscRealPart(l[rn]);
+    v.gapres[j]       = PetscRealPart(bu[rn] - (c ? c[rn] : 0.0));
+    for (int q = 0; q < 2; q++) {
+      if (d.mult[3 * j + 1 + q] < 0) continue;
+      const PetscInt rt = d.mult[3 * j + 1 + q] - rstart;
+      v.lt[2 * j + q]   = PetscRealPart(l[rt]);
+      v.tu[2 * j + q]   = PetscRealPart(bu[rt]);
+    }
+  }
+  PetscCall(VecRestoreArrayRead(d.lambda, &l));
+  PetscCall(VecRestoreArrayRead(Bu, &bu));
+  if (cvec) PetscCall(VecRestoreArrayRead(cvec, &c));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* the largest normal multiplier of each zone (over all ranks) */
+PetscErrorCode ZonePressureMax(ContactModel cm, const NodeValues &v, std::vector<PetscReal> &lnmax)
+{
+  ContactModelData &d = *cm->data;
+
+  PetscFunctionBegin;
+  lnmax.assign(d.zones.size(), 0);
+  for (size_t j = 0; j < d.local.size(); j++) {
+    PetscReal &m = lnmax[d.nodes[d.local[j]].zone];
+    m            = PetscMax(m, v.ln[j]);
+  }
+  if (!lnmax.empty()) PetscCall(MPIU_Allreduce(MPI_IN_PLACE, lnmax.data(), (PetscMPIInt)lnmax.size(), MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)cm)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The regime from the multipliers: separated without pressure (relative to the largest pressure of the
+   node's zone), slip on the boundary of the friction disk, stick inside it. Frictionless nodes in contact
+   slide freely: slip. The margins (1e-4 of the largest pressure, 1e-3 of the slip bound) sit above the
+   solver's tolerance. */
+ContactNodeStatus Classify(PetscReal ln, PetscReal lnmax, const PetscReal lt[2], PetscReal g, PetscBool frictionless)
+{
+  if (ln <= 1e-4 * lnmax) return CONTACT_NODE_SEPARATED;
+  if (frictionless || std::hypot(lt[0], lt[1]) >= (1 - 1e-3) * g) return CONTACT_NODE_SLIP;
+  return CONTACT_NODE_STICK;
+}
+
+/* The body of every global subdomain (gathered: a row of B may reach a subdomain of another rank), with the
+   first primal dof of each, sorted by that dof. */
+PetscErrorCode SubdomainBodies(ContactModel cm, std::vector<PetscInt> &start, std::vector<PetscInt> &body)
+{
+  ContactModelData     &d    = *cm->data;
+  MPI_Comm              comm = PetscObjectComm((PetscObject)cm);
+  PetscInt              nlocal;
+  PetscMPIInt           size, n;
+  std::vector<PetscInt> mine;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCall(FEMGetNumSubdomains(d.fem, NULL, &nlocal, NULL));
+  for (PetscInt s = 0; s < nlocal; s++) {
+    PetscInt b, primal;
+    PetscCall(FEMGetSubdomainMesh(d.fem, s, &b, NULL, NULL, NULL, NULL));
+    PetscCall(FETIGetSubdomainOffset(d.feti, s, &primal, NULL));
+    PetscCallCXX(mine.insert(mine.end(), {primal, b}));
+  }
+  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
+  PetscCall(PetscMPIIntCast((PetscInt)mine.size(), &n));
+  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
+  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
+  std::vector<PetscInt> all(displs[size]);
+  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, comm));
+  std::vector<std::pair<PetscInt, PetscInt>> pairs;
+  for (size_t i = 0; i + 1 < all.size(); i += 2) PetscCallCXX(pairs.emplace_back(all[i], all[i + 1]));
+  std::sort(pairs.begin(), pairs.end());
+  start.clear();
+  body.clear();
+  for (auto &p : pairs) {
+    PetscCallCXX(start.push_back(p.first));
+    PetscCallCXX(body.push_back(p.second));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* r / max(scale, floor * largest scale of the kind, the smallest positive real) */
+PetscReal Relative(PetscReal r, PetscReal scale, PetscReal largest)
+{
+  return r / PetscMax(PetscMax(scale, kScaleFloor * largest), kTiny);
+}
+
+} // namespace
+
+/*@C
+  ContactModelComputeResiduals - The mechanical residuals of the solution, computed from u and lambda,
+  not taken from the solver; where each is largest; and the counts of separated, stick and slip nodes.
+
+  Collective
+
+  Input Parameter:
+. cm - the model (solved)
+
+  Output Parameter:
+. r - the residuals
+
+  Notes:
+  Each residual is relative to a scale of the body or zone where it is measured (see `ContactResiduals`):
+  a body's forces max(|f_b|, |(B'l)_b|, |(K u)_b|), a body's largest displacement, a zone's largest
+  contact multiplier. A scale below 1e-6 times the largest of its kind in the scene is raised to that, and
+  a scene without load (all scales 0) has residuals 0 for the exact solution u = 0, l = 0.
+
+  A node is separated when l_n <= 1e-4 times the largest l_n of its zone; among the others, it slips when
+  |l_t| >= (1 - 1e-3) g (on the boundary of its friction disk; frictionless nodes in contact always slip), and
+  sticks otherwise. Whether stick nodes really do not move is what the slip_rule residual checks.
+
+  Level: beginner
+
+.seealso: `ContactResiduals`, `ContactModelGetNodeStates()`, `ContactModelSolve()`
+@*/
+PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r)
+{
+  ContactModelData     *d;
+  Mat                   B;
+  Vec                   cvec, Ku, f, Btl, Bu;
+  const FETIRowKind    *kinds;
+  PetscInt              nbodies, nlocal, ustart, rstart;
+  MPI_Comm              comm;
+  std::vector<PetscInt> substart, subbody;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  PetscValidPointer(r, 2);
+  d    = cm->data;
+  comm = PetscObjectComm((PetscObject)cm);
+  PetscCheck(d->solved, comm, PETSC_ERR_ARG_WRONGSTATE, "ContactModel: solve first");
+  *r = ContactResiduals{};
+  for (PetscInt &w : r->where) w = -1;
+  PetscCall(FEMGetNumBodies(d->fem, &nbodies));
+  PetscCall(FETIGetConstraints(d->feti, &B, &cvec, &kinds));
+  PetscCall(FETIGetLoad(d->feti, &f));
+  PetscCall(SubdomainBodies(cm, substart, subbody));
+
+  /* per body: |K u - f + B'l|^2, |f|^2, |B'l|^2, |K u|^2 (sums) and max |u| */
+  std::vector<PetscReal> sums(4 * nbodies, 0), umax(nbodies, 0);
+  PetscCall(VecDuplicate(d->u, &Ku));
+  PetscCall(VecDuplicate(d->u, &Btl));
+  PetscCall(FETIApplyK(d->feti, d->u, Ku));
+  PetscCall(MatMultTranspose(B, d->lambda, Btl));
+  PetscCall(VecGetOwnershipRange(d->u, &ustart, NULL));
+  PetscCall(FEMGetNumSubdomains(d->fem, NULL, &nlocal, NULL));
+  {
+    const PetscScalar *ku, *fa, *bl, *ua;
+    PetscCall(VecGetArrayRead(Ku, &ku));
+    PetscCall(VecGetArrayRead(f, &fa));
+    PetscCall(VecGetArrayRead(Btl, &bl));
+    PetscCall(VecGetArrayRead(d->u, &ua));
+    for (PetscInt s = 0; s < nlocal; s++) {
+      PetscInt b, nn, primal;
+      PetscCall(FEMGetSubdomainMesh(d->fem, s, &b, &nn, NULL, NULL, NULL));
+      PetscCall(FETIGetSubdomainOffset(d->feti, s, &primal, NULL));
+      for (PetscInt i = primal - ustart; i < primal - ustart + 3 * nn; i++) {
+        const PetscReal res = PetscRealPart(ku[i] - fa[i] + bl[i]);
+        sums[4 * b + 0] += res * res;
+        sums[4 * b + 1] += PetscRealPart(fa[i] * fa[i]);
+        sums[4 * b + 2] += PetscRealPart(bl[i] * bl[i]);
+        sums[4 * b + 3] += PetscRealPart(ku[i] * ku[i]);
+        umax[b] = PetscMax(umax[b], PetscAbsScalar(ua[i]));
+      }
+    }
+    PetscCall(VecRestoreArrayRead(Ku, &ku));
+    PetscCall(VecRestoreArrayRead(f, &fa));
+    PetscCall(VecRestoreArrayRead(Btl, &bl));
+    PetscCall(VecRestoreArrayRead(d->u, &ua));
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums.data(), (PetscMPIInt)sums.size(), MPIU_REAL, MPIU_SUM, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, umax.data(), (PetscMPIInt)umax.size(), MPIU_REAL, MPIU_MAX, comm));
+  PetscReal forcemax = 0, dispmax = 0;
+  for (PetscInt b = 0; b < nbodies; b++) {
+    forcemax = PetscMax(forcemax, PetscSqrtReal(PetscMax(PetscMax(sums[4 * b + 1], sums[4 * b + 2]), sums[4 * b + 3])));
+    dispmax  = PetscMax(dispmax, umax[b]);
+  }
+  for (PetscInt b = 0; b < nbodies; b++) {
+    const PetscReal scale = PetscSqrtReal(PetscMax(PetscMax(sums[4 * b + 1], sums[4 * b + 2]), sums[4 * b + 3]));
+    const PetscReal e     = Relative(PetscSqrtReal(sums[4 * b]), scale, forcemax);
+    if (e > r->equilibrium || r->where[CONTACT_CHECK_EQUILIBRIUM] < 0) {
+      r->equilibrium                      = e;
+      r->where[CONTACT_CHECK_EQUILIBRIUM] = b;
+    }
+  }
+
+  /* B u - c on gluing and Dirichlet rows, relative to the largest displacement of the row's body */
+  PetscCall(VecDuplicate(d->lambda, &Bu));
+  PetscCall(MatMult(B, d->u, Bu));
+  PetscCall(VecGetOwnershipRange(Bu, &rstart, NULL));
+  {
+    const PetscScalar     *bu, *c = NULL;
+    PetscInt               m;
+    std::vector<PetscReal> glue(nbodies, 0);
+    PetscCall(VecGetLocalSize(Bu, &m));
+    PetscCall(VecGetArrayRead(Bu, &bu));
+    if (cvec) PetscCall(VecGetArrayRead(cvec, &c));
+    for (PetscInt i = 0; i < m; i++) {
+      if (kinds[i] != FETI_ROW_GLUING && kinds[i] != FETI_ROW_DIRICHLET) continue;
+      PetscInt        ncols;
+      const PetscInt *cols;
+      PetscCall(MatGetRow(B, rstart + i, &ncols, &cols, NULL));
+      PetscInt b = 0;
+      if (ncols > 0) {
+        const size_t s = (size_t)(std::upper_bound(substart.begin(), substart.end(), cols[0]) - substart.begin());
+        b              = s > 0 ? subbody[s - 1] : 0;
+      }
+      PetscCall(MatRestoreRow(B, rstart + i, &ncols, &cols, NULL));
+      glue[b] = PetscMax(glue[b], PetscAbsReal(PetscRealPart(bu[i] - (c ? c[i] : 0.0))));
+    }
+    PetscCall(VecRestoreArrayRead(Bu, &bu));
+    if (cvec) PetscCall(VecRestoreArrayRead(cvec, &c));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, glue.data(), (PetscMPIInt)glue.size(), MPIU_REAL, MPIU_MAX, comm));
+    for (PetscInt b = 0; b < nbodies; b++) {
+      const PetscReal e = Relative(glue[b], umax[b], dispmax);
+      if (e > r->gluing || r->where[CONTACT_CHECK_GLUING] < 0) {
+        r->gluing                      = e;
+        r->where[CONTACT_CHECK_GLUING] = b;
+      }
+    }
+  }
+
+  if (d->cp) {
+    const size_t           nz = d->zones.size();
+    NodeValues             v;
+    std::vector<PetscReal> lnmax, lzone(nz, 0), m(5 * nz, 0), uzone(nz, 0);
+    PetscCall(EvaluateNodes(cm, Bu, v));
+    PetscCall(ZonePressureMax(cm, v, lnmax));
+    /* the force scale of a zone: its largest pressure, or (no pressure anywhere in it, e.g. a run without
+       equilibrium) its largest contact multiplier, so that the ratios stay finite */
+    for (size_t j = 0; j < v.ln.size(); j++) {
+      PetscReal &l = lzone[d->nodes[d->local[j]].zone];
+      l            = PetscMax(l, PetscMax(PetscAbsReal(v.ln[j]), std::hypot(v.lt[2 * j], v.lt[2 * j + 1])));
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, lzone.data(), (PetscMPIInt)nz, MPIU_REAL, MPIU_MAX, comm));
+    PetscReal lall = 0;
+    for (size_t z = 0; z < nz; z++) lall = PetscMax(lall, PetscMax(lzone[z], lnmax[z]));
+    for (size_t z = 0; z < nz; z++) {
+      const ContactZone &zn = d->zones[z];
+      uzone[z]              = PetscMax(umax[zn.body], zn.type == CONTACT_ZONE_BODIES ? umax[zn.other_body] : 0.0);
+      /* floors: the largest displacement of the scene, the largest force (contact or body load) */
+      uzone[z] = PetscMax(PetscMax(uzone[z], kScaleFloor * dispmax), kTiny);
+      lzone[z] = PetscMax(PetscMax(PetscMax(lzone[z], lnmax[z]), kScaleFloor * PetscMax(lall, forcemax)), kTiny);
+    }
+    for (size_t j = 0; j < v.ln.size(); j++) {
+      const PetscInt  z = d->nodes[d->local[j]].zone;
+      const PetscReal ln = v.ln[j], *lt = &v.lt[2 * j], *tu = &v.tu[2 * j], g = v.g[j], k = lzone[z] / uzone[z];
+      PetscReal      *mz = &m[5 * z];
+      mz[0]              = PetscMax(mz[0], v.gapres[j] / uzone[z]);                               /* penetration */
+      mz[1]              = PetscMax(mz[1], -ln / lzone[z]);                                       /* normal sign */
+      mz[2]              = PetscMax(mz[2], PetscAbsReal(ln * v.gapres[j]) / (lzone[z] * uzone[z])); /* complementarity */
+      if (d->mult[3 * j + 1] >= 0) {
+        mz[3] = PetscMax(mz[3], (std::hypot(lt[0], lt[1]) - g) / lzone[z]); /* friction cone */
+        /* natural residual of the slip rule: l_t = P_g(l_t + k T u) */
+        PetscReal y[2] = {lt[0] + k * tu[0], lt[1] + k * tu[1]}, ny = std::hypot(y[0], y[1]);
+        if (ny > g) y[0] *= g / ny, y[1] *= g / ny;
+        mz[4] = PetscMax(mz[4], std::hypot(lt[0] - y[0], lt[1] - y[1]) / lzone[z]);
+      }
+      r->counts[Classify(ln, lnmax[z], lt, g, d->mult[3 * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE)]++;
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m.data(), (PetscMPIInt)m.size(), MPIU_REAL, MPIU_MAX, comm));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, r->counts, 3, MPIU_INT, MPI_SUM, comm));
+    PetscReal *zonal[5] = {&r->penetration, &r->normal_sign, &r->complementarity, &r->friction_cone, &r->slip_rule};
+    for (int q = 0; q < 5; q++) {
+      for (size_t z = 0; z < nz; z++) {
+        const PetscReal e = PetscMax(m[5 * z + q], 0.0);
+        if (e > *zonal[q] || r->where[CONTACT_CHECK_PENETRATION + q] < 0) {
+          *zonal[q]                            = e;
+          r->where[CONTACT_CHECK_PENETRATION + q] = (PetscInt)z;
+        }
+      }
+    }
+  }
+  const PetscReal all[CONTACT_NUM_CHECKS] = {r->equilibrium, r->gluing, r->penetration, r->normal_sign, r->complementarity, r->friction_cone, r->slip_rule};
+  r->worst                                = CONTACT_CHECK_EQUILIBRIUM;
+  for (int q = 0; q < CONTACT_NUM_CHECKS; q++) {
+    /* a residual that is not a number is the worst of all */
+    if (!(all[q] <= r->max)) {
+      r->max   = all[q];
+      r->worst = (ContactCheck)q;
+      if (PetscIsInfOrNanReal(all[q])) break;
+    }
+  }
+  PetscCall(VecDestroy(&Ku));
+  PetscCall(VecDestroy(&Btl));
+  PetscCall(VecDestroy(&Bu));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactModelGetNodeStates - Contact-surface fields at this rank's contact nodes (order of
+  `ContactModelGetNodes()`).
+
+  Collective
+
+  Input Parameter:
+. cm - the model (solved)
+
+  Output Parameters (any may be NULL):
++ pressure - normal contact stress l_n / area
+. traction - 3 per node: tangential stress vector (l_t1 t1 + l_t2 t2) / area; the friction traction on the
+             first body is its opposite
+. slip     - 3 per node: tangential displacement of the first body relative to the foundation or the other body
+- status   - separated, stick or slip (the rule of `ContactModelComputeResiduals()`)
+
+  Level: intermediate
+
+.seealso: `ContactModelComputeResiduals()`
+@*/
+PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], PetscReal traction[], PetscReal slip[], ContactNodeStatus status[])
+{
+  ContactModelData      *d;
+  Mat                    B;
+  Vec                    Bu, cvec;
+  const FETIRowKind     *kinds;
+  NodeValues             v;
+  std::vector<PetscReal> lnmax;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  d = cm->data;
+  PetscCheck(d->solved, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONGSTATE, "ContactModel: solve first");
+  if (!d->cp) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(FETIGetConstraints(d->feti, &B, &cvec, &kinds));
+  PetscCall(VecDuplicate(d->lambda, &Bu));
+  PetscCall(MatMult(B, d->u, Bu));
+  PetscCall(EvaluateNodes(cm, Bu, v));
+  PetscCall(VecDestroy(&Bu));
+  PetscCall(ZonePressureMax(cm, v, lnmax));
+  for (size_t j = 0; j < d->local.size(); j++) {
+    const ContactNodeInfo &nd = d->nodes[d->local[j]];
+    if (pressure) pressure[j] = v.ln[j] / nd.area;
+    for (int c = 0; c < 3; c++) {
+      if (traction) traction[3 * j + c] = (v.lt[2 * j] * nd.t1[c] + v.lt[2 * j + 1] * nd.t2[c]) / nd.area;
+      if (slip) slip[3 * j + c] = v.tu[2 * j] * nd.t1[c] + v.tu[2 * j + 1] * nd.t2[c];
+    }
+    if (status) status[j] = Classify(v.ln[j], lnmax[nd.zone], &v.lt[2 * j], v.g[j], d->mult[3 * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* what a failed check means, for the sentence that says why a solve did not converge */
+PetscErrorCode ContactModelDescribeResidual_Private(ContactModel cm, const ContactResiduals *r, ContactCheck c, char buf[], size_t len)
+{
+  static const char *const meaning[CONTACT_NUM_CHECKS] = {"the forces on the body do not balance: K u != f - B'l",
+                                                          "the body's subdomains do not fit together or its supports move: B u != c",
+                                                          "nodes pass through the obstacle",
+                                                          "contact forces pull instead of push",
+                                                          "contact forces act across open gaps",
+                                                          "friction forces exceed their bound",
+                                                          "stick nodes move, or slipping nodes do not move against their friction force"};
+  const PetscReal          value[CONTACT_NUM_CHECKS]   = {r->equilibrium, r->gluing, r->penetration, r->normal_sign, r->complementarity, r->friction_cone, r->slip_rule};
+  const bool               perbody                     = c == CONTACT_CHECK_EQUILIBRIUM || c == CONTACT_CHECK_GLUING;
+
+  PetscFunctionBegin;
+  (void)cm;
+  if (r->where[c] >= 0)
+    PetscCall(PetscSNPrintf(buf, len, "%s of %s %" PetscInt_FMT " is %.1e (%s)", ContactChecks[c], perbody ? "body" : "contact zone", r->where[c], (double)value[c], meaning[c]));
+  else PetscCall(PetscSNPrintf(buf, len, "%s is %.1e (%s)", ContactChecks[c], (double)value[c], meaning[c]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
