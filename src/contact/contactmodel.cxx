@@ -416,6 +416,17 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG,
              "the contact zones have no admissible node (all fixed, or no matching nodes between bodies)");
   PetscCall(AppendRows(cm));
+  /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported
+     as converged); named here, before any factorization (contactrigidmotions.cxx) */
+  {
+    std::vector<ContactHoldingRow> holding;
+    for (const NodeInfo &k : d->nodes) {
+      const PetscReal *dirs[3] = {k.n, k.t1, k.t2};
+      const int        nrows   = k.law == CONTACT_FRICTIONLESS || !(k.coef > 0) ? 1 : 3; /* tangential rows with a zero bound carry no force */
+      for (int r = 0; r < nrows; r++) PetscCallCXX(holding.push_back({k.zone, k.body, k.node, k.other_body, k.other_node, {dirs[r][0], dirs[r][1], dirs[r][2]}}));
+    }
+    PetscCall(ContactCheckRigidMotions_Private(cm, d->fem, d->zones, holding));
+  }
   PetscCall(FEMCreateFETI(d->fem, &d->feti));
   /* contact needs hundreds of F products: dense K+ blocks on the interface pay for their setup (-feti_kplus_explicit) */
   if (!d->zones.empty()) PetscCall(FETISetKplusExplicit(d->feti, PETSC_TRUE));
