@@ -393,9 +393,16 @@ PetscErrorCode ContactModelSetFromOptions(ContactModel cm)
   Only what the zones call for is built: no zone means no contact rows (the solve is then a linear
   FETI solve), frictionless zones add normal rows only, Tresca and Coulomb zones add tangential rows.
 
+  Before FETI is set up, the rigid motions of the bodies that no Dirichlet condition and no contact row
+  resists are sought (a body without support on a frictionless floor, a body touching its support along
+  one node line, bodies that float together): if there is one, the setup stops with an error
+  (`PETSC_ERR_ARG_WRONG`) that names the bodies and the motion, says whether the load works along it
+  (no equilibrium: the force along it or the moment about its axis) or not (no unique displacement),
+  and how to hold it. See docs/contact.md, "No equilibrium, or no unique answer".
+
   Level: beginner
 
-.seealso: `ContactModelSolve()`, `ContactModelGetPipeline()`
+.seealso: `ContactModelSolve()`, `ContactModelGetPipeline()`, `FEMComputeLoadResultant()`
 @*/
 PetscErrorCode ContactModelSetUp(ContactModel cm)
 {

@@ -358,7 +358,8 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
   const PetscReal tol = kFreeTol * PetscMax(lambda[n - 1], 1.0);
   PetscInt        k   = 0;
   while (k < n && lambda[k] <= tol) k++; /* ascending */
-  PetscCall(PetscInfo(cm, "rigid motions of the %" PetscInt_FMT " bodies: %" PetscInt_FMT " free (scaled Gram eigenvalues %g .. %g)\n", nb, k, (double)lambda[0], (double)lambda[n - 1]));
+  PetscCall(PetscInfo(cm, "%" PetscInt_FMT " of the %" PetscInt_FMT " rigid motions of the bodies are free (eigenvalues of the scaled Gram matrix from %g to %g)\n", k, n, (double)lambda[0],
+                      (double)lambda[n - 1]));
   if (!k) PetscFunctionReturn(PETSC_SUCCESS);
 
   /* the free motions in motion coordinates (unscaled), in echelon form */
