@@ -121,6 +121,7 @@ PETSC_EXTERN PetscErrorCode FEMGetAppendedRows(FEM, PetscInt *, const PetscInt *
 
 PETSC_EXTERN PetscErrorCode FEMCreateFETI(FEM, FETI *);
 PETSC_EXTERN PetscErrorCode FEMAssembleGlobal(FEM, Mat *, Vec *);
+PETSC_EXTERN PetscErrorCode FEMComputeLoadResultant(FEM, PetscInt, const PetscReal[3], PetscReal[3], PetscReal[3], PetscReal *);
 PETSC_EXTERN PetscErrorCode FEMCreateGlobalCoordinates(FEM, Vec *);
 PETSC_EXTERN PetscErrorCode FEMPrimalToGlobal(FEM, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FEMGlobalToPrimal(FEM, Vec, Vec);

@@ -362,9 +362,16 @@ PetscErrorCode ContactModelSetFromOptions(ContactModel cm)
   Only what the zones call for is built: no zone means no contact rows (the solve is then a linear
   FETI solve), frictionless zones add normal rows only, Tresca and Coulomb zones add tangential rows.
 
+  Before FETI is set up, the rigid motions of the bodies that no Dirichlet condition and no contact row
+  resists are sought (a body without support on a frictionless floor, a body touching its support along
+  one node line, bodies that float together): if there is one, the setup stops with an error
+  (`PETSC_ERR_ARG_WRONG`) that names the bodies and the motion, says whether the load works along it
+  (no equilibrium: the force along it or the moment about its axis) or not (no unique displacement),
+  and how to hold it. See docs/contact.md, "No equilibrium, or no unique answer".
+
   Level: beginner
 
-.seealso: `ContactModelSolve()`, `ContactModelGetPipeline()`
+.seealso: `ContactModelSolve()`, `ContactModelGetPipeline()`, `FEMComputeLoadResultant()`
 @*/
 PetscErrorCode ContactModelSetUp(ContactModel cm)
 {
@@ -394,6 +401,17 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG,
              "the contact zones have no admissible node (all fixed, or no matching nodes between bodies)");
   PetscCall(AppendRows(cm));
+  /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported
+     as converged); named here, before any factorization (contactrigidmotions.cxx) */
+  {
+    std::vector<ContactHoldingRow> holding;
+    for (const NodeInfo &k : d->nodes) {
+      const PetscReal *dirs[3] = {k.n, k.t1, k.t2};
+      const int        nrows   = k.law == CONTACT_FRICTIONLESS || !(k.coef > 0) ? 1 : 3; /* tangential rows with a zero bound carry no force */
+      for (int r = 0; r < nrows; r++) PetscCallCXX(holding.push_back({k.zone, k.body, k.node, k.other_body, k.other_node, {dirs[r][0], dirs[r][1], dirs[r][2]}}));
+    }
+    PetscCall(ContactCheckRigidMotions_Private(cm, d->fem, d->zones, holding));
+  }
   PetscCall(FEMCreateFETI(d->fem, &d->feti));
   /* contact needs hundreds of F products: dense K+ blocks on the interface pay for their setup (-feti_kplus_explicit) */
   if (!d->zones.empty()) PetscCall(FETISetKplusExplicit(d->feti, PETSC_TRUE));

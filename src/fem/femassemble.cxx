@@ -1,5 +1,6 @@
-/* Assembly of subdomain stiffness matrices and loads, and of the undecomposed global system
-   (for comparison with direct and multigrid solvers). */
+/* Assembly of subdomain stiffness matrices and loads, of the undecomposed global system (for
+   comparison with direct and multigrid solvers), and of a body's load resultant (net force and moment,
+   for the check that the supports can hold the load). */
 #include <conefeti/private/femimpl.h>
 
 #include <algorithm>
@@ -111,6 +112,82 @@ PetscErrorCode FEMAssembleSubdomain(FEM fem, const FEMSubdomain &sd, Mat *K, Vec
   PetscCall(MatAssemblyBegin(*K, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(*K, MAT_FINAL_ASSEMBLY));
   PetscCall(PetscLogEventEnd(FEM_Assembly, fem, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMComputeLoadResultant - The net force and moment of a body's load (tractions and volume force), as
+  assembled into the nodal loads of the FETI problem.
+
+  Collective
+
+  Input Parameters:
++ fem   - the model, set up
+. body  - the body
+- point - the point about which the moment is taken
+
+  Output Parameters:
++ force     - the sum of the nodal loads (3 components), or NULL
+. moment    - the sum of (x - point) x (nodal load) over the nodes x (3 components), or NULL
+- magnitude - the sum of the lengths of the element load vectors at the element nodes, or NULL: the scale
+              of the load, above which force and moment differ from zero beyond roundoff (a self-balanced
+              load has force and moment zero but a positive magnitude)
+
+  Notes:
+  The work of the load along a rigid motion u(x) = t + w x (x - point) of the body is force . t + moment . w:
+  the load is in equilibrium with what holds the body only if that work vanishes along every rigid
+  motion nothing resists (`ContactModelSetUp()` checks it). Only the nodal loads are summed, so the
+  result is the resultant of the discrete load vector, whatever the quadrature.
+
+  Level: intermediate
+
+.seealso: `FEMSetTraction()`, `FEMSetBodyForce()`, `FEMAssembleGlobal()`
+@*/
+PetscErrorCode FEMComputeLoadResultant(FEM fem, PetscInt body, const PetscReal point[3], PetscReal force[3], PetscReal moment[3], PetscReal *magnitude)
+{
+  FEM_Impl &impl   = *fem->impl;
+  PetscReal sum[7] = {0, 0, 0, 0, 0, 0, 0}; /* force, moment, magnitude */
+  MPI_Comm  comm   = PetscObjectComm((PetscObject)fem);
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscValidRealPointer(point, 3);
+  PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FEMSetUp() before FEMComputeLoadResultant()");
+  PetscCheck(body >= 0 && body < (PetscInt)impl.bodies.size(), comm, PETSC_ERR_ARG_OUTOFRANGE, "FEMComputeLoadResultant(): body %" PetscInt_FMT " does not exist (%zu bodies)", body,
+             impl.bodies.size());
+  {
+    const FEMBody                     &b = impl.bodies[body];
+    std::vector<std::vector<PetscInt>> tractiontris;
+    std::vector<PetscInt>              tractionelements;
+    PetscCall(TractionTriangles(b, tractiontris, tractionelements));
+    /* every element lies in exactly one subdomain: the local subdomains' elements, summed over the ranks */
+    for (const FEMSubdomain &sd : impl.local) {
+      if (sd.body != body) continue;
+      for (PetscInt e : sd.elements) {
+        PetscInt  v[4];
+        PetscReal fe[12];
+        PetscBool loaded;
+        if (!b.bodyforce && !std::binary_search(tractionelements.begin(), tractionelements.end(), e)) continue;
+        FEMBoxElementNodes(b, e, v);
+        PetscCall(ElementRHS(b, e, v, tractiontris, fe, &loaded));
+        for (PetscInt a = 0; a < 4; a++) {
+          const PetscReal *f = &fe[3 * a], *x = &b.coords[3 * v[a]];
+          const PetscReal  y[3] = {x[0] - point[0], x[1] - point[1], x[2] - point[2]};
+          for (PetscInt d = 0; d < 3; d++) sum[d] += f[d];
+          sum[3] += y[1] * f[2] - y[2] * f[1];
+          sum[4] += y[2] * f[0] - y[0] * f[2];
+          sum[5] += y[0] * f[1] - y[1] * f[0];
+          sum[6] += PetscSqrtReal(f[0] * f[0] + f[1] * f[1] + f[2] * f[2]);
+        }
+      }
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 7, MPIU_REAL, MPIU_SUM, comm));
+  for (PetscInt d = 0; d < 3; d++) {
+    if (force) force[d] = sum[d];
+    if (moment) moment[d] = sum[3 + d];
+  }
+  if (magnitude) *magnitude = sum[6];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

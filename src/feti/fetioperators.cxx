@@ -395,7 +395,9 @@ static PetscErrorCode SetUpCoarse(FETI feti)
   PetscCall(FETICoarseSolverCreate(feti, GGt, impl.coarse, &failed));
   PetscCall(MatDestroy(&GGt));
   PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
-             "The coarse matrix G G' is singular: the constraints do not fix every rigid-body mode (a body without Dirichlet condition?)");
+             "The coarse matrix G G' is singular: some combination of the subdomains' rigid-body modes satisfies every row of B, so nothing holds it: a body (or a part "
+             "of one) without a Dirichlet row, held only by frictionless contact rows, or touching only along a line it can turn about. A FEM model's ContactModelSetUp() "
+             "names such a motion before this point; with FETISetConstraints() directly, check that the rows hold every floating subdomain");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

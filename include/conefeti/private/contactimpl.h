@@ -56,4 +56,13 @@ struct _p_ContactProblem {
 };
 
 PETSC_INTERN PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem, Vec, PetscReal *);
+
+/* A contact row of B that can hold bodies (contactrigidmotions.cxx): the displacement component along dir
+   at node `node` of `body`, minus the one at `other_node` of `other_body` (-1: a rigid foundation).
+   Normal rows, and tangential rows that can carry a force (friction coefficient or slip bound > 0). */
+struct ContactHoldingRow {
+  PetscInt  zone, body, node, other_body, other_node;
+  PetscReal dir[3];
+};
+PETSC_INTERN PetscErrorCode ContactCheckRigidMotions_Private(ContactModel, FEM, const std::vector<ContactZone> &, const std::vector<ContactHoldingRow> &);
 PETSC_INTERN PetscLogEvent  CONTACT_Solve;
