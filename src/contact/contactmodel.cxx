@@ -405,7 +405,7 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
      as converged); named here, before any factorization (contactrigidmotions.cxx) */
   {
     std::vector<ContactHoldingRow> holding;
-    for (const NodeInfo &k : d->nodes) {
+    for (const ContactNodeInfo &k : d->nodes) {
       const PetscReal *dirs[3] = {k.n, k.t1, k.t2};
       const int        nrows   = k.law == CONTACT_FRICTIONLESS || !(k.coef > 0) ? 1 : 3; /* tangential rows with a zero bound carry no force */
       for (int r = 0; r < nrows; r++) PetscCallCXX(holding.push_back({k.zone, k.body, k.node, k.other_body, k.other_node, {dirs[r][0], dirs[r][1], dirs[r][2]}}));
