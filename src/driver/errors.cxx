@@ -98,13 +98,13 @@ PetscErrorCode DriverErrorHandlerPush(void)
 int DriverErrorReport(PetscErrorCode ierr, MPI_Comm comm)
 {
   PetscMPIInt size = 1, rank = 0;
-  int         all  = 1;
+  int         all = 1;
   char        prefix[32];
 
   MPI_Comm_size(comm, &size);
   MPI_Comm_rank(comm, &rank);
   if (size > 1) {
-    MPI_Request request;
+    MPI_Request  request;
     const double start = MPI_Wtime();
 
     all = 0;
