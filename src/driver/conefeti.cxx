@@ -15,12 +15,16 @@
 
    Exit status: 0 when the solve converged; 2 when it did not (iteration limit, or no equilibrium: the
    stated reason is printed, the JSON line has "converged":false, no output is written unless
-   -output_unconverged); 1 (PETSc error) for bad input, with a message naming the option or file. */
+   -output_unconverged); 1 for bad input or a failure: one message naming the option, file or value, and
+   a line of hint (-traceback prints PETSc's full report instead; src/driver/errors.cxx). */
 #include <conefeti.h>
 #include <conefeti/private/compat.h>
+#include "driver.h"
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 #include <string>
+#include <sys/stat.h>
 
 static const char usage[] = "conefeti: 3D contact problems of linear elasticity with Coulomb friction by FETI.\n"
                             "Give a scene with -options_file petsc-options/<scene>.opts (docs/scenes.md).\n\n";
@@ -91,7 +95,30 @@ static PetscErrorCode WarnUnusedOptions(MPI_Comm comm)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-int main(int argc, char **argv)
+/* -output names a base name, not a directory: "results/" or an existing directory would be found only
+   when the output is written, after the solve (rank 0 looks, the answer is shared) */
+static PetscErrorCode CheckBaseName(MPI_Comm comm, const char *output)
+{
+  PetscMPIInt       rank;
+  int               dir = 0;
+  const std::string base(output);
+  const size_t      slash = base.find_last_of('/');
+  const std::string last  = slash == std::string::npos ? base : base.substr(slash + 1);
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    struct stat st;
+    dir = last.empty() || last == "." || last == ".." || (stat(output, &st) == 0 && S_ISDIR(st.st_mode));
+  }
+  PetscCallMPI(MPI_Bcast(&dir, 1, MPI_INT, 0, comm));
+  PetscCheck(!dir, comm, PETSC_ERR_ARG_WRONG, "-output %s: a directory; give a base name, e.g. -output %s%sbrick writes %s%sbrick.h5 and %s%sbrick.xmf (checked before the solve)", output, output,
+             base.back() == '/' ? "" : "/", output, base.back() == '/' ? "" : "/", output, base.back() == '/' ? "" : "/");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The program; main() reports its error. *status: 0 converged (or -help without a scene), 2 not converged */
+static PetscErrorCode Run(PetscBool traceback, int *status)
 {
   ContactScene            scene;
   ContactSceneSummary     summary;
@@ -100,16 +127,17 @@ int main(int argc, char **argv)
   char                    output[PETSC_MAX_PATH_LEN] = "", jsonfile[PETSC_MAX_PATH_LEN] = "", description[256], json[4096];
   PetscBool               hasoutput = PETSC_FALSE, hasjson = PETSC_FALSE, table = PETSC_TRUE, unconverged = PETSC_FALSE, help;
   PetscInt                major, minor, patch;
-  MPI_Comm                comm;
+  MPI_Comm                comm = PETSC_COMM_WORLD;
 
-  PetscCall(PetscInitialize(&argc, &argv, NULL, usage));
+  PetscFunctionBegin;
+  *status = 0;
   PetscCall(ConeFETIInitializePackage());
-  comm = PETSC_COMM_WORLD;
   PetscOptionsBegin(comm, NULL, "conefeti driver", "conefeti");
   PetscCall(PetscOptionsString("-output", "Write <basename>.h5 and <basename>.xmf (open the .xmf in ParaView)", "ContactSceneWriteOutput", output, output, sizeof(output), &hasoutput));
   PetscCall(PetscOptionsBool("-output_unconverged", "Write the output even when the solve did not converge", "ContactSceneWriteOutput", unconverged, &unconverged, NULL));
   PetscCall(PetscOptionsString("-summary_json", "Also write the JSON summary line to this file", "ContactSceneSummaryViewJSON", jsonfile, jsonfile, sizeof(jsonfile), &hasjson));
   PetscCall(PetscOptionsBool("-summary_table", "Print the human-readable table", "ContactSceneSummaryView", table, &table, NULL));
+  PetscCall(PetscOptionsBool("-traceback", "On an error, print PETSc's full report (traceback, options, configure line) instead of the message alone", "", traceback, &traceback, NULL));
   PetscOptionsEnd();
   PetscCheck(!hasoutput || output[0], comm, PETSC_ERR_ARG_WRONG, "-output needs a base name: -output results/brick writes results/brick.h5 and results/brick.xmf");
   PetscCheck(!hasjson || jsonfile[0], comm, PETSC_ERR_ARG_WRONG, "-summary_json needs a file name");
@@ -123,10 +151,10 @@ int main(int argc, char **argv)
       /* -help without a scene: the scene and driver options are listed; the solvers' need a scene */
       PetscCall(PetscPrintf(comm, "\nconefeti: no scene given; run with -options_file petsc-options/brick.opts -help to list the solver options too (docs/scenes.md)\n"));
       PetscCall(ContactSceneDestroy(&scene));
-      PetscCall(PetscFinalize());
-      return 0;
+      PetscFunctionReturn(PETSC_SUCCESS);
     }
   }
+  if (hasoutput) PetscCall(CheckBaseName(comm, output));
   if (hasoutput) PetscCall(CheckWritable(comm, "-output", std::string(output) + ".xmf.tmp"));
   if (hasjson) PetscCall(CheckWritable(comm, "-summary_json", std::string(jsonfile) + ".tmp"));
   PetscCall(ConeFETIGetVersion(&major, &minor, &patch));
@@ -147,6 +175,53 @@ int main(int argc, char **argv)
   }
   PetscCall(ContactSceneDestroy(&scene));
   PetscCall(WarnUnusedOptions(comm));
+  *status = summary.converged ? 0 : 2;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  PetscErrorCode ierr;
+  PetscBool      traceback = PETSC_FALSE, handler = PETSC_FALSE;
+  MPI_Comm       agree;
+  int            status = 0;
+
+  /* MPI before PETSc: a problem found before PetscInitialize() is then reported once, not by every rank */
+  if (MPI_Init(&argc, &argv) != MPI_SUCCESS) return 1;
+  {
+    std::string message;
+    PetscMPIInt rank, size;
+    int         ok = DriverCheckOptionsFiles(argc, argv, &message), first;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    const int me = ok ? size : rank;
+    MPI_Allreduce(&me, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+    if (first < size) { /* the first rank that found the problem reports it; the others wait for it (errors.cxx) */
+      if (first == rank) fprintf(stderr, "conefeti: error: %s\n", message.c_str());
+      fflush(stderr);
+      MPI_Barrier(MPI_COMM_WORLD);
+      MPI_Finalize();
+      return first == rank ? 1 : 0;
+    }
+  }
+  ierr = PetscInitialize(&argc, &argv, NULL, usage);
+  if (ierr) return 1; /* PETSc has reported it */
+  /* a write beyond the file size limit (ulimit -f) fails with EFBIG and is reported naming the file,
+     instead of killing the process without a word */
+  (void)signal(SIGXFSZ, SIG_IGN);
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-traceback", &traceback, NULL));
+  for (const char *name : {"-on_error_abort", "-on_error_attach_debugger", "-on_error_emacs", "-start_in_debugger", "-stop_for_debugger"}) {
+    PetscBool has;
+    PetscCall(PetscOptionsHasName(NULL, NULL, name, &has));
+    handler = (PetscBool)(handler || has); /* PETSc's error handling was asked for */
+  }
+  if (!traceback && !handler) PetscCall(DriverErrorHandlerPush());
+  PetscCallMPI(MPI_Comm_dup(PETSC_COMM_WORLD, &agree));
+  ierr = Run(traceback, &status);
+  if (ierr && (traceback || handler)) PetscCall(ierr); /* PETSc's own end of the report: the options, MPI_Abort() */
+  if (ierr) return DriverErrorReport(ierr, agree);
+  PetscCallMPI(MPI_Comm_free(&agree));
   PetscCall(PetscFinalize());
-  return summary.converged ? 0 : 2;
+  MPI_Finalize();
+  return status;
 }

@@ -17,7 +17,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
 
 namespace {
 
@@ -91,11 +93,29 @@ PetscErrorCode ViewInt(PetscViewer v, MPI_Comm comm, const char *name, PetscInt 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Closes the HDF5 file also when a write fails and the error returns early: HDF5 closes the files left
+   open when MPI ends, and the second attempt to flush a file that cannot be written crashed inside
+   MPI_Finalize(). Errors of the close itself are ignored: the first error is the one reported. */
+struct ViewerCloser {
+  PetscViewer v = NULL;
+  ~ViewerCloser()
+  {
+    if (!v) return;
+    if (PetscPushErrorHandler(PetscReturnErrorHandler, NULL)) return;
+    (void)PetscViewerDestroy(&v);
+    (void)PetscPopErrorHandler();
+  }
+};
+
+std::string SpaceLimits(const std::string &, double);
+double      DataBytes(const Layout &);
+std::string Bytes(double);
+
 PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
 {
   Scene_Impl        &impl = *scene->impl;
   MPI_Comm           comm = PetscObjectComm((PetscObject)scene);
-  PetscViewer        v;
+  ViewerCloser       closer;
   FETI               feti;
   Vec                u;
   const PetscScalar *ua;
@@ -199,7 +219,17 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
 #if !defined(PETSC_HAVE_HDF5)
   SETERRQ(comm, PETSC_ERR_SUP_SYS, "-output: this PETSc is built without HDF5; rebuild PETSc with HDF5 (Debian's petsc-dev has it)");
 #else
-  PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_WRITE, &v));
+  {
+    /* a file that cannot fit fails here, naming the limit, before HDF5 starts writing */
+    PetscMPIInt rank;
+    char        limits[1024] = "";
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (!rank) PetscCall(PetscStrncpy(limits, SpaceLimits(path, DataBytes(layout)).c_str(), sizeof(limits)));
+    PetscCallMPI(MPI_Bcast(limits, sizeof(limits), MPI_CHAR, 0, comm));
+    PetscCheck(!limits[0], comm, PETSC_ERR_FILE_WRITE, "-output: %s cannot be written: its datasets alone take %s, and %s", path, Bytes(DataBytes(layout)).c_str(), limits);
+  }
+  PetscCall(PetscViewerHDF5Open(comm, path, FILE_MODE_WRITE, &closer.v));
+  PetscViewer v = closer.v;
   {
     char              version[32];
     PetscInt          sizes[3] = {layout.nnodes, layout.nelements, layout.ncontact};
@@ -241,7 +271,7 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
     PetscCall(ViewReal(v, comm, "area", 1, area));
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
-  PetscCall(PetscViewerDestroy(&v));
+  PetscCall(PetscViewerDestroy(&closer.v));
 #endif
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -376,10 +406,9 @@ int ReplacePair(const std::string &h5tmp, const std::string &h5, const std::stri
   return err;
 }
 
-PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::string &xmf, const std::string &h5tmp, const std::string &xmftmp, PetscBool fail)
+PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::string &xmf, const std::string &h5tmp, const std::string &xmftmp, PetscBool fail, Layout &layout)
 {
-  MPI_Comm    comm = PetscObjectComm((PetscObject)scene);
-  Layout      layout;
+  MPI_Comm    comm   = PetscObjectComm((PetscObject)scene);
   std::string h5name = h5;
   const char *what   = "-output";
 
@@ -402,6 +431,71 @@ PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::st
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* the bytes of the datasets (docs/output.md), a lower bound of the HDF5 file's size: 6 reals per node;
+   6 integers and 1 real per tetrahedron; 11 reals and 4 integers per contact node */
+double DataBytes(const Layout &L) { return 8.0 * (6.0 * L.nnodes + L.nelements + 11.0 * L.ncontact) + (double)sizeof(PetscInt) * (6.0 * L.nelements + 4.0 * L.ncontact); }
+
+/* 85.3 GB, 20.5 kB: a size for a message */
+std::string Bytes(double b)
+{
+  const char *unit[] = {"bytes", "kB", "MB", "GB", "TB", "PB"};
+  int         u      = 0;
+  char        buf[64];
+  while (b >= 1000 && u < 5) {
+    b /= 1000;
+    u++;
+  }
+  snprintf(buf, sizeof(buf), u ? "%.1f %s" : "%.0f %s", b, unit[u]);
+  return buf;
+}
+
+std::string Directory(const std::string &file)
+{
+  const size_t slash = file.find_last_of('/');
+  return slash == std::string::npos ? "." : slash == 0 ? "/" : file.substr(0, slash);
+}
+
+/* What keeps `file` from growing to `need` bytes, if anything rank 0 can see: a file size limit
+   (ulimit -f), the free space or inodes of the file system that holds it (statvfs; a quota does not
+   show there). With need 0, every limit there is. */
+std::string SpaceLimits(const std::string &file, double need)
+{
+  std::string       text;
+  char              buf[PETSC_MAX_PATH_LEN + 256];
+  struct rlimit     limit;
+  struct statvfs    vfs;
+  const std::string dir = Directory(file);
+  auto              add = [&text](const char *t) { text += (text.empty() ? "" : "; ") + std::string(t); };
+
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && (need == 0 || (double)limit.rlim_cur < need)) {
+    snprintf(buf, sizeof(buf), "the file size limit (ulimit -f) is %s", Bytes((double)limit.rlim_cur).c_str());
+    add(buf);
+  }
+  if (statvfs(dir.c_str(), &vfs) == 0) {
+    const double avail = (double)vfs.f_bavail * (double)vfs.f_frsize;
+    if (vfs.f_files > 0 && vfs.f_favail == 0) {
+      snprintf(buf, sizeof(buf), "no free inode on the file system that holds %s", dir.c_str());
+      add(buf);
+    } else if (need == 0 || avail < need) {
+      snprintf(buf, sizeof(buf), "%s free on the file system that holds %s", Bytes(avail).c_str(), dir.c_str());
+      add(buf);
+    }
+  }
+  return text;
+}
+
+/* Why writing `file` failed, as far as rank 0 can tell afterwards: the errno of the failure when it
+   names a cause, then the limits (SpaceLimits()) */
+std::string WriteFailureCause(const std::string &file, int syserr)
+{
+  std::string       cause;
+  const std::string limits = SpaceLimits(file, 0);
+
+  if (syserr == ENOSPC || syserr == EFBIG || syserr == EDQUOT || syserr == EIO || syserr == EROFS || syserr == EACCES) cause = strerror(syserr);
+  if (!limits.empty()) cause += (cause.empty() ? "" : "; ") + limits;
+  return cause.empty() ? "cause unknown" : cause;
+}
+
 } // namespace
 
 /*@C
@@ -414,7 +508,7 @@ PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::st
 - basename - path without extension
 
   Options Database Key:
-. -output_test_failure - developer: fail after writing the temporary files (tests that a failed write leaves no file)
+. -output_test_failure - developer (fault injection, not listed by -help): fail after writing the temporary files (tests that a failed write leaves no file)
 
   Notes:
   The volume grid holds every subdomain's tetrahedra with their own copies of the nodes (nodes on subdomain
@@ -423,8 +517,9 @@ PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::st
   tangential displacement and status (0 separated, 1 stick, 2 slip). docs/output.md lists every dataset.
 
   The files are written under temporary names and renamed once complete: a failed write (for example an
-  unwritable directory) gives an error naming the file and leaves no partial file; a run killed while
-  writing leaves at most the temporary files <basename>.h5.tmp and <basename>.xmf.tmp.
+  unwritable directory, a full disk, a file size limit) gives an error naming the file and, as far as it
+  can be told afterwards, the cause (errno, ulimit -f, the free space), and leaves no partial file; a run
+  killed while writing leaves at most the temporary files <basename>.h5.tmp and <basename>.xmf.tmp.
 
   Level: beginner
 
@@ -437,6 +532,7 @@ PetscErrorCode ContactSceneWriteOutput(ContactScene scene, const char basename[]
   PetscMPIInt    rank;
   PetscBool      fail = PETSC_FALSE;
   std::string    h5, xmf, h5tmp, xmftmp;
+  Layout         layout;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
@@ -444,9 +540,12 @@ PetscErrorCode ContactSceneWriteOutput(ContactScene scene, const char basename[]
   PetscCheck(scene->impl->solved, comm, PETSC_ERR_ORDER, "Call ContactSceneSolve() before ContactSceneWriteOutput()");
   PetscCheck(basename && basename[0], comm, PETSC_ERR_ARG_WRONG, "-output needs a base name (the files are <basename>.h5 and <basename>.xmf)");
   PetscCheck(basename[strlen(basename) - 1] != '/', comm, PETSC_ERR_ARG_WRONG, "-output %s: a base name, not a directory (the files are <basename>.h5 and <basename>.xmf)", basename);
-  PetscObjectOptionsBegin((PetscObject)scene);
-  PetscCall(PetscOptionsBool("-output_test_failure", "Developer: fail after writing the temporary output files (tests the atomic write)", "ContactSceneWriteOutput", fail, &fail, NULL));
-  PetscOptionsEnd();
+  /* a developer's fault injection, deliberately not among the options -help lists */
+  {
+    const char *prefix;
+    PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
+    PetscCall(PetscOptionsGetBool(((PetscObject)scene)->options, prefix, "-output_test_failure", &fail, NULL));
+  }
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   h5     = std::string(basename) + ".h5";
   xmf    = std::string(basename) + ".xmf";
@@ -461,18 +560,33 @@ PetscErrorCode ContactSceneWriteOutput(ContactScene scene, const char basename[]
   void       *h5data = NULL;
   const bool  quiet  = H5Eget_auto2(H5E_DEFAULT, &h5func, &h5data) >= 0 && H5Eset_auto2(H5E_DEFAULT, NULL, NULL) >= 0;
 #endif
-  ierr = WriteAll(scene, h5, xmf, h5tmp, xmftmp, fail);
+  errno = 0;
+  ierr  = WriteAll(scene, h5, xmf, h5tmp, xmftmp, fail, layout);
+  {
+    /* the errno of a failed write(), if nothing has overwritten it since; the ranks agree on the outcome
+       (a collective MPI-IO write can fail on the ranks that wrote and succeed on the others) */
+    const int   syserr = errno;
+    PetscMPIInt code   = (PetscMPIInt)ierr;
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &code, 1, MPI_INT, MPI_MAX, comm));
 #if defined(PETSC_HAVE_HDF5)
-  if (quiet) (void)H5Eset_auto2(H5E_DEFAULT, h5func, h5data);
+    if (quiet) (void)H5Eset_auto2(H5E_DEFAULT, h5func, h5data);
 #endif
-  if (ierr) {
-    if (!rank) {
-      (void)remove(h5tmp.c_str());
-      (void)remove(xmftmp.c_str());
+    if (code) {
+      char        cause[1024] = "", said[1100] = "";
+      char       *inner = NULL;
+      const char *kind  = NULL;
+      if (!rank) {
+        (void)remove(h5tmp.c_str());
+        (void)remove(xmftmp.c_str());
+        PetscCall(PetscStrncpy(cause, WriteFailureCause(h5tmp, syserr).c_str(), sizeof(cause)));
+      }
+      PetscCallMPI(MPI_Bcast(cause, sizeof(cause), MPI_CHAR, 0, comm));
+      /* the message of the error that stopped the write (HDF5's, through PETSc's viewer) */
+      if (ierr && !PetscErrorMessage(ierr, &kind, &inner) && inner && inner[0]) snprintf(said, sizeof(said), " (the write ended with: %s)", inner);
+      PetscCheck(ierr == PETSC_ERR_FILE_WRITE || fail, comm, PETSC_ERR_FILE_WRITE, "-output: writing %s failed: %s; the previous %s and %s, if any, are left as they were%s", h5tmp.c_str(), cause,
+                 h5.c_str(), xmf.c_str(), said);
+      PetscCall(ierr);
     }
-    PetscCheck(ierr == PETSC_ERR_FILE_WRITE || fail, comm, ierr, "-output: writing %s failed (a full disk or a quota?); the previous %s and %s, if any, are left as they were", h5tmp.c_str(),
-               h5.c_str(), xmf.c_str());
-    PetscCall(ierr);
   }
   PetscCall(PetscLogEventEnd(CONTACTSCENE_Output, scene, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -9,7 +9,7 @@ rm -f "$base".h5 "$base".xmf "$base".h5.tmp "$base".xmf.tmp
 "$@" -output "$base" >/dev/null 2>&1 || { echo "failed-write.sh: the first run failed"; exit 1; }
 before=$(md5sum "$base.h5" "$base.xmf") || { echo "failed-write.sh: the first run wrote no output"; exit 1; }
 out=$("$@" -output "$base" -output_test_failure 2>&1); rc=$?
-echo "$out" | grep -E "ERROR.*(output_test_failure|Error Message)" | head -3
+echo "$out" | grep -E "error: .*output_test_failure" | head -3
 fail=0
 [ $rc -ne 0 ] || { echo "failed-write.sh: the failing run exited with 0"; fail=1; }
 echo "$out" | grep -q "failing on purpose after writing" || { echo "failed-write.sh: no message about the failed write"; fail=1; }

@@ -1131,6 +1131,11 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
   if (s->stagnated) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stagnated: the equality cannot be met over the set (or rho is far too small)\n"));
   if (s->stalled) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stalled: no progress in %" PetscInt_FMT " outer iterations, the multiplier settled\n", s->stagnation_its));
   PetscCall(QPCountersView(&s->counters, NULL, viewer));
+  /* TaoView() prints tao->niter, the index of the last outer iteration counted from 0: one less than the
+     outer iterations run, which the contact summaries report as Iter */
+  if (tao->reason != TAO_CONTINUE_ITERATING)
+    PetscCall(
+        PetscViewerASCIIPrintf(viewer, "last solve: %" PetscInt_FMT " outer iterations (inner solves and multiplier updates; \"total number of iterations\" below counts from 0)\n", tao->niter + 1));
   if (s->blocks.size() > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "inner solves: %zu blocks, %" PetscInt_FMT " Gauss-Seidel sweep(s) per outer iteration\n", s->blocks.size(), s->sweeps));
   for (auto &blk : s->blocks) PetscCall(TaoView(blk.sub, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
