@@ -365,7 +365,7 @@ PetscErrorCode ContactModelSetFromOptions(ContactModel cm)
   Before FETI is set up, the rigid motions of the bodies that no Dirichlet condition and no contact row
   resists are sought (a body without support on a frictionless floor, a body touching its support along
   one node line, bodies that float together): if there is one, the setup stops with an error
-  (`PETSC_ERR_ARG_WRONG`) that names the bodies and the motion, says whether the load works along it
+  (`PETSC_ERR_NOT_CONVERGED`: a valid model without a unique solution, not bad input) that names the bodies and the motion, says whether the load works along it
   (no equilibrium: the force along it or the moment about its axis) or not (no unique displacement),
   and how to hold it. See docs/contact.md, "No equilibrium, or no unique answer".
 

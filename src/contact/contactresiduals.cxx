@@ -131,10 +131,7 @@ PetscErrorCode SubdomainBodies(ContactModel cm, std::vector<PetscInt> &start, st
 }
 
 /* r / max(scale, floor * largest scale of the kind, the smallest positive real) */
-PetscReal Relative(PetscReal r, PetscReal scale, PetscReal largest)
-{
-  return r / PetscMax(PetscMax(scale, kScaleFloor * largest), kTiny);
-}
+PetscReal Relative(PetscReal r, PetscReal scale, PetscReal largest) { return r / PetscMax(PetscMax(scale, kScaleFloor * largest), kTiny); }
 
 } // namespace
 
@@ -294,11 +291,11 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
       lzone[z] = PetscMax(PetscMax(PetscMax(lzone[z], lnmax[z]), kScaleFloor * PetscMax(lall, forcemax)), kTiny);
     }
     for (size_t j = 0; j < v.ln.size(); j++) {
-      const PetscInt  z = d->nodes[d->local[j]].zone;
+      const PetscInt  z  = d->nodes[d->local[j]].zone;
       const PetscReal ln = v.ln[j], *lt = &v.lt[2 * j], *tu = &v.tu[2 * j], g = v.g[j], k = lzone[z] / uzone[z];
       PetscReal      *mz = &m[5 * z];
-      mz[0]              = PetscMax(mz[0], v.gapres[j] / uzone[z]);                               /* penetration */
-      mz[1]              = PetscMax(mz[1], -ln / lzone[z]);                                       /* normal sign */
+      mz[0]              = PetscMax(mz[0], v.gapres[j] / uzone[z]);                                 /* penetration */
+      mz[1]              = PetscMax(mz[1], -ln / lzone[z]);                                         /* normal sign */
       mz[2]              = PetscMax(mz[2], PetscAbsReal(ln * v.gapres[j]) / (lzone[z] * uzone[z])); /* complementarity */
       if (d->mult[3 * j + 1] >= 0) {
         mz[3] = PetscMax(mz[3], (std::hypot(lt[0], lt[1]) - g) / lzone[z]); /* friction cone */
@@ -316,7 +313,7 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
       for (size_t z = 0; z < nz; z++) {
         const PetscReal e = PetscMax(m[5 * z + q], 0.0);
         if (e > *zonal[q] || r->where[CONTACT_CHECK_PENETRATION + q] < 0) {
-          *zonal[q]                            = e;
+          *zonal[q]                               = e;
           r->where[CONTACT_CHECK_PENETRATION + q] = (PetscInt)z;
         }
       }
@@ -405,8 +402,7 @@ PetscErrorCode ContactModelDescribeResidual_Private(ContactModel cm, const Conta
 
   PetscFunctionBegin;
   (void)cm;
-  if (r->where[c] >= 0)
-    PetscCall(PetscSNPrintf(buf, len, "%s of %s %" PetscInt_FMT " is %.1e (%s)", ContactChecks[c], perbody ? "body" : "contact zone", r->where[c], (double)value[c], meaning[c]));
+  if (r->where[c] >= 0) PetscCall(PetscSNPrintf(buf, len, "%s of %s %" PetscInt_FMT " is %.1e (%s)", ContactChecks[c], perbody ? "body" : "contact zone", r->where[c], (double)value[c], meaning[c]));
   else PetscCall(PetscSNPrintf(buf, len, "%s is %.1e (%s)", ContactChecks[c], (double)value[c], meaning[c]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -438,5 +438,5 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
           (k > 1 ? "them" : "it") + ", so the solution holds any amount of " + (k > 1 ? "them" : "it") + ". Fix: " + cure;
   }
   if (msg.size() > 1900) msg = msg.substr(0, 1890) + " ...";
-  SETERRQ(comm, PETSC_ERR_ARG_WRONG, "%s", msg.c_str());
+  SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "%s", msg.c_str());
 }

@@ -10,9 +10,11 @@
    error, and DriverErrorReport() prints the message once and ends the run with exit status 1.
    -traceback keeps PETSc's handler and report. */
 #include "driver.h"
+#include <conefeti.h>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <unistd.h>
 
 namespace {
@@ -67,6 +69,28 @@ void PrintRecord(PetscErrorCode ierr, const char *prefix)
   fflush(PETSC_STDERR);
 }
 
+/* A valid scene without a unique solution (ContactModelSetUp() finds a rigid motion nothing resists: no
+   equilibrium, or no unique displacement) is reported as a solve that did not converge, as the solver's own
+   "no equilibrium" is: the sentence on standard output after "NOT CONVERGED: ", a JSON line that says
+   converged false and which check failed, and exit status 2 (docs/output.md) */
+void PrintNotConverged(void)
+{
+  std::string reason;
+  size_t      len = strlen(record.message);
+  while (len && (record.message[len - 1] == '\n' || record.message[len - 1] == ' ')) len--;
+  for (size_t i = 0; i < len; i++) {
+    const unsigned char ch = (unsigned char)record.message[i];
+    if (ch == '"' || ch == '\\') reason += '\\', reason += (char)ch;
+    else if (ch < 0x20) reason += ' ';
+    else reason += (char)ch;
+  }
+  fflush(PETSC_STDERR);
+  printf("NOT CONVERGED: %.*s\n", (int)len, record.message);
+  printf("{\"conefeti\":\"%d.%d.%d\",\"converged\":false,\"failed_check\":\"free_rigid_motion\",\"reason\":\"%s\"}\n", CONEFETI_VERSION_MAJOR, CONEFETI_VERSION_MINOR, CONEFETI_VERSION_PATCH,
+         reason.c_str());
+  fflush(stdout);
+}
+
 /* After the report, the run ends with status 1 even if a library crashes or hangs while MPI ends: HDF5
    closes the files left open from MPI_Finalize(), and on a file whose writes failed it crashes
    (H5F__close_cb(), 1 rank) or waits forever in a collective close (2 ranks). The error is reported
@@ -116,7 +140,11 @@ int DriverErrorReport(PetscErrorCode ierr, MPI_Comm comm)
     }
   }
   if (all) {
-    if (rank == 0) PrintRecord(ierr, "");
+    const bool notconverged = record.set && record.code == PETSC_ERR_NOT_CONVERGED;
+    if (rank == 0) {
+      if (notconverged) PrintNotConverged();
+      else PrintRecord(ierr, "");
+    }
     /* the other ranks end with status 0 once rank 0 has printed: a rank that ends with a non-zero status
        makes mpiexec kill the others at once, and rank 0's message, still on its way through mpiexec,
        was sometimes lost. Rank 0's status 1 is the run's (mpiexec returns the first non-zero status). */
@@ -127,7 +155,7 @@ int DriverErrorReport(PetscErrorCode ierr, MPI_Comm comm)
     (void)signal(SIGALRM, EndAfterReport);
     (void)alarm((unsigned)(2 * agree_seconds));
     MPI_Finalize();
-    return rank == 0 ? 1 : 0;
+    return rank == 0 ? (notconverged ? 2 : 1) : 0;
   }
   snprintf(prefix, sizeof(prefix), "[rank %d] ", (int)rank);
   PrintRecord(ierr, prefix);
