@@ -461,6 +461,8 @@ PetscErrorCode FETISetUp(FETI feti)
   /* kernels first: the coarse problem is assembled and factored before the subdomain factors exist, so
      that the memory its assembly needs for a moment is reused by them rather than stacked on them */
   for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
+  /* before anything large: the factors and explicit blocks must fit (the blocks are dropped when only they do not) */
+  PetscCall(FETICheckMemory(feti));
 
   /* coarse layout */
   impl.nlocalcoarse = 0;

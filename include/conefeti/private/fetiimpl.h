@@ -92,6 +92,10 @@ struct FETI_Impl {
   PetscBool      kplusschur        = PETSC_TRUE;         /* -feti_kplus_explicit_schur */
   FETICoarseMode coarsemode        = FETI_COARSE_SINGLE; /* -feti_coarse_mode */
 
+  /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
+  PetscReal memfactors = -1, memblocks = -1, membudget = -1; /* bytes; -1: not estimated (budget: unknown) */
+  PetscBool kplusfallback = PETSC_FALSE;
+
   /* global objects */
   Vec              f  = nullptr; /* primal load */
   Mat              R  = nullptr; /* primal x coarse, block diagonal kernel basis (MPIAIJ) */
@@ -150,6 +154,9 @@ PETSC_INTERN PetscErrorCode FETISetUpExplicitKplus(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplusOnBoundary(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainSetSchurDofs(FETI, FETISubdomain &);
 PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &);
+
+/* fetimemory.cxx */
+PETSC_INTERN PetscErrorCode FETICheckMemory(FETI);
 
 /* fetirowsum.cxx */
 PETSC_INTERN PetscErrorCode FETICreateCoarseMatrix(FETI, Vec, Mat *);
