@@ -407,10 +407,9 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_fixing_nodes <8>       - well-separated candidate nodes among which the fixing dofs are pivoted
 . -feti_kplus_explicit <false> - F products with dense blocks of K+ on the dofs B touches (`FETISetKplusExplicit()`)
 . -feti_kplus_explicit_schur <true> - build those blocks from a MUMPS Schur complement (when MUMPS is there); false: by solves with the subdomain factor
-. -feti_memory_budget <MB>     - memory the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup); `FETISetUp()` drops the explicit blocks when only they exceed it and stops when the factorizations do
-. -feti_view                   - view the problem after setup
-. -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of `FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8, unpreconditioned norm)
-. -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
+. -feti_memory_budget <MB>     - memory the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup); `FETISetUp()` drops the explicit blocks when only
+they exceed it and stops when the factorizations do . -feti_view                   - view the problem after setup . -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of
+`FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8, unpreconditioned norm) . -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
 . -feti_sub_pc_factor_mat_solver_type <cholmod,mumps,petsc> - the sparse Cholesky of the subdomains
 . -feti_coarse_mode <single,redundant,parallel> - the direct solver of G G': factored once on rank 0 (solves gather there; the same numbers as on one rank), on every rank, or in parallel (MUMPS)
 - -feti_coarse_pc_factor_mat_solver_type ... - its options (single: on rank 0; redundant: -feti_coarse_redundant_...)
@@ -618,7 +617,8 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
       PetscCall(PetscViewerASCIIPrintf(viewer, "F products: explicit dense K+ on the dofs B touches (at most %" PetscInt_FMT " per subdomain)\n", nbmax));
     } else
-      PetscCall(PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain%s\n", impl.kplusfallback ? " (explicit K+ blocks asked for, dropped: they would not fit in memory)" : ""));
+      PetscCall(
+          PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain%s\n", impl.kplusfallback ? " (explicit K+ blocks asked for, dropped: they would not fit in memory)" : ""));
     if (impl.memfactors >= 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "memory estimate (node of rank 0): factors %.1f MB, explicit K+ blocks %.1f MB, budget %.1f MB\n", impl.memfactors / 1048576.0,
                                        impl.memblocks / 1048576.0, impl.membudget / 1048576.0));

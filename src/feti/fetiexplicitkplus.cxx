@@ -244,7 +244,8 @@ static PetscErrorCode SubdomainExplicitKplusBySchur(FETI feti, FETISubdomain &sd
   PetscCall(SetSchurIS(&ctx));
   PetscCall(FETIKSPSetUpFactorization(feti, ctx.ksp, SetSchurIS, &ctx, &failed));
   PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
-             "Subdomain %" PetscInt_FMT ": the MUMPS factorization that gives the Schur complement for the explicit (K+)_bb met a zero pivot: the regularized K_s is singular (a disconnected subdomain, a "
+             "Subdomain %" PetscInt_FMT
+             ": the MUMPS factorization that gives the Schur complement for the explicit (K+)_bb met a zero pivot: the regularized K_s is singular (a disconnected subdomain, a "
              "mechanism?)",
              s);
   PetscCall(PCFactorGetMatrix(pc, &factor));

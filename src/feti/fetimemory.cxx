@@ -92,7 +92,7 @@ static PetscReal NodeAvailable(void)
 
   if (avail < 0) {
     const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
-    avail            = pages > 0 && size > 0 ? (PetscReal)pages * (PetscReal)size : -1;
+    avail = pages > 0 && size > 0 ? (PetscReal)pages * (PetscReal)size : -1;
   }
   limit = FileNumber("/sys/fs/cgroup/memory.max"); /* cgroup v2 */
   usage = FileNumber("/sys/fs/cgroup/memory.current");
@@ -177,7 +177,7 @@ PetscErrorCode FETICheckMemory(FETI feti)
   PetscMPIInt rank;
   double      mine[2] = {0, 0}, onnode[2]; /* factors, explicit blocks: this rank, this node */
   PetscInt    nmax = 0, nbmax = 0;
-  int         fits[2], allfit[2];      /* factors fit, factors and blocks fit: this node, every node */
+  int         fits[2], allfit[2]; /* factors fit, factors and blocks fit: this node, every node */
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -224,21 +224,23 @@ PetscErrorCode FETICheckMemory(FETI feti)
     struct {
       double v;
       int    r;
-    } in = {fits[0] ? -1e300 : onnode[0] - budget, (int)rank}, at;
+    } in          = {fits[0] ? -1e300 : onnode[0] - budget, (int)rank}, at;
     double out[2] = {onnode[0], budget};
     PetscCallMPI(MPI_Allreduce(&in, &at, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
     PetscCallMPI(MPI_Bcast(out, 2, MPI_DOUBLE, at.r, comm));
     SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, /* not PETSC_ERR_MEM: nothing failed to allocate */
             "The subdomain factorizations need about %.1f MB on one node (estimated from the nonzeros of K_s: subdomains of up to %" PetscInt_FMT
             " dofs), more than the %.1f MB %s; nothing large was allocated. Lower it: a coarser mesh (conefeti: -scene_refine, -scene_body<b>_cells), more subdomains (-scene_body<b>_subdomains: the "
-            "factors shrink faster than the subdomains), more nodes, -feti_kplus_explicit 0 (already dropped here); or, if the estimate is too pessimistic, -%sfeti_memory_budget <MB>",
-            out[0] / 1048576.0, nmax, out[1] / 1048576.0, given ? "of -feti_memory_budget" : "the node has available (MemAvailable)", prefix ? prefix : "");
+            "factors shrink faster than the subdomains), more nodes%s; or, if the estimate is too pessimistic, -%sfeti_memory_budget <MB>",
+            out[0] / 1048576.0, nmax, out[1] / 1048576.0, given ? "of -feti_memory_budget" : "the node has available (MemAvailable)",
+            impl.kplusexplicit ? " (the explicit K+ blocks, which -feti_kplus_explicit 0 drops, are not even counted here)" : "", prefix ? prefix : "");
   }
   if (impl.kplusexplicit && !allfit[1]) {
     impl.kplusexplicit = PETSC_FALSE;
     impl.kplusfallback = PETSC_TRUE;
     PetscCall(PetscInfo(feti,
-                        "The explicit K+ blocks (%.1f MB on the node of rank %d, |b| up to %" PetscInt_FMT ") and the factors (%.1f MB) exceed the budget of %.1f MB: F products use the factors (implicit K+, "
+                        "The explicit K+ blocks (%.1f MB on the node of rank %d, |b| up to %" PetscInt_FMT
+                        ") and the factors (%.1f MB) exceed the budget of %.1f MB: F products use the factors (implicit K+, "
                         "as -feti_kplus_explicit 0)\n",
                         onnode[1] / 1048576.0, rank, nbmax, onnode[0] / 1048576.0, budget / 1048576.0));
   }
