@@ -15,13 +15,13 @@
 #include <unistd.h>
 
 /* Bytes a sparse Cholesky factor of a 3D finite element matrix takes: nested dissection gives about
-   c |K|_half n^(1/3) entries (c = 0.65 measured with MUMPS on the brick's cubes: 1.6M entries at n = 6591;
-   5 MB in all at n = 2187), at most the dense triangle; 16 bytes per entry cover the values, the integer
-   structure and MUMPS's workspace margin (ICNTL(14)). */
+   c |K|_half n^(1/3) entries, at most the dense triangle; c = 0.75 and 12 bytes per entry (values, integer
+   structure, workspace) as MUMPS measures them on the brick's cubes (-feti_sub_mat_mumps_icntl_4 2: n = 6591,
+   |K|_half = 134034: 1.9M entries (INFOG(29)), 22 MB used (INFOG(22)); n = 2187: 5 MB). */
 static PetscReal FactorBytes(PetscReal n, PetscReal nnzhalf)
 {
-  const PetscReal entries = std::min(0.5 * n * (n + 1), std::max(nnzhalf, 0.65 * nnzhalf * std::cbrt(n)));
-  return 16.0 * entries;
+  const PetscReal entries = std::min(0.5 * n * (n + 1), std::max(nnzhalf, 0.75 * nnzhalf * std::cbrt(n)));
+  return 12.0 * entries;
 }
 
 /*@
@@ -37,9 +37,8 @@ static PetscReal FactorBytes(PetscReal n, PetscReal nnzhalf)
 . bytes - the estimate
 
   Notes:
-  Nested dissection of a 3D mesh gives about 0.65 nnzhalf n^(1/3) factor entries (measured with MUMPS on
-  the brick's cubes), at most the dense triangle, at 16 bytes each (values, integer structure, MUMPS's workspace
-  margin). Meant to stop a scene that cannot fit before it is assembled, not to size anything.
+  Nested dissection of a 3D mesh gives about 0.75 nnzhalf n^(1/3) factor entries (measured with MUMPS on
+  the brick's cubes), at most the dense triangle, at 12 bytes each (values, integer structure, MUMPS's workspace). Meant to stop a scene that cannot fit before it is assembled, not to size anything.
 
   Level: developer
 
