@@ -487,7 +487,7 @@ PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscValidLogicalCollectiveBool(feti, flg, 2);
-  PetscCheck(!feti->impl->setupcalled || (feti->impl->kplusexplicit || feti->impl->kplusfallback) == flg, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
+  PetscCheck(!feti->impl->setupcalled || (feti->impl->kplusexplicit || feti->impl->kplusfallback || feti->impl->nkplusimplicit > 0) == flg, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
              "FETISetKplusExplicit() (-feti_kplus_explicit) must come before FETISetUp()");
   if (!feti->impl->setupcalled) feti->impl->kplusexplicit = flg;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -503,7 +503,9 @@ PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
 . feti - the FETI problem
 
   Output Parameters:
-+ flg      - `PETSC_TRUE` when the explicit blocks are (or will be) used
++ flg      - `PETSC_TRUE` when the explicit blocks are (or will be) used, in at least one subdomain (a subdomain
+             whose block would be larger than its sparse factor, e.g. a wide slab one cell thick, keeps the factor;
+             `FETIView()` counts them)
 - fallback - `PETSC_TRUE` when they were asked for but `FETISetUp()` did not build them because they would not fit
              in memory (`FETIGetMemoryEstimate()`, -feti_memory_budget); NULL if not needed
 
@@ -616,7 +618,11 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
       for (const FETISubdomain &sd : impl.sub) nbmax = std::max(nbmax, (PetscInt)sd.kb.size());
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
       PetscCall(PetscViewerASCIIPrintf(viewer, "F products: explicit dense K+ on the dofs B touches (at most %" PetscInt_FMT " per subdomain)\n", nbmax));
-    } else
+      if (impl.nkplusimplicit)
+        PetscCall(PetscViewerASCIIPrintf(viewer, "  except %" PetscInt_FMT " subdomain(s) whose block would be larger than the factor: two triangular solves there\n", impl.nkplusimplicit));
+    } else if (impl.nkplusimplicit)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain (explicit K+ asked for, but every block would be larger than its factor)\n"));
+    else
       PetscCall(
           PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain%s\n", impl.kplusfallback ? " (explicit K+ blocks asked for, dropped: they would not fit in memory)" : ""));
     if (impl.memfactors >= 0)

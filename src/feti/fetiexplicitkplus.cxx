@@ -64,7 +64,7 @@ PetscErrorCode FETISubdomainSetSchurDofs(FETI feti, FETISubdomain &sd)
 
   PetscFunctionBegin;
   sd.schurfactor = PETSC_FALSE;
-  if (!impl.kplusexplicit || !impl.kplusschur) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!impl.kplusexplicit || !impl.kplusschur || sd.kplusimplicit) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(KSPGetPC(sd.ksp, &pc));
   PetscCall(PCFactorGetMatSolverType(pc, &type));
   PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
@@ -271,7 +271,7 @@ PetscErrorCode FETISetUpExplicitKplus(FETI feti)
   for (size_t s = 0; s < impl.sub.size(); s++) {
     FETISubdomain &sd    = impl.sub[s];
     PetscBool      mumps = PETSC_FALSE, interior;
-    if (sd.schurfactor) continue; /* built with the subdomain's factorization */
+    if (sd.schurfactor || sd.kplusimplicit) continue; /* built with the subdomain's factorization, or not at all (F uses the factor) */
     PetscCall(BoundaryDofs(sd, mask, sd.kb));
     PetscCall(HasInterior(sd, sd.kb, &interior));
     if (impl.kplusschur && interior) PetscCall(MatGetFactorAvailable(sd.Kreg, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &mumps));
@@ -282,7 +282,8 @@ PetscErrorCode FETISetUpExplicitKplus(FETI feti)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* y = K+ x for x supported on the dofs touched by B; y is exact on those dofs and zero elsewhere */
+/* y = K+ x for x supported on the dofs touched by B; y is exact on those dofs (zero elsewhere, except in the
+   subdomains that keep their factor for F, where it is K+ x everywhere) */
 PetscErrorCode FETIApplyKplusOnBoundary(FETI feti, Vec x, Vec y)
 {
   FETI_Impl         &impl = *feti->impl;
@@ -301,6 +302,14 @@ PetscErrorCode FETIApplyKplusOnBoundary(FETI feti, Vec x, Vec y)
     PetscScalar       *a, *b;
     PetscBLASInt       bn, blda, inc = 1;
     PetscInt           lda;
+    if (sd.kplusimplicit) { /* two triangular solves with the factor, as FETIApplyKplus() */
+      PetscCall(VecPlaceArray(sd.xa, xa + sd.localoffset));
+      PetscCall(VecPlaceArray(sd.ya, ya + sd.localoffset));
+      PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya));
+      PetscCall(VecResetArray(sd.xa));
+      PetscCall(VecResetArray(sd.ya));
+      continue;
+    }
     if (!nb) continue;
     PetscCall(PetscBLASIntCast(nb, &bn));
     PetscCall(MatDenseGetLDA(sd.Kplusbb, &lda));

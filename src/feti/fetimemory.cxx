@@ -5,7 +5,9 @@
    the sparse Cholesky factors of the subdomains and, with -feti_kplus_explicit, the dense blocks (K+)_bb
    (|b|^2 numbers per subdomain). FETISetUp() estimates both, compares them with the memory the node has left
    (or -feti_memory_budget), drops the explicit blocks when only they do not fit, and stops at once with the
-   estimate when even the factors do not. */
+   estimate when even the factors do not. A subdomain whose dense block would be larger than its factor
+   (a wide slab one cell thick: B touches every node) keeps the factor for F in any case: the block would cost
+   more memory, more setup (|b| solves) and more time per product than the two triangular solves it replaces. */
 #include <conefeti/private/fetiimpl.h>
 
 #include <algorithm>
@@ -18,11 +20,9 @@
    c |K|_half n^(1/3) entries, at most the dense triangle; c = 0.75 and 12 bytes per entry (values, integer
    structure, workspace) as MUMPS measures them on the brick's cubes (-feti_sub_mat_mumps_icntl_4 2: n = 6591,
    |K|_half = 134034: 1.9M entries (INFOG(29)), 22 MB used (INFOG(22)); n = 2187: 5 MB). */
-static PetscReal FactorBytes(PetscReal n, PetscReal nnzhalf)
-{
-  const PetscReal entries = std::min(0.5 * n * (n + 1), std::max(nnzhalf, 0.75 * nnzhalf * std::cbrt(n)));
-  return 12.0 * entries;
-}
+static PetscReal FactorEntries(PetscReal n, PetscReal nnzhalf) { return std::min(0.5 * n * (n + 1), std::max(nnzhalf, 0.75 * nnzhalf * std::cbrt(n))); }
+
+static PetscReal FactorBytes(PetscReal n, PetscReal nnzhalf) { return 12.0 * FactorEntries(n, nnzhalf); }
 
 /*@
   FETIEstimateFactorMemory - A rough estimate of the memory a subdomain's sparse Cholesky factorization takes.
@@ -175,7 +175,7 @@ PetscErrorCode FETICheckMemory(FETI feti)
   PetscBool   given;
   PetscMPIInt rank;
   double      mine[2] = {0, 0}, onnode[2]; /* factors, explicit blocks: this rank, this node */
-  PetscInt    nmax = 0, nbmax = 0;
+  PetscInt    nmax = 0, nbmax = 0, nimplicit = 0, nexplicit;
   int         fits[2], allfit[2]; /* factors fit, factors and blocks fit: this node, every node */
 
   PetscFunctionBegin;
@@ -188,13 +188,20 @@ PetscErrorCode FETICheckMemory(FETI feti)
     PetscReal nnzhalf = 0;
     PetscCall(HalfNonzeros(sd.K, sd.n, &nnzhalf));
     mine[0] += FactorBytes(sd.n, nnzhalf);
-    nmax = std::max(nmax, sd.n);
+    nmax             = std::max(nmax, sd.n);
+    sd.kplusimplicit = PETSC_FALSE;
     if (mask) { /* |b| counted with the fixing dofs (an upper bound); the dense block, and the n x 128 work blocks of the solves that may build it */
       std::vector<char> isD(sd.n, 0);
       PetscInt          nb = 0;
       for (PetscInt d : sd.dirichletdofs) isD[d] = 1;
       for (PetscInt k = 0; k < sd.n; k++)
         if (mask[sd.localoffset + k] != 0.0 && !isD[k]) nb++;
+      /* dsymv reads the triangle, nb^2/2 numbers; the two triangular solves read the factor twice */
+      if (0.5 * (double)nb * nb > 2.0 * FactorEntries(sd.n, nnzhalf)) {
+        sd.kplusimplicit = PETSC_TRUE;
+        nimplicit++;
+        continue;
+      }
       nbmax = std::max(nbmax, nb);
       mine[1] += 8.0 * ((double)nb * nb + 2.0 * sd.n * std::min<PetscInt>(nb, 128));
     }
@@ -205,6 +212,14 @@ PetscErrorCode FETICheckMemory(FETI feti)
   PetscCallMPI(MPI_Comm_free(&node));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nmax, 1, MPIU_INT, MPI_MAX, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
+  if (impl.kplusexplicit) {
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nimplicit, 1, MPIU_INT, MPI_SUM, comm));
+    impl.nkplusimplicit = nimplicit;
+    nexplicit           = impl.nglobalsub - nimplicit;
+    if (nimplicit)
+      PetscCall(PetscInfo(feti, "%" PetscInt_FMT " of %" PetscInt_FMT " subdomains keep their factor for F: their explicit K+ block would be larger than the factor\n", nimplicit, impl.nglobalsub));
+    if (!nexplicit) impl.kplusexplicit = PETSC_FALSE; /* no block anywhere: the plain implicit products */
+  }
   impl.memfactors = onnode[0];
   impl.memblocks  = onnode[1];
   impl.membudget  = budget;
