@@ -90,6 +90,10 @@ PETSC_EXTERN PetscErrorCode FETIComputeAlpha(FETI, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIRecoverPrimal(FETI, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIGetKSP(FETI, KSP *);
 PETSC_EXTERN PetscErrorCode FETISetKplusExplicit(FETI, PetscBool);
+PETSC_EXTERN PetscErrorCode FETIGetKplusExplicit(FETI, PetscBool *, PetscBool *);
+PETSC_EXTERN PetscErrorCode FETIGetMemoryEstimate(FETI, PetscReal *, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode FETIGetMemoryBudget(MPI_Comm, const char[], PetscReal *, PetscBool *);
+PETSC_EXTERN PetscErrorCode FETIEstimateFactorMemory(PetscReal, PetscReal, PetscReal *);
 PETSC_EXTERN PetscErrorCode FETISolveLinear(FETI, Vec, Vec);
 
 PETSC_EXTERN PetscErrorCode FETIWrite(FETI, PetscViewer);

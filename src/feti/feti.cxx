@@ -407,9 +407,9 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_fixing_nodes <8>       - well-separated candidate nodes among which the fixing dofs are pivoted
 . -feti_kplus_explicit <false> - F products with dense blocks of K+ on the dofs B touches (`FETISetKplusExplicit()`)
 . -feti_kplus_explicit_schur <true> - build those blocks from a MUMPS Schur complement (when MUMPS is there); false: by solves with the subdomain factor
-. -feti_view                   - view the problem after setup
-. -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of `FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8, unpreconditioned norm)
-. -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
+. -feti_memory_budget <MB>     - memory the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup); `FETISetUp()` drops the explicit blocks when only
+they exceed it and stops when the factorizations do . -feti_view                   - view the problem after setup . -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of
+`FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8, unpreconditioned norm) . -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
 . -feti_sub_pc_factor_mat_solver_type <cholmod,mumps,petsc> - the sparse Cholesky of the subdomains
 . -feti_coarse_mode <single,redundant,parallel> - the direct solver of G G': factored once on rank 0 (solves gather there; the same numbers as on one rank), on every rank, or in parallel (MUMPS)
 - -feti_coarse_pc_factor_mat_solver_type ... - its options (single: on rank 0; redundant: -feti_coarse_redundant_...)
@@ -437,6 +437,11 @@ PetscErrorCode FETISetFromOptions(FETI feti)
                              impl.kplusschur, &impl.kplusschur, NULL));
   PetscCall(PetscOptionsEnum("-feti_coarse_mode", "Direct solver of G G': factored on rank 0 only (single), on every rank (redundant), or in parallel by MUMPS (parallel)", "FETISetUp",
                              FETICoarseModes, (PetscEnum)impl.coarsemode, (PetscEnum *)&impl.coarsemode, NULL));
+  {
+    PetscReal mb = impl.membudget > 0 ? impl.membudget / 1048576.0 : 0; /* read by FETIGetMemoryBudget() at setup; listed here for -help */
+    PetscCall(PetscOptionsReal("-feti_memory_budget", "Megabytes the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup)", "FETIGetMemoryBudget",
+                               mb, &mb, NULL));
+  }
   PetscCall(PetscOptionsName("-feti_view", "View the FETI problem after setup", "FETIView", NULL));
   PetscOptionsEnd();
   PetscCall(FETISetKplusExplicit(feti, kplusexplicit));
@@ -482,9 +487,39 @@ PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscValidLogicalCollectiveBool(feti, flg, 2);
-  PetscCheck(!feti->impl->setupcalled || feti->impl->kplusexplicit == flg, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
+  PetscCheck(!feti->impl->setupcalled || (feti->impl->kplusexplicit || feti->impl->kplusfallback || feti->impl->nkplusimplicit > 0) == flg, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
              "FETISetKplusExplicit() (-feti_kplus_explicit) must come before FETISetUp()");
-  feti->impl->kplusexplicit = flg;
+  if (!feti->impl->setupcalled) feti->impl->kplusexplicit = flg;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETIGetKplusExplicit - Whether F products use the explicit dense blocks of K+: before `FETISetUp()` what was asked
+  for, after it what was actually chosen.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem
+
+  Output Parameters:
++ flg      - `PETSC_TRUE` when the explicit blocks are (or will be) used, in at least one subdomain (a subdomain
+             whose block would be larger than its sparse factor, e.g. a wide slab one cell thick, keeps the factor;
+             `FETIView()` counts them)
+- fallback - `PETSC_TRUE` when they were asked for but `FETISetUp()` did not build them because they would not fit
+             in memory (`FETIGetMemoryEstimate()`, -feti_memory_budget); NULL if not needed
+
+  Level: intermediate
+
+.seealso: `FETISetKplusExplicit()`, `FETIGetMemoryEstimate()`, `FETISetUp()`
+@*/
+PetscErrorCode FETIGetKplusExplicit(FETI feti, PetscBool *flg, PetscBool *fallback)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidBoolPointer(flg, 2);
+  *flg = feti->impl->kplusexplicit;
+  if (fallback) *fallback = feti->impl->kplusfallback;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -583,7 +618,16 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
       for (const FETISubdomain &sd : impl.sub) nbmax = std::max(nbmax, (PetscInt)sd.kb.size());
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
       PetscCall(PetscViewerASCIIPrintf(viewer, "F products: explicit dense K+ on the dofs B touches (at most %" PetscInt_FMT " per subdomain)\n", nbmax));
-    } else PetscCall(PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain\n"));
+      if (impl.nkplusimplicit)
+        PetscCall(PetscViewerASCIIPrintf(viewer, "  except %" PetscInt_FMT " subdomain(s) whose block would be larger than the factor: two triangular solves there\n", impl.nkplusimplicit));
+    } else if (impl.nkplusimplicit)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain (explicit K+ asked for, but every block would be larger than its factor)\n"));
+    else
+      PetscCall(
+          PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain%s\n", impl.kplusfallback ? " (explicit K+ blocks asked for, dropped: they would not fit in memory)" : ""));
+    if (impl.memfactors >= 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "memory estimate (node of rank 0): factors %.1f MB, explicit K+ blocks %.1f MB, budget %.1f MB\n", impl.memfactors / 1048576.0,
+                                       impl.memblocks / 1048576.0, impl.membudget / 1048576.0));
     if (impl.ncoarse) PetscCall(FETICoarseSolverView(impl.coarse, viewer));
   }
   PetscCall(PetscViewerASCIIPopTab(viewer));

@@ -29,6 +29,25 @@ static PetscErrorCode BoundaryDofs(FETISubdomain &sd, const PetscScalar *mask, s
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Is there a dof that is neither in kb nor removed? Without one (a subdomain so thin that B touches every node:
+   fewer than two cells across) the "interior" MUMPS would eliminate before its Schur complement on kb is only
+   removed dofs, decoupled in Kreg (rows and columns d*I): the Schur complement is Kreg_bb itself, and MUMPS,
+   asked for a Schur complement of almost the whole matrix, underestimates its workspace (INFOG(1) = -8) by far.
+   Such a block is best built by solves with the subdomain's own factor. */
+static PetscErrorCode HasInterior(const FETISubdomain &sd, const std::vector<PetscInt> &kb, PetscBool *has)
+{
+  std::vector<char> covered;
+
+  PetscFunctionBegin;
+  PetscCallCXX(covered.assign(sd.n, 0));
+  for (PetscInt k : kb) covered[k] = 1;
+  for (PetscInt r : sd.removed) covered[r] = 1;
+  *has = PETSC_FALSE;
+  for (PetscInt k = 0; k < sd.n && !*has; k++)
+    if (!covered[k]) *has = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Before the subdomain's factorization: when it is MUMPS, ask it to keep the Schur complement on the
    dofs B touches (Dirichlet dofs excluded; fixing dofs included, their rows are zeroed afterwards) */
 PetscErrorCode FETISubdomainSetSchurDofs(FETI feti, FETISubdomain &sd)
@@ -41,10 +60,11 @@ PetscErrorCode FETISubdomainSetSchurDofs(FETI feti, FETISubdomain &sd)
   IS                 is;
   const PetscScalar *mask;
   std::vector<char>  isD(sd.n, 0);
+  PetscBool          interior;
 
   PetscFunctionBegin;
   sd.schurfactor = PETSC_FALSE;
-  if (!impl.kplusexplicit || !impl.kplusschur) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!impl.kplusexplicit || !impl.kplusschur || sd.kplusimplicit) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(KSPGetPC(sd.ksp, &pc));
   PetscCall(PCFactorGetMatSolverType(pc, &type));
   PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
@@ -55,7 +75,8 @@ PetscErrorCode FETISubdomainSetSchurDofs(FETI feti, FETISubdomain &sd)
   for (PetscInt k = 0; k < sd.n; k++)
     if (mask[sd.localoffset + k] != 0.0 && !isD[k]) PetscCallCXX(sd.kb.push_back(k));
   PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
-  if (sd.kb.empty() || (PetscInt)sd.kb.size() == sd.n) PetscFunctionReturn(PETSC_SUCCESS); /* MUMPS wants a Schur complement smaller than the matrix */
+  PetscCall(HasInterior(sd, sd.kb, &interior));
+  if (sd.kb.empty() || !interior) PetscFunctionReturn(PETSC_SUCCESS); /* FETISetUpExplicitKplus() builds the blocks by solves */
   PetscCall(PCFactorSetUpMatSolverType(pc));
   PetscCall(PCFactorGetMatrix(pc, &factor));
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)sd.kb.size(), sd.kb.data(), PETSC_COPY_VALUES, &is));
@@ -163,43 +184,77 @@ static PetscErrorCode SubdomainExplicitKplusBySolves(FETISubdomain &sd)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* When the subdomain factor is not MUMPS: (K+)_bb = S^-1 from a second, MUMPS, factorization that keeps
-   the Schur complement S on b, and a dense inversion; cheaper than |b| solves with the factor */
-static PetscErrorCode SubdomainExplicitKplusBySchur(FETISubdomain &sd)
+/* the Schur dofs on a fresh MUMPS factor: before the first attempt and before every retry with more workspace */
+struct SchurISContext {
+  KSP ksp;
+  IS  is;
+};
+
+static PetscErrorCode SetSchurIS(void *ctx)
+{
+  SchurISContext *c = static_cast<SchurISContext *>(ctx);
+  PC              pc;
+  Mat             factor;
+  MatSolverType   type;
+  PetscBool       mumps;
+  const char     *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(KSPGetPC(c->ksp, &pc));
+  PetscCall(PCFactorGetMatSolverType(pc, &type));
+  PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
+  PetscCall(KSPGetOptionsPrefix(c->ksp, &prefix));
+  PetscCheck(mumps, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "-%spc_factor_mat_solver_type %s: the Schur complement for the explicit (K+)_bb needs mumps", prefix ? prefix : "", type ? type : "");
+  PetscCall(PCFactorSetUpMatSolverType(pc));
+  PetscCall(PCFactorGetMatrix(pc, &factor));
+  PetscCall(MatFactorSetSchurIS(factor, c->is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* When the subdomain factor is not MUMPS: (K+)_bb = S^-1 from a second, MUMPS, factorization (options prefix
+   feti_schur_) that keeps the Schur complement S on b, and a dense inversion; cheaper than |b| solves with the
+   factor. It goes through FETIKSPSetUpFactorization(), so a MUMPS workspace estimate that is too small is
+   raised and the factorization repeated, as for every other factorization. */
+static PetscErrorCode SubdomainExplicitKplusBySchur(FETI feti, FETISubdomain &sd, PetscInt s)
 {
   const PetscInt nb = (PetscInt)sd.kb.size();
+  const char    *fetiprefix;
+  char           prefix[256];
+  PC             pc;
   Mat            factor, S;
-  IS             isb, rperm, cperm;
-  MatFactorInfo  info;
+  SchurISContext ctx;
+  PetscBool      failed;
 
   PetscFunctionBegin;
   PetscCall(MatDestroy(&sd.Kplusbb));
   PetscCall(VecDestroy(&sd.kx));
   PetscCall(VecDestroy(&sd.ky));
   if (!nb) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(MatGetFactor(sd.Kreg, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &factor));
-  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nb, sd.kb.data(), PETSC_USE_POINTER, &isb));
-  PetscCall(MatFactorSetSchurIS(factor, isb));
-  PetscCall(MatGetOrdering(sd.Kreg, MATORDERINGNATURAL, &rperm, &cperm));
-  PetscCall(MatFactorInfoInitialize(&info));
-  PetscCall(MatCholeskyFactorSymbolic(factor, sd.Kreg, rperm, &info));
-  PetscCall(MatCholeskyFactorNumeric(factor, sd.Kreg, &info));
-  {
-    MatFactorError err;
-    PetscCall(MatFactorGetError(factor, &err));
-    PetscCheck(err == MAT_FACTOR_NOERROR, PETSC_COMM_SELF, PETSC_ERR_LIB,
-               "The MUMPS factorization that gives a subdomain's Schur complement for the explicit (K+)_bb failed (%s): -feti_kplus_explicit_schur 0 builds the blocks by solves with the subdomain "
-               "factor instead",
-               err == MAT_FACTOR_OUTMEMORY ? "out of workspace or memory" : "a zero pivot or another failure");
-  }
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &fetiprefix));
+  PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%sfeti_schur_", fetiprefix ? fetiprefix : ""));
+  PetscCall(KSPCreate(PETSC_COMM_SELF, &ctx.ksp));
+  PetscCall(KSPSetOptionsPrefix(ctx.ksp, prefix));
+  PetscCall(KSPSetType(ctx.ksp, KSPPREONLY));
+  PetscCall(KSPSetOperators(ctx.ksp, sd.Kreg, sd.Kreg));
+  PetscCall(KSPGetPC(ctx.ksp, &pc));
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+  PetscCall(KSPSetFromOptions(ctx.ksp));
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nb, sd.kb.data(), PETSC_USE_POINTER, &ctx.is));
+  PetscCall(SetSchurIS(&ctx));
+  PetscCall(FETIKSPSetUpFactorization(feti, ctx.ksp, SetSchurIS, &ctx, &failed));
+  PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+             "Subdomain %" PetscInt_FMT
+             ": the MUMPS factorization that gives the Schur complement for the explicit (K+)_bb met a zero pivot: the regularized K_s is singular (a disconnected subdomain, a "
+             "mechanism?)",
+             s);
+  PetscCall(PCFactorGetMatrix(pc, &factor));
   PetscCall(MatFactorInvertSchurComplement(factor));
   PetscCall(MatFactorCreateSchurComplement(factor, &S, NULL));
   PetscCall(MatConvert(S, MATSEQDENSE, MAT_INITIAL_MATRIX, &sd.Kplusbb));
   PetscCall(MatDestroy(&S));
-  PetscCall(MatDestroy(&factor));
-  PetscCall(ISDestroy(&isb));
-  PetscCall(ISDestroy(&rperm));
-  PetscCall(ISDestroy(&cperm));
+  PetscCall(KSPDestroy(&ctx.ksp));
+  PetscCall(ISDestroy(&ctx.is));
   PetscCall(FinishBlock(sd));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -213,19 +268,22 @@ PetscErrorCode FETISetUpExplicitKplus(FETI feti)
   PetscFunctionBegin;
   PetscCall(FETISetUpBoundaryMask(feti));
   PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
-  for (FETISubdomain &sd : impl.sub) {
-    PetscBool mumps = PETSC_FALSE;
-    if (sd.schurfactor) continue; /* built with the subdomain's factorization */
+  for (size_t s = 0; s < impl.sub.size(); s++) {
+    FETISubdomain &sd    = impl.sub[s];
+    PetscBool      mumps = PETSC_FALSE, interior;
+    if (sd.schurfactor || sd.kplusimplicit) continue; /* built with the subdomain's factorization, or not at all (F uses the factor) */
     PetscCall(BoundaryDofs(sd, mask, sd.kb));
-    if (impl.kplusschur && (PetscInt)sd.kb.size() < sd.n) PetscCall(MatGetFactorAvailable(sd.Kreg, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &mumps));
-    if (mumps) PetscCall(SubdomainExplicitKplusBySchur(sd));
+    PetscCall(HasInterior(sd, sd.kb, &interior));
+    if (impl.kplusschur && interior) PetscCall(MatGetFactorAvailable(sd.Kreg, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &mumps));
+    if (mumps) PetscCall(SubdomainExplicitKplusBySchur(feti, sd, impl.firstsub + (PetscInt)s));
     else PetscCall(SubdomainExplicitKplusBySolves(sd));
   }
   PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* y = K+ x for x supported on the dofs touched by B; y is exact on those dofs and zero elsewhere */
+/* y = K+ x for x supported on the dofs touched by B; y is exact on those dofs (zero elsewhere, except in the
+   subdomains that keep their factor for F, where it is K+ x everywhere) */
 PetscErrorCode FETIApplyKplusOnBoundary(FETI feti, Vec x, Vec y)
 {
   FETI_Impl         &impl = *feti->impl;
@@ -244,6 +302,14 @@ PetscErrorCode FETIApplyKplusOnBoundary(FETI feti, Vec x, Vec y)
     PetscScalar       *a, *b;
     PetscBLASInt       bn, blda, inc = 1;
     PetscInt           lda;
+    if (sd.kplusimplicit) { /* two triangular solves with the factor, as FETIApplyKplus() */
+      PetscCall(VecPlaceArray(sd.xa, xa + sd.localoffset));
+      PetscCall(VecPlaceArray(sd.ya, ya + sd.localoffset));
+      PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya));
+      PetscCall(VecResetArray(sd.xa));
+      PetscCall(VecResetArray(sd.ya));
+      continue;
+    }
     if (!nb) continue;
     PetscCall(PetscBLASIntCast(nb, &bn));
     PetscCall(MatDenseGetLDA(sd.Kplusbb, &lda));

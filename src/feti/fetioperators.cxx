@@ -300,7 +300,8 @@ static PetscErrorCode CreateShell(FETI feti, PetscInt m, PetscInt n, PetscErrorC
    matrix) through *failed instead of the factorization package's own error, so that the caller can
    say what the singularity means. MUMPS running out of its workspace estimate (it underestimates it for
    small matrices with a large Schur complement: tiny subdomains) is retried with a larger ICNTL(14),
-   up to three times; prepare(ctx), when given, redoes what the caller set on the factor before the
+   up to three times (INFOG(1) = -8, -9, ...; not -13, an allocation that failed, nor -19, the ICNTL(23) cap:
+   more workspace would not help those); prepare(ctx), when given, redoes what the caller set on the factor before the
    first attempt (the Schur dofs). Any other failure inside the package (an ordering that fails, out of
    memory, a bad package option) is an error that names the options prefix: it says nothing about the
    matrix. */
@@ -313,6 +314,7 @@ PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscErrorCode (*pr
   const char    *prefix;
   const PetscInt max_retries = 3;
   PetscInt       workspace = 0, used = 0; /* ICNTL(14): asked for by the last retry, in effect in the last attempt */
+  PetscInt       infog[2] = {0, 0};       /* MUMPS's INFOG(1), INFOG(2) of the last failed attempt */
   PetscBool      given;
 
   PetscFunctionBegin;
@@ -337,12 +339,23 @@ PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscErrorCode (*pr
       PetscCall(PCFactorGetMatSolverType(pc, &type));
       PetscCall(PetscStrcmp(type, MATSOLVERMUMPS, &mumps));
     }
-    if (ierr || reason != PC_FACTOR_OUTMEMORY || !mumps) break;
-    {
+    if (!ierr && mumps && reason != PC_NOERROR) {
       Mat factor;
       PetscCall(PCFactorGetMatrix(pc, &factor));
       PetscCall(MatMumpsGetIcntl(factor, 14, &used));
+      PetscCall(MatMumpsGetInfog(factor, 1, &infog[0]));
+      PetscCall(MatMumpsGetInfog(factor, 2, &infog[1]));
     }
+    /* -13: an allocation failed (the machine is out of memory), -19: the ICNTL(23) cap: more workspace cannot help */
+    PetscCheck(infog[0] != -19, PETSC_COMM_SELF, PETSC_ERR_LIB,
+               "The sparse factorization (options prefix -%s) needs more memory than the cap -%smat_mumps_icntl_23 gives MUMPS (INFOG(1) = -19): raise or remove it", prefix ? prefix : "",
+               prefix ? prefix : "");
+    PetscCheck(infog[0] != -13, PETSC_COMM_SELF, PETSC_ERR_MEM,
+               "The sparse factorization (options prefix -%s) ran out of memory inside MUMPS (INFOG(1) = %" PetscInt_FMT ", INFOG(2) = %" PetscInt_FMT
+               "): this machine cannot hold the factors; use a coarser mesh or more subdomains, more nodes, or -feti_kplus_explicit 0 (FETISetUp() estimates the memory before factoring: "
+               "-info :feti, -feti_memory_budget)",
+               prefix ? prefix : "", infog[0], infog[1]);
+    if (ierr || reason != PC_FACTOR_OUTMEMORY || !mumps) break;
     if (attempt == max_retries || (attempt > 0 && used < workspace)) break; /* used < workspace: an explicit -mat_mumps_icntl_14 wins */
     {                                                                       /* same matrix, a fresh factor with a larger workspace */
       Mat      A, factor;
@@ -463,6 +476,8 @@ PetscErrorCode FETISetUp(FETI feti)
   /* kernels first: the coarse problem is assembled and factored before the subdomain factors exist, so
      that the memory its assembly needs for a moment is reused by them rather than stacked on them */
   for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
+  /* before anything large: the factors and explicit blocks must fit (the blocks are dropped when only they do not) */
+  PetscCall(FETICheckMemory(feti));
 
   /* coarse layout */
   impl.nlocalcoarse = 0;

@@ -71,9 +71,7 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet, const
     PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)b.size(), b.data(), PETSC_COPY_VALUES, &sd.boundary));
     PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)i.size(), i.data(), PETSC_COPY_VALUES, &sd.interior));
     if (dirichlet && !i.empty()) {
-      Mat           KV, Kii;
-      IS            rperm, cperm;
-      MatFactorInfo info;
+      Mat KV, Kii;
       /* K_ii of K_V = Kreg + C - d I_removed (transient, one subdomain at a time) */
       PetscCall(MatConvert(sd.Kreg, MATSEQAIJ, MAT_INITIAL_MATRIX, &KV));
       if (sd.correction) PetscCall(MatAXPY(KV, 1.0, sd.correction, DIFFERENT_NONZERO_PATTERN));
@@ -83,33 +81,33 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet, const
       PetscCall(MatCreateSubMatrix(KV, sd.interior, sd.interior, MAT_INITIAL_MATRIX, &Kii));
       PetscCall(MatDestroy(&KV));
       PetscCall(MatSetOption(Kii, MAT_SPD, PETSC_TRUE));
-      /* factor directly and keep only the factor: K_ii itself is not needed afterwards */
-      PetscCall(MatGetFactor(Kii, solver, MAT_FACTOR_CHOLESKY, &sd.Fii));
-      PetscCheck(sd.Fii, PETSC_COMM_SELF, PETSC_ERR_SUP, "-feti_dirichlet_pc_factor_mat_solver_type %s cannot factor a SEQAIJ matrix by Cholesky", solver);
-      PetscCall(MatGetOrdering(Kii, MATORDERINGNATURAL, &rperm, &cperm)); /* CHOLMOD and MUMPS order by themselves */
-      PetscCall(MatFactorInfoInitialize(&info));
-      PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-      PetscErrorCode ierr = MatCholeskyFactorSymbolic(sd.Fii, Kii, rperm, &info);
-      if (!ierr) ierr = MatCholeskyFactorNumeric(sd.Fii, Kii, &info);
-      PetscCall(PetscPopErrorHandler());
-      PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
+      /* factored by the function every FETI factorization goes through (a MUMPS workspace estimate that is too
+         small is raised and the factorization repeated; package failures name the options prefix); only the
+         factor is kept: K_ii itself is not needed afterwards */
       {
-        MatFactorError err = MAT_FACTOR_NOERROR;
-        /* K_ii is a fresh matrix (no error-if-failure): a zero pivot is a factor error, any raised error is the package's */
-        PetscCheck(!ierr, PETSC_COMM_SELF, ierr,
-                   "Dirichlet preconditioner: the factorization of K_ii by %s failed inside the solver package with PETSc error %d, not at a zero pivot: check the "
-                   "-feti_dirichlet_pc_factor_mat_solver_type and -mat_* options",
-                   solver, (int)ierr);
-        PetscCall(MatFactorGetError(sd.Fii, &err));
-        PetscCheck(err == MAT_FACTOR_NOERROR || err == MAT_FACTOR_STRUCT_ZEROPIVOT || err == MAT_FACTOR_NUMERIC_ZEROPIVOT, PETSC_COMM_SELF, PETSC_ERR_LIB,
-                   "Dirichlet preconditioner: the factorization of K_ii by %s failed inside the solver package (%s), not at a zero pivot: check the -mat_* options of the package, or the memory",
-                   solver, err == MAT_FACTOR_OUTMEMORY ? "out of memory" : "another failure");
-        PetscCheck(err == MAT_FACTOR_NOERROR, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+        KSP         ksp;
+        PC          pc;
+        Mat         factor;
+        PetscBool   failed;
+        const char *fetiprefix;
+        char        prefix[256];
+        PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &fetiprefix));
+        PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "%sfeti_dirichlet_", fetiprefix ? fetiprefix : ""));
+        PetscCall(KSPCreate(PETSC_COMM_SELF, &ksp));
+        PetscCall(KSPSetOptionsPrefix(ksp, prefix));
+        PetscCall(KSPSetType(ksp, KSPPREONLY));
+        PetscCall(KSPSetOperators(ksp, Kii, Kii));
+        PetscCall(KSPGetPC(ksp, &pc));
+        PetscCall(PCSetType(pc, PCCHOLESKY));
+        PetscCall(PCFactorSetMatSolverType(pc, solver));
+        PetscCall(FETIKSPSetUpFactorization(feti, ksp, NULL, NULL, &failed));
+        PetscCheck(!failed, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
                    "Dirichlet preconditioner: the interior block K_ii of a subdomain is singular (a part of the subdomain not connected to its interface?)");
+        PetscCall(PCFactorGetMatrix(pc, &factor));
+        PetscCall(PetscObjectReference((PetscObject)factor));
+        sd.Fii = factor;
+        PetscCall(KSPDestroy(&ksp));
       }
-      PetscCall(ISDestroy(&rperm));
-      PetscCall(ISDestroy(&cperm));
       PetscCall(MatCreateVecs(Kii, &sd.xi, &sd.yi)); /* interior-sized */
       PetscCall(MatDestroy(&Kii));
     }

@@ -297,7 +297,7 @@ PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, Pet
     char      solver[64];
     PetscBool set, sbaij, cholmod;
     /* the package KSPSetFromOptions() will choose: the option, else ours (MUMPS for explicit K+ blocks from its Schur complement) */
-    PetscCall(PetscStrncpy(solver, impl.kplusexplicit && impl.kplusschur ? MATSOLVERMUMPS : impl.subsolver, sizeof(solver)));
+    PetscCall(PetscStrncpy(solver, impl.kplusexplicit && impl.kplusschur && !sd.kplusimplicit ? MATSOLVERMUMPS : impl.subsolver, sizeof(solver)));
     PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, subprefix, "-pc_factor_mat_solver_type", solver, sizeof(solver), &set));
     PetscCall(PetscStrcmp(solver, MATSOLVERCHOLMOD, &cholmod));
     PetscCall(PetscObjectTypeCompare((PetscObject)sd.Kreg, MATSEQSBAIJ, &sbaij));
@@ -315,7 +315,7 @@ PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, Pet
   PetscCall(KSPGetPC(sd.ksp, &pc));
   PetscCall(PCSetType(pc, PCCHOLESKY));
   /* with explicit K+ blocks, MUMPS factors K_s once and keeps the Schur complement on the dofs B touches */
-  PetscCall(PCFactorSetMatSolverType(pc, impl.kplusexplicit && impl.kplusschur ? MATSOLVERMUMPS : impl.subsolver));
+  PetscCall(PCFactorSetMatSolverType(pc, impl.kplusexplicit && impl.kplusschur && !sd.kplusimplicit ? MATSOLVERMUMPS : impl.subsolver));
   PetscCall(KSPSetFromOptions(sd.ksp));
   PetscCall(FETISubdomainSetSchurDofs(feti, sd));
   {

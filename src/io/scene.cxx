@@ -518,6 +518,51 @@ PetscErrorCode ContactSceneCreate(MPI_Comm comm, ContactScene *scene)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A scene far beyond the machine stops here, in a second, with the estimate, rather than after minutes of meshing
+   and assembly: the subdomain stiffness matrices (one triangle, about 20 nonzeros per dof on these meshes) and
+   their sparse factors (FETIEstimateFactorMemory(); only for bodies whose decomposition the scene gives), against
+   what all nodes have available (FETIGetMemoryBudget(), -feti_memory_budget per node). Deliberately a low
+   estimate: FETISetUp() checks again, precisely, before its factorizations. */
+template <class Full> static PetscErrorCode CheckMemory(MPI_Comm comm, const char prefix[], const Scene_Impl &impl, const Full &full)
+{
+  const double nnzperdof = 20;
+  double       need = 0, dofs = 0, nsubs = 0, budget = 0;
+  PetscReal    nodebudget;
+  PetscBool    given;
+  MPI_Comm     node;
+  PetscMPIInt  noderank;
+
+  PetscFunctionBegin;
+  for (const SceneBody &body : impl.bodies) {
+    double nodes = 1, nsub = 1;
+    for (PetscInt d = 0; d < 3; d++) nodes *= (double)body.cells[d] * impl.refine + 1;
+    if (body.decompositionset) nsub = body.decomposition == FEM_DECOMPOSITION_STRUCTURED ? (double)body.parts[0] * body.parts[1] * body.parts[2] : (double)body.parts[0];
+    need += 3 * nodes * nnzperdof * 8.5; /* SBAIJ with 3x3 blocks: 8 bytes a value, an index per 9 */
+    if (body.decompositionset) {
+      PetscReal f, n = 3 * nodes / nsub;
+      PetscCall(FETIEstimateFactorMemory(n, nnzperdof * n, &f));
+      need += nsub * f;
+    }
+    dofs += 3 * nodes;
+    nsubs += nsub;
+  }
+  PetscCall(FETIGetMemoryBudget(comm, prefix, &nodebudget, &given));
+  if (nodebudget < 0) PetscFunctionReturn(PETSC_SUCCESS); /* the machine says nothing */
+  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
+  PetscCallMPI(MPI_Comm_rank(node, &noderank));
+  PetscCallMPI(MPI_Comm_free(&node));
+  {
+    double mine = noderank ? 0 : (double)nodebudget;
+    PetscCallMPI(MPI_Allreduce(&mine, &budget, 1, MPI_DOUBLE, MPI_SUM, comm));
+  }
+  PetscCall(PetscInfo(NULL, "Scene memory estimate: %.1f MB (%.4g unknowns, %.4g subdomains); available on all nodes: %.1f MB\n", need / 1048576.0, dofs, nsubs, budget / 1048576.0));
+  PetscCheck(need <= budget, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "The scene needs at least about %.1f MB (%.4g unknowns in %.4g subdomains: the stiffness matrices and their sparse factors, estimated), more than the %.1f MB %s; nothing was "
+             "allocated. Reduce %s or the bodies' -scene_body<b>_cells, or use more subdomains (-scene_body<b>_subdomains: the factors shrink faster than the subdomains) or more nodes",
+             need / 1048576.0, dofs, nsubs, budget / 1048576.0, given ? "that -feti_memory_budget (per node) allows" : "available (MemAvailable of the nodes)", full("-scene_refine").c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*@C
   ContactSceneCreateFromOptions - Create a scene and read it from the options database (`ContactSceneSetFromOptions()`).
 
@@ -707,6 +752,7 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   PetscCheck(total <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE,
              "the scene's %d bodies have %.4g unknowns together: they do not fit %d-bit PetscInt indices (at most %" PetscInt_FMT "); reduce %s or the bodies' -scene_body<b>_cells",
              (int)impl.bodies.size(), total, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT, full("-scene_refine").c_str());
+  PetscCall(CheckMemory(comm, prefix, impl, full));
   impl.fromoptions = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

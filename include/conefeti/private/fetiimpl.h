@@ -37,10 +37,11 @@ struct FETISubdomain {
   Vec xi = nullptr, yi = nullptr; /* interior-sized work vectors */
 
   /* explicit K+ on the dofs touched by B (-feti_kplus_explicit) */
-  std::vector<PetscInt> kb;                         /* those dofs, without the removed ones */
-  Mat                   Kplusbb = nullptr;          /* dense (K+)_bb */
-  Vec                   kx = nullptr, ky = nullptr; /* work vectors of length |kb| */
-  PetscBool             schurfactor = PETSC_FALSE;  /* the subdomain's MUMPS factor holds the Schur complement on kb */
+  std::vector<PetscInt> kb;                          /* those dofs, without the removed ones */
+  Mat                   Kplusbb = nullptr;           /* dense (K+)_bb */
+  Vec                   kx = nullptr, ky = nullptr;  /* work vectors of length |kb| */
+  PetscBool             schurfactor   = PETSC_FALSE; /* the subdomain's MUMPS factor holds the Schur complement on kb */
+  PetscBool             kplusimplicit = PETSC_FALSE; /* explicit K+ asked for, but this block would be larger than the factor: F uses the factor here */
 };
 
 /* y = A x with every row summed in increasing global column order: bitwise the same on any number of
@@ -91,6 +92,11 @@ struct FETI_Impl {
   PetscBool      kplusexplicit     = PETSC_FALSE;        /* -feti_kplus_explicit */
   PetscBool      kplusschur        = PETSC_TRUE;         /* -feti_kplus_explicit_schur */
   FETICoarseMode coarsemode        = FETI_COARSE_SINGLE; /* -feti_coarse_mode */
+
+  /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
+  PetscReal memfactors = -1, memblocks = -1, membudget = -1; /* bytes; -1: not estimated (budget: unknown) */
+  PetscBool kplusfallback  = PETSC_FALSE;
+  PetscInt  nkplusimplicit = 0; /* subdomains (all ranks) that keep the factor for F because their block would be larger */
 
   /* global objects */
   Vec              f  = nullptr; /* primal load */
@@ -150,6 +156,9 @@ PETSC_INTERN PetscErrorCode FETISetUpExplicitKplus(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplusOnBoundary(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainSetSchurDofs(FETI, FETISubdomain &);
 PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &);
+
+/* fetimemory.cxx */
+PETSC_INTERN PetscErrorCode FETICheckMemory(FETI);
 
 /* fetirowsum.cxx */
 PETSC_INTERN PetscErrorCode FETICreateCoarseMatrix(FETI, Vec, Mat *);

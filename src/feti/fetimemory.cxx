@@ -1,0 +1,293 @@
+/* The memory of the FETI setup, estimated before anything large is allocated.
+
+   A scene too large for the machine used to run for a minute and then die somewhere inside a factorization
+   (MUMPS out of memory, an allocation failure deep in a package). The two big consumers are known in advance:
+   the sparse Cholesky factors of the subdomains and, with -feti_kplus_explicit, the dense blocks (K+)_bb
+   (|b|^2 numbers per subdomain). FETISetUp() estimates both, compares them with the memory the node has left
+   (or -feti_memory_budget), drops the explicit blocks when only they do not fit, and stops at once with the
+   estimate when even the factors do not. A subdomain whose dense block would be larger than its factor
+   (a wide slab one cell thick: B touches every node) keeps the factor for F in any case: the block would cost
+   more memory, more setup (|b| solves) and more time per product than the two triangular solves it replaces. */
+#include <conefeti/private/fetiimpl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <unistd.h>
+
+/* Bytes a sparse Cholesky factor of a 3D finite element matrix takes: nested dissection gives about
+   c |K|_half n^(1/3) entries, at most the dense triangle; c = 0.75 and 12 bytes per entry (values, integer
+   structure, workspace) as MUMPS measures them on the brick's cubes (-feti_sub_mat_mumps_icntl_4 2: n = 6591,
+   |K|_half = 134034: 1.9M entries (INFOG(29)), 22 MB used (INFOG(22)); n = 2187: 5 MB). */
+static PetscReal FactorEntries(PetscReal n, PetscReal nnzhalf) { return std::min(0.5 * n * (n + 1), std::max(nnzhalf, 0.75 * nnzhalf * std::cbrt(n))); }
+
+static PetscReal FactorBytes(PetscReal n, PetscReal nnzhalf) { return 12.0 * FactorEntries(n, nnzhalf); }
+
+/*@
+  FETIEstimateFactorMemory - A rough estimate of the memory a subdomain's sparse Cholesky factorization takes.
+
+  Not Collective
+
+  Input Parameters:
++ n       - the subdomain's dofs
+- nnzhalf - the nonzeros of one triangle of K_s, diagonal included
+
+  Output Parameter:
+. bytes - the estimate
+
+  Notes:
+  Nested dissection of a 3D mesh gives about 0.75 nnzhalf n^(1/3) factor entries (measured with MUMPS on
+  the brick's cubes), at most the dense triangle, at 12 bytes each (values, integer structure, MUMPS's workspace). Meant to stop a scene that cannot fit before it is assembled, not to size anything.
+
+  Level: developer
+
+.seealso: `FETISetUp()`, `FETIGetMemoryBudget()`, `FETIGetMemoryEstimate()`
+@*/
+PetscErrorCode FETIEstimateFactorMemory(PetscReal n, PetscReal nnzhalf, PetscReal *bytes)
+{
+  PetscFunctionBegin;
+  PetscValidRealPointer(bytes, 3);
+  *bytes = FactorBytes(n, nnzhalf);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* One "Key:   <value> kB" line of a /proc file, in bytes; -1 when absent */
+static PetscReal ProcKilobytes(const char *path, const char *key)
+{
+  FILE     *f = fopen(path, "r");
+  char      line[256];
+  PetscReal value = -1;
+
+  if (!f) return -1;
+  while (fgets(line, sizeof(line), f)) {
+    double kb;
+    if (!strncmp(line, key, strlen(key)) && sscanf(line + strlen(key), " %lf", &kb) == 1) {
+      value = 1024.0 * kb;
+      break;
+    }
+  }
+  fclose(f);
+  return value;
+}
+
+/* One number in a file (cgroup limits); -1 when absent or "max" */
+static PetscReal FileNumber(const char *path)
+{
+  FILE  *f = fopen(path, "r");
+  double v = -1;
+
+  if (!f) return -1;
+  if (fscanf(f, "%lf", &v) != 1) v = -1;
+  fclose(f);
+  return v;
+}
+
+/* What this node can still give: MemAvailable (the kernel's own estimate of what can be allocated without
+   swapping), bounded by a cgroup memory limit (containers, batch jobs) */
+static PetscReal NodeAvailable(void)
+{
+  PetscReal avail = ProcKilobytes("/proc/meminfo", "MemAvailable:"), limit, usage;
+
+  if (avail < 0) {
+    const long pages = sysconf(_SC_AVPHYS_PAGES), size = sysconf(_SC_PAGESIZE);
+    avail = pages > 0 && size > 0 ? (PetscReal)pages * (PetscReal)size : -1;
+  }
+  limit = FileNumber("/sys/fs/cgroup/memory.max"); /* cgroup v2 */
+  usage = FileNumber("/sys/fs/cgroup/memory.current");
+  if (limit < 0) { /* cgroup v1 */
+    limit = FileNumber("/sys/fs/cgroup/memory/memory.limit_in_bytes");
+    usage = FileNumber("/sys/fs/cgroup/memory/memory.usage_in_bytes");
+  }
+  if (limit > 0 && limit < 1e18 && usage >= 0) avail = avail < 0 ? limit - usage : std::min(avail, limit - usage);
+  return avail;
+}
+
+/*@C
+  FETIGetMemoryBudget - The memory the FETI setup may use on each node (shared-memory domain) of a communicator.
+
+  Collective
+
+  Input Parameters:
++ comm   - the communicator
+- prefix - the options prefix of the FETI object (or NULL)
+
+  Output Parameters:
++ bytes - the budget of the node of this rank, in bytes (all ranks of the node together); a negative value when unknown
+- given - whether -feti_memory_budget gave it (NULL if not needed)
+
+  Options Database Key:
+. -feti_memory_budget <MB> - the budget; default: what the node has available now (MemAvailable of /proc/meminfo,
+  bounded by a cgroup memory limit)
+
+  Level: developer
+
+.seealso: `FETISetUp()`, `FETIEstimateFactorMemory()`, `FETIGetMemoryEstimate()`
+@*/
+PetscErrorCode FETIGetMemoryBudget(MPI_Comm comm, const char prefix[], PetscReal *bytes, PetscBool *given)
+{
+  PetscReal   mb = -1;
+  PetscBool   set;
+  MPI_Comm    node;
+  PetscMPIInt noderank;
+  double      avail;
+
+  PetscFunctionBegin;
+  PetscValidRealPointer(bytes, 3);
+  PetscCall(PetscOptionsGetReal(NULL, prefix, "-feti_memory_budget", &mb, &set));
+  PetscCheck(!set || mb > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_memory_budget %g: the budget is a positive number of megabytes", prefix ? prefix : "", (double)mb);
+  if (given) *given = set;
+  if (set) {
+    *bytes = mb * 1048576.0;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  /* one reading per node, shared by its ranks (they would otherwise see each other's allocations in between) */
+  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
+  PetscCallMPI(MPI_Comm_rank(node, &noderank));
+  avail = noderank ? 0 : (double)NodeAvailable();
+  PetscCallMPI(MPI_Bcast(&avail, 1, MPI_DOUBLE, 0, node));
+  PetscCallMPI(MPI_Comm_free(&node));
+  *bytes = (PetscReal)avail;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* nonzeros of one triangle of K_s (diagonal included), whatever its storage */
+static PetscErrorCode HalfNonzeros(Mat K, PetscInt n, PetscReal *nnzhalf)
+{
+  MatInfo   info;
+  PetscBool sbaij;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetInfo(K, MAT_LOCAL, &info));
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)K, &sbaij, MATSEQSBAIJ, MATMPISBAIJ, ""));
+  *nnzhalf = sbaij ? (PetscReal)info.nz_used : 0.5 * ((PetscReal)info.nz_used + (PetscReal)n);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Before the factorizations (the kernels, hence the Dirichlet dofs, and the boundary mask are known):
+   estimate, compare with the budget of each node, drop the explicit blocks or stop */
+PetscErrorCode FETICheckMemory(FETI feti)
+{
+  FETI_Impl  &impl = *feti->impl;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)feti), node;
+  const char *prefix;
+  PetscReal   budget;
+  PetscBool   given;
+  PetscMPIInt rank;
+  double      mine[2] = {0, 0}, onnode[2]; /* factors, explicit blocks: this rank, this node */
+  PetscInt    nmax = 0, nbmax = 0, nimplicit = 0, nexplicit;
+  int         fits[2], allfit[2]; /* factors fit, factors and blocks fit: this node, every node */
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
+  PetscCall(FETIGetMemoryBudget(comm, prefix, &budget, &given));
+  const PetscScalar *mask = NULL;
+  if (impl.kplusexplicit) PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
+  for (FETISubdomain &sd : impl.sub) {
+    PetscReal nnzhalf = 0;
+    PetscCall(HalfNonzeros(sd.K, sd.n, &nnzhalf));
+    mine[0] += FactorBytes(sd.n, nnzhalf);
+    nmax             = std::max(nmax, sd.n);
+    sd.kplusimplicit = PETSC_FALSE;
+    if (mask) { /* |b| counted with the fixing dofs (an upper bound); the dense block, and the n x 128 work blocks of the solves that may build it */
+      std::vector<char> isD(sd.n, 0);
+      PetscInt          nb = 0;
+      for (PetscInt d : sd.dirichletdofs) isD[d] = 1;
+      for (PetscInt k = 0; k < sd.n; k++)
+        if (mask[sd.localoffset + k] != 0.0 && !isD[k]) nb++;
+      /* dsymv reads the triangle, nb^2/2 numbers; the two triangular solves read the factor twice */
+      if (0.5 * (double)nb * nb > 2.0 * FactorEntries(sd.n, nnzhalf)) {
+        sd.kplusimplicit = PETSC_TRUE;
+        nimplicit++;
+        continue;
+      }
+      nbmax = std::max(nbmax, nb);
+      mine[1] += 8.0 * ((double)nb * nb + 2.0 * sd.n * std::min<PetscInt>(nb, 128));
+    }
+  }
+  if (mask) PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
+  PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
+  PetscCallMPI(MPI_Allreduce(mine, onnode, 2, MPI_DOUBLE, MPI_SUM, node));
+  PetscCallMPI(MPI_Comm_free(&node));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nmax, 1, MPIU_INT, MPI_MAX, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
+  if (impl.kplusexplicit) {
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nimplicit, 1, MPIU_INT, MPI_SUM, comm));
+    impl.nkplusimplicit = nimplicit;
+    nexplicit           = impl.nglobalsub - nimplicit;
+    if (nimplicit)
+      PetscCall(PetscInfo(feti, "%" PetscInt_FMT " of %" PetscInt_FMT " subdomains keep their factor for F: their explicit K+ block would be larger than the factor\n", nimplicit, impl.nglobalsub));
+    if (!nexplicit) impl.kplusexplicit = PETSC_FALSE; /* no block anywhere: the plain implicit products */
+  }
+  impl.memfactors = onnode[0];
+  impl.memblocks  = onnode[1];
+  impl.membudget  = budget;
+  if (budget < 0) { /* nothing known about the machine: no check */
+    PetscCall(PetscInfo(feti, "Memory estimate: factors %.1f MB, explicit K+ blocks %.1f MB on this node; available memory unknown (-feti_memory_budget sets it)\n", onnode[0] / 1048576.0,
+                        onnode[1] / 1048576.0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  fits[0] = onnode[0] <= budget;
+  fits[1] = onnode[0] + onnode[1] <= budget;
+  PetscCallMPI(MPI_Allreduce(fits, allfit, 2, MPI_INT, MPI_MIN, comm));
+  PetscCall(PetscInfo(feti, "Memory estimate on the node of rank %d: factors %.1f MB, explicit K+ blocks %.1f MB; budget %.1f MB (%s)\n", rank, onnode[0] / 1048576.0, onnode[1] / 1048576.0,
+                      budget / 1048576.0, given ? "-feti_memory_budget" : "available now"));
+  if (!allfit[0]) {
+    /* the numbers of a node that does not fit (the one short of most), for the message */
+    struct {
+      double v;
+      int    r;
+    } in          = {fits[0] ? -1e300 : onnode[0] - budget, (int)rank}, at;
+    double out[2] = {onnode[0], budget};
+    PetscCallMPI(MPI_Allreduce(&in, &at, 1, MPI_DOUBLE_INT, MPI_MAXLOC, comm));
+    PetscCallMPI(MPI_Bcast(out, 2, MPI_DOUBLE, at.r, comm));
+    SETERRQ(comm, PETSC_ERR_ARG_OUTOFRANGE, /* not PETSC_ERR_MEM: nothing failed to allocate */
+            "The subdomain factorizations need about %.1f MB on one node (estimated from the nonzeros of K_s: subdomains of up to %" PetscInt_FMT
+            " dofs), more than the %.1f MB %s; nothing large was allocated. Lower it: a coarser mesh (conefeti: -scene_refine, -scene_body<b>_cells), more subdomains (-scene_body<b>_subdomains: the "
+            "factors shrink faster than the subdomains), more nodes%s; or, if the estimate is too pessimistic, -%sfeti_memory_budget <MB>",
+            out[0] / 1048576.0, nmax, out[1] / 1048576.0, given ? "of -feti_memory_budget" : "the node has available (MemAvailable)",
+            impl.kplusexplicit ? " (the explicit K+ blocks, which -feti_kplus_explicit 0 drops, are not even counted here)" : "", prefix ? prefix : "");
+  }
+  if (impl.kplusexplicit && !allfit[1]) {
+    impl.kplusexplicit = PETSC_FALSE;
+    impl.kplusfallback = PETSC_TRUE;
+    PetscCall(PetscInfo(feti,
+                        "The explicit K+ blocks (%.1f MB on the node of rank %d, |b| up to %" PetscInt_FMT
+                        ") and the factors (%.1f MB) exceed the budget of %.1f MB: F products use the factors (implicit K+, "
+                        "as -feti_kplus_explicit 0)\n",
+                        onnode[1] / 1048576.0, rank, nbmax, onnode[0] / 1048576.0, budget / 1048576.0));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETIGetMemoryEstimate - The memory estimates `FETISetUp()` compared with the budget, on the node of this rank.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem, set up
+
+  Output Parameters:
++ factors - bytes of the subdomain factorizations (a rough estimate from the nonzeros of K_s; NULL if not needed)
+. blocks  - bytes of the explicit dense K+ blocks asked for (0 without -feti_kplus_explicit; NULL if not needed)
+- budget  - the budget in bytes (-feti_memory_budget, else what the node had available; negative when unknown; NULL if not needed)
+
+  Notes:
+  All three are -1 before `FETISetUp()`. When factors + blocks exceeded the budget but factors alone did not,
+  the blocks were not built (`FETIGetKplusExplicit()` says so).
+
+  Level: intermediate
+
+.seealso: `FETIGetKplusExplicit()`, `FETIGetMemoryBudget()`, `FETISetUp()`
+@*/
+PetscErrorCode FETIGetMemoryEstimate(FETI feti, PetscReal *factors, PetscReal *blocks, PetscReal *budget)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  if (factors) *factors = feti->impl->memfactors;
+  if (blocks) *blocks = feti->impl->memblocks;
+  if (budget) *budget = feti->impl->membudget;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
