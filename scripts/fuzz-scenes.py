@@ -384,7 +384,7 @@ def try_generate(max_ranks):
             bodies[-1].fixc[0].append(Sel(0, 0))
 
     # loads: the top faces of the bodies that nothing rests on, sometimes the others
-    zero = random_state.random() < 0.08
+    zero = random_state.random() < 0.08  # no load at all: the answer is u = 0 (or a rigid lift out of a penetration)
     covered = {z.lower for z in zones if z.type == "bodies"}
     for bi, b in enumerate(bodies):
         if zero:
@@ -412,7 +412,7 @@ def try_generate(max_ranks):
     ranks = pick([(6, 1), (2.5, 2), (1.5, 3)])
     ranks = max(1, min(ranks, max_ranks, nsub))
 
-    scene = dict(bodies=bodies, zones=zones, refine=refine, ranks=ranks, kind=kind, support=support,
+    scene = dict(bodies=bodies, zones=zones, refine=refine, ranks=ranks, kind=kind, support=support, zero_load=zero,
                  dirichlet=random_state.choice(["multipliers", "primal"]),
                  algorithm=random_state.choice(["msa", "merged", "monolithic"]) if any(z.law == "coulomb" for z in zones) else None,
                  rtol=pick([(6, None), (1, 1e-4), (1, 1e-5), (1, 1e-7)]),
@@ -513,7 +513,7 @@ def command(scene, name):
 def describe(scene):
     laws = ",".join(z.law + (f"({fmt(z.coef)})" if z.coef is not None else "") for z in scene["zones"])
     gaps = ",".join(z.gapkind for z in scene["zones"] if z.type == "foundation")
-    return f"{scene['kind']}/{scene['support']} {laws}" + (f" gap={gaps}" if gaps else "") + (" noeq" if scene["no_equilibrium"] else "")
+    return f"{scene['kind']}/{scene['support']} {laws}" + (f" gap={gaps}" if gaps else "") + (" load=0" if scene["zero_load"] else "") + (" noeq" if scene["no_equilibrium"] else "")
 
 
 # ----------------------------------------------------------------------------------------------
@@ -533,13 +533,15 @@ def classify(rc, out, data, scene, accept_factor):
     if data is None:
         return "FAIL-crash", f"exit {rc} without a JSON line: {first_error(out)}"
     rtol = scene["rtol"] or DEFAULT_RTOL
-    acc = data.get("acceptance")
+    res = data.get("residuals") if isinstance(data.get("residuals"), dict) else {}
+    acc = data.get("acceptance", res.get("acceptance"))
     acceptance = acc if isinstance(acc, (int, float)) and not isinstance(acc, bool) else accept_factor * rtol
-    res = data.get("residuals") or {}
+    # the residuals: numbers (or null for a non-finite one); other entries (names, flags) are not residuals
+    res = {k: v for k, v in res.items() if k != "acceptance" and (v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)))}
     if rc == 0:
         if data.get("converged") is not True:
             return "FAIL-wrong", f"exit 0 but converged={data.get('converged')}"
-        bad = [k for k, v in res.items() if not isinstance(v, (int, float)) or not math.isfinite(v)]
+        bad = [k for k, v in res.items() if v is None or not math.isfinite(v)]
         if bad or not res:
             return "FAIL-wrong", ("converged with null residuals: " + ",".join(bad)) if bad else "converged without residuals"
         over = {k: v for k, v in res.items() if v > acceptance}
