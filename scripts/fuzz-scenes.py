@@ -561,6 +561,17 @@ def classify(rc, out, data, scene, accept_factor):
     return "OK-not-converged", suspect + m.group(0)[len("NOT CONVERGED: ") :][:160]
 
 
+def signature(cls, detail):
+    """What failures of one cause share: the class and the message without its numbers (the names of the
+    residuals above the acceptance for a wrong result)."""
+    m = re.match(r"converged with residuals above the acceptance [^:]*: (.*)", detail)
+    if m:
+        return f"{cls}: residuals above the acceptance: " + ",".join(sorted(re.findall(r"([a-z_]+) ", m.group(1) + " ")))
+    head, _, rest = detail.partition(": ") if detail.startswith("exit ") else ("", "", detail)
+    text = re.sub(r"[-+]?\d+(\.\d*)?(e[-+]?\d+)?", "#", rest).split(" | WARNING")[0]
+    return f"{cls}: {head + ': ' if head else ''}{text[:150]}"
+
+
 def first_error(out):
     """The PETSc error message (its generic and its specific line), else the first line that looks like an error."""
     lines = out.splitlines()
@@ -631,6 +642,7 @@ def main():
     passed = failed = 0
     classes = {}
     suspects = 0
+    groups = {}  # failure signature -> scene indices
     i = a.first
     while count is None or i < a.first + count:
         if a.time_budget is not None and time.time() - t0 > a.time_budget:
@@ -654,6 +666,7 @@ def main():
         print(f"[{i}] np{scene['ranks']} {describe(scene)}: {cls} ({dt:.1f} s) {detail}", flush=True)
         if cls.startswith("FAIL"):
             failed += 1
+            groups.setdefault(signature(cls, detail), []).append(i)
             print(f"  repro: {repro}")
             print(f"  rerun: scripts/fuzz-scenes.py --seed {a.seed} --first {i} --count 1{rerun_extra}", flush=True)
             if a.verbose:
@@ -664,6 +677,8 @@ def main():
     if a.dry_run:
         return 0
     print("classes: " + ", ".join(f"{k} {v}" for k, v in sorted(classes.items())) + (f" ({suspects} SUSPECT)" if suspects else "") + f"; seed {a.seed}, {time.time() - t0:.0f} s")
+    for sig, idx in sorted(groups.items(), key=lambda kv: -len(kv[1])):
+        print(f"  {len(idx):3d} x {sig}: scenes {' '.join(map(str, idx))}")
     print(f"{passed} passed, {failed} failed")
     return 1 if failed else 0
 
