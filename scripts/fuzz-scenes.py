@@ -38,8 +38,12 @@ Each run is classified:
   FAIL-nan          nan or inf printed
   FAIL-hang         no exit within --timeout seconds
 
-One line per run; for a failure the command that reproduces it (to paste at the repository root) and the
-first error or reason line. The last line is "N passed, M failed"; the exit status is 1 when a run failed.
+One line per run (scene kind/support, laws, gap kind, "load=0" for a scene without load, "noeq" for one
+that certainly has no equilibrium); for a failure the command that reproduces it (to paste at the
+repository root) and the error or reason. At the end: the counts per class, the failures grouped by cause
+(class and message without its numbers, or the names of the residuals above the acceptance) with their
+scene indices, and alone on the last line "N passed, M failed"; the exit status is 1 when a run failed.
+--max-ranks caps the rank count of a scene without changing the scene.
 
 Usage (from the repository root):
   scripts/fuzz-scenes.py --seed 1 --time-budget 100          # the ctest fuzz_random_scenes (tests/fuzz)
