@@ -420,6 +420,7 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   PetscCall(FETICreateVecs(d->feti, &d->u, &d->lambda, &d->alpha));
   if (!d->zones.empty()) {
     PetscCall(BuildContactProblem(cm));
+    d->cp->data->kkt_check = PETSC_FALSE; /* the model judges by the mechanical residuals of u and lambda (ContactModelSolve()) */
     PetscCall(ContactProblemSetFromOptions(d->cp));
     PetscCall(ContactProblemSetUp(d->cp));
     PetscCall(ContactProblemGetPipeline(d->cp, &d->pipeline));

@@ -282,6 +282,8 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_msa_start_rtol <1e-2>        - MSA: tolerance of the first Tresca solve, whose slip bounds come from the initial multipliers (it only supplies the first bounds F l_n)
 . -contact_msa_recycle <true>           - MSA: each Tresca solve after the first starts from the previous one's multiplier of the equality (`TaoSetRecycleHistory()`)
 . -contact_fixed_point_rtol <rtol>      - monolithic: radii must agree with F l_n to this relative tolerance
+. -contact_kkt_check <true>             - recompute the KKT residual before saying converged (a `ContactModel` turns it off: it judges by the mechanics)
+. -contact_acceptance_factor <10>       - converged only when the KKT residual recomputed from the multipliers (`ContactProblemComputeKKTResidual()`) is at most this times -contact_rtol
 . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
 . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); default 1 for monolithic, 0 for merged's blocks, 3 otherwise; see
 `TaoSMALXESetAnderson()`
@@ -311,9 +313,15 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
                              d->msa_recycle, &d->msa_recycle, NULL));
   PetscCall(PetscOptionsBool("-contact_coulomb_follow_radii", "Coulomb: tangential pairs on their circle move onto the new circle when F l_n grows", "ContactProblemSolve", d->follow_radii,
                              &d->follow_radii, NULL));
+  PetscCall(PetscOptionsBool("-contact_kkt_check", "Recompute the KKT residual from the multipliers before saying converged (default: on; off in a ContactModel, which judges by the mechanics)",
+                             "ContactProblemComputeKKTResidual", d->kkt_check, &d->kkt_check, NULL));
+  PetscCall(PetscOptionsReal("-contact_acceptance_factor", "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol",
+                             "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, NULL));
   PetscCall(PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance (-1: -contact_rtol)", "ContactProblemSolve", d->fixed_point_rtol,
                              &d->fixed_point_rtol, NULL));
   PetscOptionsEnd();
+  PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
+             "-contact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", (double)d->acceptance_factor);
   PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_rtol must be in (0, 1), got %g", (double)d->rtol);
   PetscCheck((d->msa_rtol > 0 && d->msa_rtol < 1) || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_msa_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", (double)d->msa_rtol);
@@ -462,6 +470,32 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The solver's own test passed: converged only if the KKT residual, computed from scratch, agrees */
+static PetscErrorCode CheckKKT(ContactProblem cp, Vec lambda)
+{
+  ContactProblemData *d = cp->data;
+  PetscReal           natural, equality;
+  char                why[256];
+
+  PetscFunctionBegin;
+  d->stats.acceptance = d->acceptance_factor * d->rtol;
+  if (!d->stats.converged) {
+    PetscCall(PetscStrncpy(d->stats.failed_check, "solver", sizeof(d->stats.failed_check)));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (!d->kkt_check) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(ContactProblemComputeKKTResidual(cp, lambda, &natural, &equality));
+  d->stats.products_other += 2;
+  PetscCall(PetscInfo(cp, "KKT residual from scratch: natural %g, equality %g (acceptance %g)\n", (double)natural, (double)equality, (double)d->stats.acceptance));
+  if (natural <= d->stats.acceptance && equality <= d->stats.acceptance) PetscFunctionReturn(PETSC_SUCCESS);
+  d->stats.converged = PETSC_FALSE;
+  PetscCall(PetscStrncpy(d->stats.failed_check, natural > equality ? "dual_kkt" : "dual_equality", sizeof(d->stats.failed_check)));
+  PetscCall(PetscSNPrintf(why, sizeof(why), "the solver's test passed (%s), but recomputed from the multipliers the %s residual is %.1e, above the acceptance %.1e", d->stats.reason,
+                          natural > equality ? "KKT (natural)" : "equality", (double)PetscMax(natural, equality), (double)d->stats.acceptance));
+  PetscCall(PetscStrncpy(d->stats.reason, why, sizeof(d->stats.reason)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*@C
   ContactProblemSolve - Solve the contact problem: the pipeline its content calls for.
 
@@ -477,6 +511,12 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
   met with admissible contact forces (e.g. a free body under a shear beyond the friction bound).
   Counters: Iter (outer iterations), n_A^QPP (mprgp products), n_A^QPQ (mpgp products), and products
   outside the inner solvers, each separately.
+
+  Before it says converged, the solve recomputes the KKT residual from the multipliers
+  (`ContactProblemComputeKKTResidual()`, two products with F, counted in products_other): above
+  -contact_acceptance_factor times -contact_rtol the solve has not converged (failed_check "dual_kkt" or
+  "dual_equality"), whatever the solver's own test said. A `ContactModel` judges its solutions by the
+  mechanical residuals of u and lambda instead (`ContactModelSolve()`).
 
   Level: beginner
 
@@ -557,6 +597,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
     }
     PetscCall(DescribeReason(cp, reason, its + 1));
   }
+  PetscCall(CheckKKT(cp, lambda));
   PetscCall(PetscLogEventEnd(CONTACT_Solve, cp, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)cp, NULL, "-contact_view"));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -39,13 +39,15 @@ struct ContactProblemData {
   PetscBool               setup = PETSC_FALSE;
 
   /* options */
-  PetscReal rtol             = 1e-6; /* smalxe: |gP| and feasibility relative to |h| */
-  PetscReal msa_rtol         = -1;   /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| (< 0: rtol) */
-  PetscInt  msa_max_it       = 100;
-  PetscReal msa_start_rtol   = 1e-2;       /* MSA: tolerance of the first Tresca solve (bounds of the initial multipliers) */
-  PetscBool msa_recycle      = PETSC_TRUE; /* MSA: Tresca solves after the first keep the equality's multiplier */
-  PetscReal fixed_point_rtol = -1;         /* monolithic: radii consistent with F l_n to this relative tolerance (< 0: rtol) */
-  PetscBool follow_radii     = PETSC_TRUE; /* Coulomb: a tangential pair on its old circle moves onto the new one when the radius grows */
+  PetscReal rtol              = 1e-6; /* smalxe: |gP| and feasibility relative to |h| */
+  PetscReal msa_rtol          = -1;   /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| (< 0: rtol) */
+  PetscInt  msa_max_it        = 100;
+  PetscReal msa_start_rtol    = 1e-2;       /* MSA: tolerance of the first Tresca solve (bounds of the initial multipliers) */
+  PetscBool msa_recycle       = PETSC_TRUE; /* MSA: Tresca solves after the first keep the equality's multiplier */
+  PetscReal fixed_point_rtol  = -1;         /* monolithic: radii consistent with F l_n to this relative tolerance (< 0: rtol) */
+  PetscBool follow_radii      = PETSC_TRUE; /* Coulomb: a tangential pair on its old circle moves onto the new one when the radius grows */
+  PetscReal acceptance_factor = 10;         /* converged only with the KKT residual <= factor * rtol */
+  PetscBool kkt_check         = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
 
   ContactStatistics stats = {};
 };

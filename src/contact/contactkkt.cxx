@@ -1,0 +1,136 @@
+/* The KKT residual of a dual contact problem, computed from the multipliers and the equality's multiplier
+   alone (not taken from the solver's own test), so that ContactProblemSolve() says "converged" only for
+   multipliers that solve the problem it was given.
+
+   With r = F l - h + w (w = G'mu, the equality's multiplier), l solves the problem exactly when
+     - G l = e;
+     - r_i = 0 on every multiplier without a constraint (gluing, Dirichlet);
+     - l_n >= 0, r_n >= 0, l_n r_n = 0 on the normal multipliers;
+     - r_t = -s l_t with s >= 0 and |l_t| = g, or r_t = 0 and |l_t| <= g, on the tangential pairs
+       (g the Tresca bound, or F max(l_n, 0) for Coulomb: the fixed point is part of the test).
+   Each of the last three is the natural residual l - P(l - k r) (P: the projection onto the set) with k
+   the ratio of the multipliers' scale to the gradient's, so that all are in units of l and relative to
+   max |l|; the equality is relative to the larger of |e| and |G|_F |l| (projector form: |l~| and |l|). */
+#include <conefeti/private/contactimpl.h>
+#include <cmath>
+#include <limits>
+
+/*@C
+  ContactProblemComputeKKTResidual - The relative KKT residual of multipliers of the dual contact problem,
+  computed from scratch: the natural residual of the gradient of the Lagrangian F l - h + G'mu on the set
+  (free multipliers, normal multipliers >= 0, friction disks of radius g, with g = F l_n for Coulomb nodes)
+  relative to max |l|, and the equality residual |G l - e| relative to max(|e|, |G|_F |l|) (projector form:
+  |Q l - l~| relative to max(|l~|, |l|)).
+
+  Collective
+
+  Input Parameters:
++ cp     - the problem, solved (the equality's multiplier comes from its solver)
+- lambda - the multipliers
+
+  Output Parameters:
++ natural  - the natural residual max |l - P(l - k r)| / max |l| (k = max |l| / max(|h|, |F l|))
+- equality - the equality residual (0 without an equality)
+
+  Notes:
+  Two products with F (the gradient and the solver's multiplier). `ContactProblemSolve()` calls it before it
+  reports convergence: a solve whose solver test passed but whose KKT residual exceeds
+  -contact_acceptance_factor times -contact_rtol is reported as not converged.
+
+  Level: intermediate
+
+.seealso: `ContactProblemSolve()`, `ContactModelComputeResiduals()`
+@*/
+PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, PetscReal *natural, PetscReal *equality)
+{
+  ContactProblemData    *d;
+  Vec                    r, w, Fl;
+  const PetscScalar     *l, *ra;
+  PetscReal              lmax, hmax, flmax, k, nat = 0;
+  std::vector<char>      role;
+  std::vector<PetscReal> bounds;
+  constexpr PetscReal    tiny = std::numeric_limits<PetscReal>::min();
+  MPI_Comm               comm;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
+  d    = cp->data;
+  comm = PetscObjectComm((PetscObject)cp);
+  PetscCheck(d->tao, comm, PETSC_ERR_ARG_WRONGSTATE, "ContactProblem: solve first");
+  PetscCall(VecDuplicate(lambda, &Fl));
+  PetscCall(VecDuplicate(lambda, &r));
+  PetscCall(VecDuplicate(lambda, &w));
+  PetscCall(MatMult(d->F, lambda, Fl));
+  PetscCall(TaoSMALXEGetEqualityMultiplier(d->tao, w));
+  PetscCall(VecWAXPY(r, -1.0, d->h, Fl));
+  PetscCall(VecAXPY(r, 1.0, w));
+  PetscCall(VecNorm(lambda, NORM_INFINITY, &lmax));
+  PetscCall(VecNorm(d->h, NORM_INFINITY, &hmax));
+  PetscCall(VecNorm(Fl, NORM_INFINITY, &flmax));
+  lmax = PetscMax(lmax, tiny);
+  k    = lmax / PetscMax(PetscMax(hmax, flmax), tiny);
+
+  /* the role of each local multiplier: 0 free, 1 normal, 2 first of a tangential pair, 3 second */
+  PetscCallCXX(role.assign(d->nlocal, 0));
+  PetscCallCXX(bounds.resize(d->normal.size()));
+  PetscCall(ContactProblemGetSlipBounds(cp, lambda, bounds.data()));
+  for (size_t j = 0; j < d->normal.size(); j++) {
+    role[d->normal[j] - d->rstart] = 1;
+    if (d->law[j] != CONTACT_FRICTIONLESS) {
+      role[d->t1[j] - d->rstart] = 2;
+      role[d->t2[j] - d->rstart] = 3;
+    }
+  }
+  PetscCall(VecGetArrayRead(lambda, &l));
+  PetscCall(VecGetArrayRead(r, &ra));
+  for (PetscInt i = 0; i < d->nlocal; i++) {
+    const PetscReal li = PetscRealPart(l[i]), ri = PetscRealPart(ra[i]);
+    if (role[i] == 0) nat = PetscMax(nat, PetscAbsReal(k * ri));
+    else if (role[i] == 1) nat = PetscMax(nat, PetscAbsReal(li - PetscMax(li - k * ri, 0.0)));
+  }
+  for (size_t j = 0; j < d->normal.size(); j++) {
+    if (d->law[j] == CONTACT_FRICTIONLESS) continue;
+    const PetscInt  a = d->t1[j] - d->rstart, b = d->t2[j] - d->rstart;
+    const PetscReal la = PetscRealPart(l[a]), lb = PetscRealPart(l[b]), g = bounds[j];
+    PetscReal       y[2] = {la - k * PetscRealPart(ra[a]), lb - k * PetscRealPart(ra[b])}, ny = std::hypot(y[0], y[1]);
+    if (ny > g) y[0] *= g / ny, y[1] *= g / ny;
+    nat = PetscMax(nat, std::hypot(la - y[0], lb - y[1]));
+  }
+  PetscCall(VecRestoreArrayRead(lambda, &l));
+  PetscCall(VecRestoreArrayRead(r, &ra));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nat, 1, MPIU_REAL, MPIU_MAX, comm));
+  if (natural) *natural = nat / lmax;
+
+  if (equality) {
+    PetscReal res = 0, scale = 0;
+    PetscReal nl;
+    PetscCall(VecNorm(lambda, NORM_2, &nl));
+    if (d->G) {
+      Vec       Gl;
+      PetscReal ne, gn = 0;
+      PetscBool hasnorm;
+      PetscCall(MatCreateVecs(d->G, NULL, &Gl));
+      PetscCall(MatMult(d->G, lambda, Gl));
+      PetscCall(VecAXPY(Gl, -1.0, d->e));
+      PetscCall(VecNorm(Gl, NORM_2, &res));
+      PetscCall(VecNorm(d->e, NORM_2, &ne));
+      PetscCall(MatHasOperation(d->G, MATOP_NORM, &hasnorm));
+      if (hasnorm) PetscCall(MatNorm(d->G, NORM_FROBENIUS, &gn));
+      scale = PetscMax(ne, gn * nl); /* |G l| cannot exceed |G|_F |l|: a residual of rounding relative to that */
+      PetscCall(VecDestroy(&Gl));
+    } else if (d->Q) { /* Q l = l~ (l~ = Q l~; |Q| = 1) */
+      PetscReal nt;
+      PetscCall(MatMult(d->Q, lambda, w));
+      PetscCall(VecAXPY(w, -1.0, d->lt));
+      PetscCall(VecNorm(w, NORM_2, &res));
+      PetscCall(VecNorm(d->lt, NORM_2, &nt));
+      scale = PetscMax(nt, nl);
+    }
+    *equality = res / PetscMax(scale, tiny);
+  }
+  PetscCall(VecDestroy(&Fl));
+  PetscCall(VecDestroy(&r));
+  PetscCall(VecDestroy(&w));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
