@@ -55,6 +55,8 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . acceptance    - the largest mechanical residual a converged solve may have (`ContactModelSolve()`)
 . refinements   - tighter solves after the first, run because the solver's test passed before the residuals did
 . failed_check  - why the solve did not converge: a `ContactChecks` name, "solver", or "" when it converged
+. kplus_explicit - whether F products used explicit dense blocks of K+ (in at least one subdomain)
+. kplus_fallback - whether those blocks were asked for but dropped because they would not fit in memory (`FETIGetKplusExplicit()`)
 . unmatched_nodes - nodes of node-to-node zones' first faces without a partner (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . residuals     - the mechanical residuals (each relative) and the node counts
@@ -78,6 +80,7 @@ typedef struct {
   PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
   PetscInt                refinements;
   char                    failed_check[32];
+  PetscBool               kplus_explicit, kplus_fallback;
   PetscInt                unmatched_nodes;
   PetscReal               max_nu;
   ContactResiduals        residuals;

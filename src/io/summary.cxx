@@ -168,6 +168,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   s->n -= ndir;
   PetscCall(ContactModelGetFETI(impl.cm, &feti));
   PetscCall(FETIGetSizes(feti, &s->n_primal, &s->m, &s->rigid_modes));
+  PetscCall(FETIGetKplusExplicit(feti, &s->kplus_explicit, &s->kplus_fallback));
   PetscCall(FEMGetNumSubdomains(impl.fem, &s->subdomains, NULL, NULL));
   PetscCall(FETIGetConstraints(feti, &B, &c, &kinds));
   PetscCall(ContactModelGetSolution(impl.cm, &lambda, NULL));
@@ -286,6 +287,9 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                      "note: Poisson's ratio %g is close to 0.5: linear tetrahedra lock for nearly incompressible material (displacements too small, "
                                      "stresses oscillate; refining helps only slowly) and the dual problem is ill-conditioned (more F products)\n",
                                      (double)s->max_nu));
+  if (s->kplus_fallback)
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "note: the explicit K+ blocks would not fit in memory; F products use the subdomain factors instead (slower products, same results; -feti_memory_budget, docs/feti.md)\n"));
   if (s->refinements)
     PetscCall(PetscViewerASCIIPrintf(viewer, "note: the solver's own test passed before the mechanical residuals did; %" PetscInt_FMT " tighter solve%s followed (the counts above include them)\n",
                                      s->refinements, s->refinements > 1 ? "s" : ""));
@@ -412,6 +416,7 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Real(out, "acceptance", s->acceptance);
   Str(out, "failed_check", s->failed_check[0] ? s->failed_check : NULL);
   Int(out, "refinements", s->refinements);
+  Str(out, "kplus", s->kplus_explicit ? "explicit" : (s->kplus_fallback ? "implicit (memory)" : "implicit"));
   Real(out, "fixed_point", s->fixed_point);
   Real(out, "feasibility", s->feasibility);
   Str(out, "fingerprint", s->fingerprint);
