@@ -100,6 +100,7 @@ struct TaoSMALXE {
 
   /* feasibility history: an equality that cannot be met over the set makes |Cx - d| level off */
   std::vector<PetscReal> feas_history, mult_history; /* |Cx - d| and |C'mu| per outer iteration */
+  std::vector<PetscReal> gp_history;                 /* |gP| per outer iteration */
   PetscInt               stagnation_its = 30;
   PetscBool              stagnated      = PETSC_FALSE;
   PetscBool              stalled        = PETSC_FALSE; /* |Cx - d| made no progress while the multiplier settled */
@@ -431,7 +432,10 @@ PetscErrorCode InnerConvergenceTest(Tao sub, void *ctx)
      No inner solve needs to go below a fraction of the final gradient tolerance: the outer loop ends on
      |gP| <= tol_g, which such an iterate meets, and the adaptive precision M |Cx - d| would otherwise
      demand far more than that once M has been lowered (with friction the moving radii lower it often) */
-  if (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e) || gp <= s->inner_floor * tol_g || (blk.is && s->block_rtol > 0 && sub->niter > 0 && gp <= s->block_rtol * sub->gnorm0))
+  /* the floor scales with rho below its default: an inner solve to |gP| leaves |Cx - d| near |gP| / rho,
+     which must stay below tol_e */
+  const PetscReal rho_default = s->normA / (s->projector ? 1.0 : s->normC2), floor = s->inner_floor * tol_g * PetscMin(1.0, s->rho / rho_default);
+  if (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e) || gp <= floor || (blk.is && s->block_rtol > 0 && sub->niter > 0 && gp <= s->block_rtol * sub->gnorm0))
     PetscCall(TaoSetConvergedReason(sub, TAO_CONVERGED_USER));
   else if (sub->niter >= sub->max_it) PetscCall(TaoSetConvergedReason(sub, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -467,18 +471,23 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
                         (double)tao->cnorm, s->stagnation_its));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   }
-  if (tao->reason == TAO_CONTINUE_ITERATING && s->stagnation_its > 0 && k >= 2 * s->stagnation_its && tao->cnorm > tol_e) {
-    /* the best |Cx - d| of the last stagnation_its outer iterations is not 1% below the best before
-       them (a minimum over a window, so that a loop cycling between a few states counts too), while the
-       multiplier does not grow: the iteration is stuck, more of it will not help */
+  if (tao->reason == TAO_CONTINUE_ITERATING && s->stagnation_its > 0 && k >= 2 * s->stagnation_its && (tao->cnorm > tol_e || tao->residual > tol_g)) {
+    /* the best distance from convergence, max(|gP| / tol_g, |Cx - d| / tol_e), of the last stagnation_its
+       outer iterations is not 1% below the best before them (a minimum over a window, so that a loop
+       cycling between a few states counts too), while the multiplier does not grow: the iteration is
+       stuck, more of it will not help. Both parts count: a loop whose |Cx - d| sits at its tolerance while
+       |gP| still falls steadily (a slow Gauss-Seidel sweep between blocks) is not stuck */
     PetscReal recent = PETSC_MAX_REAL, before = PETSC_MAX_REAL;
     for (PetscInt i = 0; i <= k; i++) {
-      if (i > k - s->stagnation_its) recent = PetscMin(recent, s->feas_history[i]);
-      else before = PetscMin(before, s->feas_history[i]);
+      const PetscReal merit = PetscMax(s->gp_history[i] / tol_g, s->feas_history[i] / tol_e);
+      if (i > k - s->stagnation_its) recent = PetscMin(recent, merit);
+      else before = PetscMin(before, merit);
     }
     if (recent > 0.99 * before && s->mult_history[k] <= 1.25 * s->mult_history[k - s->stagnation_its]) {
       s->stalled = PETSC_TRUE;
-      PetscCall(PetscInfo(tao, "TAO smalxe: |Cx - d| stalls near %g: its best value did not fall by 1%% in %" PetscInt_FMT " outer iterations\n", (double)recent, s->stagnation_its));
+      PetscCall(PetscInfo(tao,
+                          "TAO smalxe: stalls at |gP| = %g (tol %g), |Cx - d| = %g (tol %g): the best of max(|gP| / tol, |Cx - d| / tol) did not fall by 1%% in %" PetscInt_FMT " outer iterations\n",
+                          (double)tao->residual, (double)tol_g, (double)tao->cnorm, (double)tol_e, s->stagnation_its));
       PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
     }
   }
@@ -949,6 +958,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
   s->counters.solves++;
   s->feas_history.clear();
   s->mult_history.clear();
+  s->gp_history.clear();
   s->stagnated = PETSC_FALSE;
   s->stalled   = PETSC_FALSE;
   for (PetscInt k = 0;; k++) {
@@ -969,6 +979,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     s->gpnorm              = gp;
     s->feas                = e;
     PetscCallCXX(s->feas_history.push_back(e));
+    PetscCallCXX(s->gp_history.push_back(gp));
     PetscCall(VecCopy(s->g, tao->gradient));
     tao->niter = k;
     s->counters.iterations++;
@@ -1161,7 +1172,8 @@ const char *const kComposed[] = {"TaoQPSetConstraints_C",     "TaoQPGetConstrain
                                  "TaoSMALXESetPreSolve_C",    "TaoSMALXEGetEqualityMultiplier_C",
                                  "TaoSMALXEGetFeasibility_C", "TaoSMALXESetConsistencyCheck_C",
                                  "TaoSMALXEGetStagnated_C",   "TaoSMALXEGetStalled_C",
-                                 "TaoSMALXESetAnderson_C",    "TaoSMALXESetPenaltyPreconditioner_C"};
+                                 "TaoSMALXESetAnderson_C",    "TaoSMALXESetPenaltyPreconditioner_C",
+                                 "TaoSMALXESetPenalty_C"};
 
 PetscErrorCode TaoDestroy_SMALXE(Tao tao)
 {
@@ -1381,6 +1393,13 @@ PetscErrorCode SetPenaltyPreconditioner_SMALXE(Tao tao, PetscBool flag)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SetPenalty_SMALXE(Tao tao, PetscReal rho)
+{
+  PetscFunctionBegin;
+  Get(tao)->rho_rel = rho;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GetStagnated_SMALXE(Tao tao, PetscBool *flag)
 {
   PetscFunctionBegin;
@@ -1495,6 +1514,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStalled_C", GetStalled_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetAnderson_C", SetAnderson_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPenaltyPreconditioner_C", SetPenaltyPreconditioner_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPenalty_C", SetPenalty_SMALXE));
   PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
