@@ -1429,7 +1429,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   `TAOMPRGP`/`TAOMPGP` solver.
 
   Options Database Keys:
-+ -tao_smalxe_rho <1>          - penalty rho relative to ||A|| (||PAP|| in projector form)
++ -tao_smalxe_rho <1>          - penalty rho relative to ||A|| (||PAP|| in projector form; `TaoSMALXESetPenalty()`)
 . -tao_smalxe_rho_first <1>    - penalty of the first outer iteration relative to rho (below 1: the first inner solve, which finds the active set, runs at a smaller penalty)
 . -tao_smalxe_M <0.1>          - initial M relative to ||H|| (inner precision |gP| <= min(M |Cx - d|, eta))
 . -tao_smalxe_M_min <1e-4>     - floor of M relative to ||H|| (0: none)
@@ -1443,7 +1443,7 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
 . -tao_smalxe_norm_method      - slepc or power
 . -tao_smalxe_norm_margin      - safety margin on the estimate (negative: the method's default, 0.01 slepc, 0.05 power)
 . -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
-. -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance (0: only the adaptive precision)
+. -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance, times rho/rho_default below 1 (0: only the adaptive precision)
 . -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
 . -tao_smalxe_anderson_start <3> - first outer iteration (from 0) whose update is accelerated
 . -tao_smalxe_penalty_pc <true> - projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`)
