@@ -155,7 +155,6 @@ PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStalled(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetAnderson(Tao, PetscInt, PetscInt);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetPenaltyPreconditioner(Tao, PetscBool);
-PETSC_EXTERN PetscErrorCode TaoSMALXESetPenalty(Tao, PetscReal);
 
 /* ---------------------------------------------------------------------------------------------
    KSP types: the same algorithms through KSPSolve(A x = b), i.e. min 1/2 x'Ax - b'x

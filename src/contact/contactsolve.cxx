@@ -407,14 +407,7 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
   PetscCall(SetEquality(cp));
   PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol));
   if (d->pipeline == CONTACT_PIPELINE_COULOMB) {
-    if (d->algorithm == CONTACT_COULOMB_MERGED) {
-      PetscCall(SetBlocks(cp));
-      /* rho Q couples the Gauss-Seidel blocks (the tangential multipliers enter the rigid-body equilibrium
-         G l = e with the gluing ones), and one sweep per outer iteration then converges slowly: at rho =
-         ||PFP|| the METIS brick at refine 6 with 32 parts needed 770 outer iterations, at 0.3 ||PFP|| 247;
-         the shipped brick 27 and 16 (docs/contact.md) */
-      PetscCall(TaoSMALXESetPenalty(d->tao, 0.3));
-    }
+    if (d->algorithm == CONTACT_COULOMB_MERGED) PetscCall(SetBlocks(cp));
     if (d->algorithm != CONTACT_COULOMB_MSA) PetscCall(TaoSMALXESetPreSolve(d->tao, PreSolve, cp));
     if (d->algorithm == CONTACT_COULOMB_MONOLITHIC) {
       PetscCall(TaoSMALXESetConsistencyCheck(d->tao, Consistent, cp));
@@ -488,10 +481,9 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
     PetscCall(TaoGetSolutionStatus(d->tao, NULL, NULL, &gp, &feas, NULL, NULL));
     /* the cause the loop's structure points to: merged's Gauss-Seidel sweep, whose blocks the penalty
        couples (the METIS bricks stalled so at rho = ||PFP||, at any F), or radii that lock the loop */
-    const char *cause = !d->has_coulomb ? ""
-                        : d->algorithm == CONTACT_COULOMB_MERGED
-                            ? ": merged's Gauss-Seidel sweep too slow (try a smaller -contact_tao_smalxe_rho, or monolithic) or radii F l_n locking the loop (large F)"
-                            : ": the radii F l_n can lock the loop (large F); try a smaller F or msa";
+    const char *cause = !d->has_coulomb                          ? ""
+                        : d->algorithm == CONTACT_COULOMB_MERGED ? ": merged's Gauss-Seidel sweep too slow (try -contact_coulomb_algorithm monolithic) or radii F l_n locking the loop (large F)"
+                                                                 : ": the radii F l_n can lock the loop (large F); try a smaller F or msa";
     PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "stalled: %" PetscInt_FMT " outer iterations, the last ones without progress (|gP| %.3g, |G l - e| %.3g)%s", its, (double)gp,
                             (double)feas, cause));
   } else if (reason == TAO_DIVERGED_MAXITS) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -contact_tao_max_it)", its));

@@ -390,37 +390,3 @@ PetscErrorCode TaoSMALXESetPenaltyPreconditioner(Tao tao, PetscBool flag)
   PetscTryMethod(tao, "TaoSMALXESetPenaltyPreconditioner_C", (Tao, PetscBool), (tao, flag));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
-
-/*@C
-  TaoSMALXESetPenalty - Sets the penalty rho of the augmented Lagrangian, relative to ||A|| (||PAP|| in
-  projector form, ||A||/||C||^2 in the penalty form).
-
-  Logically Collective
-
-  Input Parameters:
-+ tao - the solver
-- rho - the relative penalty, finite and > 0 (default 1)
-
-  Options Database Key:
-. -tao_smalxe_rho <1> - the relative penalty (read by `TaoSetFromOptions()`, which overrides this call)
-
-  Notes:
-  A larger rho makes |Cx - d| fall faster per outer iteration but the inner problem harder. With
-  Gauss-Seidel blocks (`TaoSMALXESetBlocks()`) it also couples the blocks: rho Q (rho C'C) links the
-  variables of the equality across the blocks, and a sweep converges the more slowly the larger rho is.
-  Inner solves stop at a fraction of the final gradient tolerance scaled by rho below 1
-  (-tao_smalxe_inner_floor times min(1, rho)), so that |Cx - d| ~ |gP| / rho still meets its tolerance.
-
-  Level: intermediate
-
-.seealso: `TAOSMALXE`, `TaoSMALXESetBlocks()`
-@*/
-PetscErrorCode TaoSMALXESetPenalty(Tao tao, PetscReal rho)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
-  PetscValidLogicalCollectiveReal(tao, rho, 2);
-  PetscCheck(rho > 0 && !PetscIsInfOrNanReal(rho), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TaoSMALXESetPenalty: rho must be finite and > 0, got %g", (double)rho);
-  PetscTryMethod(tao, "TaoSMALXESetPenalty_C", (Tao, PetscReal), (tao, rho));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
