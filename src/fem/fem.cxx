@@ -431,6 +431,7 @@ PetscErrorCode FEMSetOptionsPrefix(FEM fem, const char prefix[])
 + -fem_decomposition <structured,metis> - decomposition of every body without `FEMSetDecomposition()`
 . -fem_subdomains <px,py,pz or n>         - subdomain counts (structured: per axis; METIS: total per body)
 . -fem_dirichlet <multipliers,primal>     - Total FETI (Dirichlet by multipliers) or Dirichlet kept in the primal
+. -fem_dirichlet_min_hold <0.25>          - primal mode: a subdomain whose Dirichlet dofs hold its rigid motions less firmly than this (see `FEMCreateFETI()`) gets them as multipliers (0: never)
 . -fem_matrix_type <sbaij,aij>            - storage of the subdomain stiffness matrices (SBAIJ, the default, is half of AIJ; CHOLMOD factors a transient AIJ copy)
 . -fem_E <E>                              - Young's modulus of every body without `FEMSetMaterial()`
 . -fem_nu <nu>                            - Poisson's ratio of every body without `FEMSetMaterial()`
@@ -457,6 +458,8 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
   PetscCall(PetscOptionsIntArray("-fem_subdomains", "Subdomains per body: px,py,pz (structured) or n (metis)", "FEMSetDecomposition", parts, &nparts, &setparts));
   PetscCall(PetscOptionsEnum("-fem_dirichlet", "Dirichlet conditions by multipliers (Total FETI) or kept in the primal", "FEMSetDirichletMode", FEMDirichletModes, (PetscEnum)impl.dirichletmode,
                              (PetscEnum *)&impl.dirichletmode, NULL));
+  PetscCall(PetscOptionsReal("-fem_dirichlet_min_hold", "Primal mode: a subdomain whose Dirichlet dofs hold its rigid motions less firmly than this gets them as multipliers (0: never)",
+                             "FEMCreateFETI", impl.dirichlethold, &impl.dirichlethold, NULL));
   PetscCall(PetscOptionsString("-fem_matrix_type", "Subdomain stiffness storage: sbaij or aij", "FEMCreateFETI", mattype, mattype, sizeof(mattype), NULL));
   PetscCall(PetscOptionsReal("-fem_E", "Young's modulus of bodies without FEMSetMaterial()", "FEMSetMaterial", E, &E, &setE));
   PetscCall(PetscOptionsReal("-fem_nu", "Poisson's ratio of bodies without FEMSetMaterial()", "FEMSetMaterial", nu, &nu, &setnu));
@@ -465,6 +468,8 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
   /* checked where read, also when every body has its own material: inf passes "E > 0" and fails much later (FETI's K+ check) */
   PetscCheck(!setE || (E > 0 && !PetscIsInfOrNanReal(E)), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_E %g: Young's modulus must be a finite positive number", (double)E);
   PetscCheck(!setnu || (nu > -1 && nu < 0.5), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_nu %g: Poisson's ratio must lie in (-1, 0.5)", (double)nu);
+  PetscCheck(impl.dirichlethold >= 0 && !PetscIsInfOrNanReal(impl.dirichlethold), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE,
+             "-fem_dirichlet_min_hold %g: must be a finite number >= 0 (0: keep every Dirichlet dof in the primal)", (double)impl.dirichlethold);
   PetscCheck(!strcmp(mattype, "sbaij") || !strcmp(mattype, "aij"), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_matrix_type %s: use sbaij or aij", mattype);
   impl.sbaij = strcmp(mattype, "sbaij") ? PETSC_FALSE : PETSC_TRUE;
   if (setparts && type == FEM_DECOMPOSITION_STRUCTURED)

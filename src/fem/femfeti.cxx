@@ -8,6 +8,7 @@
    They are non-redundant (unique multipliers, full row rank as the
    augmented Lagrangian needs) and orthonormal, so B B' = I on the gluing block (docs/feti.md). */
 #include <conefeti/private/femimpl.h>
+#include <conefeti/private/fetiimpl.h>
 
 #include <algorithm>
 #include <cmath>
@@ -61,8 +62,9 @@ static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
       const PetscInt *dofs = impl.copies.Dofs(e);
       for (PetscInt comp = 0; comp < 3; comp++) {
         if (b.dirichletmask[n] & (1u << comp)) {
-          if (impl.dirichletmode == FEM_DIRICHLET_PRIMAL) continue; /* every copy is removed from the primal */
-          for (PetscInt j = 0; j < k; j++) PetscCallCXX(rows.push_back({FETI_ROW_DIRICHLET, {{dofs[j] + comp, 1.0}}, 0.0, -1}));
+          /* a row per copy, except for copies removed from the primal (subdomains the Dirichlet dofs hold firmly) */
+          for (PetscInt j = 0; j < k; j++)
+            if (impl.dirichletrows[impl.copies.Subdomains(e)[j]]) PetscCallCXX(rows.push_back({FETI_ROW_DIRICHLET, {{dofs[j] + comp, 1.0}}, 0.0, -1}));
         } else {
           for (PetscInt j = 1; j < k; j++) {
             LocalRow        row{FETI_ROW_GLUING, {}, 0.0, -1};
@@ -103,7 +105,13 @@ static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
   Notes:
   Gluing uses, at a node held by k subdomains, k - 1 orthonormal (Helmert) rows per free component;
   in Total FETI a Dirichlet component gets one identity row per copy and no gluing rows. In the primal
-  mode the Dirichlet dofs are handed to `FETISetSubdomainDirichletDofs()` and get no rows at all.
+  mode the Dirichlet dofs are handed to `FETISetSubdomainDirichletDofs()` and get no rows at all, except in
+  subdomains they hold weakly: the smallest RMS value on the subdomain's Dirichlet dofs over its RMS value
+  overall of a unit combination of its rigid-body modes (about 0.43 for a cube clamped on a whole face, 0
+  for one touching Gamma_u at a node or along a line, about a/H for a patch of size a) below
+  -fem_dirichlet_min_hold (0.25). Such a subdomain would swing about its small support (K_s nearly singular,
+  F many times larger); it floats instead and its Dirichlet dofs get rows as in Total FETI (-info lists the
+  subdomains and their values).
   Rows are owned by the rank of the lowest subdomain they touch and ordered by that subdomain, so
   the problem (and the iterates) do not depend on the number of ranks.
 
@@ -133,6 +141,9 @@ PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
     nprimal += 3 * (PetscInt)impl.local[s].nodes.size();
   }
   PetscCall(FETISetSubdomains(*feti, impl.nlocal, K.data(), f.data()));
+  /* which subdomains get their Dirichlet dofs as rows of B: all in Total FETI; in the primal mode those
+     that Gamma_u holds less firmly than -fem_dirichlet_min_hold (decided below, then shared) */
+  PetscCallCXX(impl.dirichletrows.assign(impl.nsubdomains, impl.dirichletmode == FEM_DIRICHLET_PRIMAL ? 0 : 1));
   for (PetscInt s = 0; s < impl.nlocal; s++) {
     const FEMSubdomain   &sd = impl.local[s];
     const FEMBody        &b  = impl.bodies[sd.body];
@@ -148,17 +159,30 @@ PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
       for (PetscInt d = 0; d < 3; d++) a[3 * l + d] = b.coords[3 * sd.nodes[l] + d];
     PetscCall(VecRestoreArray(coords, &a));
     PetscCall(FETISetSubdomainCoordinates(*feti, s, coords));
-    PetscCall(VecDestroy(&coords));
     if (impl.dirichletmode == FEM_DIRICHLET_PRIMAL) {
-      IS is;
+      IS        is;
+      PetscReal hold = PETSC_MAX_REAL;
       for (size_t l = 0; l < sd.nodes.size(); l++)
         for (PetscInt c = 0; c < 3; c++)
           if (b.dirichletmask[sd.nodes[l]] & (1u << c)) PetscCallCXX(dirichlet.push_back(3 * (PetscInt)l + c));
+      /* A subdomain that Gamma_u holds only at a small patch (METIS cuts the clamped face anywhere) keeps
+         near-zero-energy modes, swinging about the patch: K_NN is nearly singular, K+ and with it F are
+         huge on its interface. Such a subdomain floats instead, its Dirichlet dofs imposed by
+         multipliers as in Total FETI (docs/feti.md, "Two modes") */
+      if (!dirichlet.empty() && impl.dirichlethold > 0) PetscCall(FETIDirichletHold(coords, 3 * (PetscInt)sd.nodes.size(), dirichlet, &hold));
+      if (hold < impl.dirichlethold) {
+        PetscCall(PetscInfo(fem, "Subdomain %" PetscInt_FMT ": Gamma_u holds it at %zu dofs, hold %g < -fem_dirichlet_min_hold %g: its Dirichlet dofs become multipliers\n", sd.id, dirichlet.size(),
+                            (double)hold, (double)impl.dirichlethold));
+        impl.dirichletrows[sd.id] = 1;
+        dirichlet.clear();
+      } else if (!dirichlet.empty()) PetscCall(PetscInfo(fem, "Subdomain %" PetscInt_FMT ": Dirichlet dofs kept in the primal, hold %g\n", sd.id, (double)hold));
       PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)dirichlet.size(), dirichlet.data(), PETSC_COPY_VALUES, &is));
       PetscCall(FETISetSubdomainDirichletDofs(*feti, s, is));
       PetscCall(ISDestroy(&is));
     }
+    PetscCall(VecDestroy(&coords));
   }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, impl.dirichletrows.data(), (PetscMPIInt)impl.nsubdomains, MPIU_INT, MPI_MAX, comm));
 
   /* B: rows numbered rank by rank */
   PetscCall(BuildRows(fem, rows));

@@ -151,6 +151,35 @@ PetscErrorCode FETIKernelVanishingOn(PetscInt n, PetscInt *k, std::vector<PetscS
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* How firmly the dofs D (kept at zero in the primal) hold a body with the node coordinates coords: the
+   smallest RMS value on D relative to the RMS value overall of a unit combination of its rigid-body modes.
+   It is the conditioning of the rigid modes restricted to D, as for the fixing dofs: a body clamped on a
+   whole face has about 0.4; one held at a patch of size a has about a over its own size, and its K_NN
+   then has low-energy modes (the body swinging about the patch) that make K+ and F large; one held at a
+   node or along a line has 0 (rigid modes vanish on D: rotations about the node or the line). 0 when D
+   is empty. */
+PetscErrorCode FETIDirichletHold(Vec coords, PetscInt n, const std::vector<PetscInt> &D, PetscReal *hold)
+{
+  std::vector<PetscScalar> R;
+  std::vector<PetscReal>   RD, sigma, V;
+  PetscInt                 k  = 6;
+  const PetscInt           nd = (PetscInt)D.size();
+
+  PetscFunctionBegin;
+  *hold = 0;
+  if (D.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(FETIRigidBodyModes(coords, n, R));
+  PetscCall(FETIOrthonormalizeColumns(n, &k, R, 1e-8));
+  PetscCallCXX(RD.resize((size_t)nd * k));
+  for (PetscInt j = 0; j < k; j++)
+    for (PetscInt i = 0; i < nd; i++) RD[(size_t)j * nd + i] = PetscRealPart(R[(size_t)j * n + D[i]]);
+  OneSidedJacobi(nd, k, RD, sigma, V);
+  *hold = PETSC_MAX_REAL;
+  for (PetscInt j = 0; j < k; j++) *hold = std::min(*hold, sigma[j] * std::sqrt((PetscReal)n / (PetscReal)nd));
+  if (k < 6) *hold = 0; /* a body of fewer than three non-collinear nodes: nothing to measure */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Greedy row pivoting: choose k of the candidate rows of R that span its row space as well as possible.
    Returns the smallest pivot relative to the largest (0 when the candidates cannot complement the kernel). */
 static PetscReal PivotRows(PetscInt n, PetscInt k, const std::vector<PetscScalar> &R, const std::vector<PetscInt> &cand, std::vector<PetscInt> &chosen)

@@ -127,6 +127,7 @@ struct _p_FETI {
 PETSC_INTERN PetscErrorCode FETIRigidBodyModes(Vec, PetscInt, std::vector<PetscScalar> &);
 PETSC_INTERN PetscErrorCode FETIOrthonormalizeColumns(PetscInt, PetscInt *, std::vector<PetscScalar> &, PetscReal);
 PETSC_INTERN PetscErrorCode FETIKernelVanishingOn(PetscInt, PetscInt *, std::vector<PetscScalar> &, const std::vector<PetscInt> &, PetscReal);
+PETSC_INTERN PetscErrorCode FETIDirichletHold(Vec, PetscInt, const std::vector<PetscInt> &, PetscReal *);
 PETSC_INTERN PetscErrorCode FETIChooseFixingDofs(PetscInt, PetscInt, const std::vector<PetscScalar> &, Vec, const std::vector<PetscInt> &, PetscInt, std::vector<PetscInt> &);
 
 /* fetisubdomain.cxx */
