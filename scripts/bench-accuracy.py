@@ -3,7 +3,7 @@
 
 For each friction coefficient and mesh size, runs the brick tutorial (build/tutorials/contact/brick) with
 -contact_rtol from loose to tight and prints, per tolerance: outer iterations, F products (n_A), setup and
-solve time, the mechanical residuals of ../shared/ALGORITHMS.md section 4 that brick computes from u and
+solve time, the mechanical residuals (docs/contact.md, "Judging a solution") that brick computes from u and
 lambda (not from the solver), and the separated/stick/slip node counts. Iter, n_A and the residuals are
 machine independent; times are this machine's.
 
@@ -52,7 +52,7 @@ def main():
     failures = []
     print("# what accuracy costs: brick with Coulomb friction, algorithm %s, this machine (1 core, %s)" % (a.algorithm, hugepages.describe(a.hugepages)))
     print("# command: %s" % " ".join(sys.argv))
-    print("# residuals: relative, computed by brick from u and lambda (ALGORITHMS.md section 4); max = the largest of them")
+    print("# residuals: relative, computed by brick from u and lambda (docs/contact.md, Judging a solution); max = the largest of them")
     for F in [float(x) for x in a.frictions.split(",")]:
         for k in [int(x) for x in a.sizes.split(",")]:
             rows = [(rtol, run(a.build, k, F, a.algorithm, rtol, a.extra.split(), env)) for rtol in rtols]

@@ -1,4 +1,4 @@
-/* Contact mechanics on FETI, judged on the mechanics (ALGORITHMS.md section 4), not on the solver's
+/* Contact mechanics on FETI, judged on the mechanics (docs/contact.md, "Judging a solution"), not on the solver's
    own residual. -case selects one property:
 
    frictionless_vs_primal  the frictionless brick equals an independent primal solve: the assembled
