@@ -1,5 +1,5 @@
 /* SeparableSet kernels: projection, free/chopped/projected gradients, feasible step length.
-   Math: ../shared/ALGORITHMS.md section 3. Every kernel is one pass over the local entries and
+   Math: docs/algorithms.md, 'Separable sets'. Every kernel is one pass over the local entries and
    blocks; reductions are combined into one MPI call per kernel. */
 #include <conefeti/private/separablesetimpl.h>
 #include <conefeti/private/reproduciblesum.h>

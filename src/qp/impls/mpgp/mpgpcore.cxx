@@ -38,7 +38,7 @@
      step (free: As = g - g_prev for a QP) and keeps it only if q decreased. Measured: BB shortens long runs of proportioning steps
      on random cone problems (docs/qp-benchmark.md) but costs products on the brick's friction disks,
      so it is off by default.
-   Math: ../shared/ALGORITHMS.md section 3. */
+   Math: docs/algorithms.md, 'MPRGP and MPGP'. */
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/private/reproduciblesum.h>
 

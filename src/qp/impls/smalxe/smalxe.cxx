@@ -15,7 +15,7 @@
    The inner minimization is one nested TAO (mprgp/mpgp), or a block Gauss-Seidel sweep over
    index sets, each block with its own nested TAO (the seed paper's Algorithm 2 splits the
    multipliers this way). A pre-solve hook runs before every inner solve (the Coulomb friction
-   loop updates disk radii there). Math: ../shared/ALGORITHMS.md section 3.
+   loop updates disk radii there). Math: docs/algorithms.md, 'SMALXE: the semi-monotonic augmented Lagrangian'.
 
    Penalty preconditioner (projector form, one inner solver): the CG steps of the inner solve are
    preconditioned in face by M^-1 = I - theta Q, theta = rho/(||PAP|| + rho), the inverse of
