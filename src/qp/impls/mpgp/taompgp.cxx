@@ -513,6 +513,11 @@ PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name
   Hessian's preconditioning matrix) the CG steps use z = [M^-1]_FF g_F on the free set F, a principal
   submatrix of M^-1, hence symmetric positive definite on the face; the proportioning test, the
   expansion and proportioning steps and the stopping test stay unpreconditioned.
+  The algorithm and what conefeti adds to it: docs/algorithms.md, 'MPRGP and MPGP'.
+
+  References:
++ * - Z. Dostal, J. Schoberl, Minimizing quadratic functions over non-negative cone with the rate of convergence and finite termination, Computational Optimization and Applications (2005)
+- * - Z. Dostal, Optimal Quadratic Programming Algorithms, with Applications to Variational Inequalities, Springer (2009)
 
   Level: beginner
 
@@ -545,7 +550,12 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 
   Notes:
   The set is given by `TaoQPSetConstraints()` (a `SeparableSet`); otherwise by the variable bounds
-  as described by -tao_mpgp_block_type. Otherwise as `TAOMPRGP`.
+  as described by -tao_mpgp_block_type. Otherwise as `TAOMPRGP`. Arc steps are conefeti's addition:
+  docs/algorithms.md, 'MPRGP and MPGP'.
+
+  References:
++ * - R. Kucera, Convergence rate of an optimization algorithm for minimizing quadratic functions with separable convex constraints, SIAM J. Optim. (2008)
+- * - R. Kucera, A new algorithm for solving 3D contact problems with Coulomb friction (the seed paper of conefeti: MPGP on friction disks)
 
   Level: beginner
 

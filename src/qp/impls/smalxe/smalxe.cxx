@@ -1506,7 +1506,14 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   A solve starts from the solution vector (a warm start) and from the multiplier 0 of the equality;
   with `TaoSetRecycleHistory()` (`-tao_recycle_history`) it starts from the multiplier the previous
   solve ended with, which a sequence of nearby problems needs for the warm start to pay: from
-  multiplier 0 the first inner solve undoes it.
+  multiplier 0 the first inner solve undoes it. The algorithm: docs/algorithms.md, 'SMALXE: the semi-monotonic
+  augmented Lagrangian'.
+
+  References:
++ * - Z. Dostal, Inexact semi-monotonic augmented Lagrangians with optimal feasibility convergence for quadratic programming with simple bounds and equality constraints, SIAM J. Numer. Anal.
+. * - Z. Dostal, Optimal Quadratic Programming Algorithms, with Applications to Variational Inequalities, Springer (2009)
+. * - C. Farhat, J. Mandel, F.-X. Roux, Optimal convergence properties of the FETI domain decomposition method, Comput. Methods Appl. Mech. Eng. 115, 367-388 (1994) (projector form)
+- * - D. G. Anderson, Iterative procedures for nonlinear integral equations, J. ACM 12(4), 547-560 (1965) (Anderson mixing of the multiplier update)
 
   Level: beginner
 
