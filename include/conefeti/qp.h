@@ -140,7 +140,6 @@ PETSC_EXTERN PetscErrorCode TaoQPGetCounters(Tao, QPCounters *);
 PETSC_EXTERN PetscErrorCode TaoQPGetPC(Tao, PC *);
 PETSC_EXTERN PetscErrorCode TaoQPSetExpansionProjCG(Tao, PetscBool);
 PETSC_EXTERN PetscErrorCode TaoQPResetCounters(Tao);
-PETSC_EXTERN PetscErrorCode TaoQPSetTolerance(Tao, PetscReal);
 
 PETSC_EXTERN PetscErrorCode TaoSMALXESetEqualityConstraints(Tao, Mat, Vec);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetProjector(Tao, Mat, Vec);

@@ -138,7 +138,6 @@ PETSC_INTERN PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainDestroy(FETISubdomain &);
 
 /* fetioperators.cxx */
-PETSC_INTERN PetscErrorCode FETISetUpOperators(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplus(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyP(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyG(FETI, Vec, Vec);
