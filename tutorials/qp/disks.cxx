@@ -15,7 +15,9 @@
 
    Solvers:
    - mpgp (conefeti): the disks as a SeparableSet (TaoQPSetConstraints), b by TaoQPSetLinearTerm();
-     -tao_mpgp_bb 0 gives the textbook algorithm with the fixed step length;
+     proportioning steps take the fixed length alpha (the default; -tao_mpgp_bb 1 first tries a
+     Barzilai-Borwein length), and arc steps along the circles are on by default (-tao_mpgp_arc 0 gives
+     Kucera's MPGP as published);
    - almm, pdipm (TAO): the constraints as c_k(u) = r_k^2 - |u_k|^2 >= 0 with their Jacobian (and, for
      pdipm, the Hessian of the Lagrangian A + 2 diag(lambda_k) I_2, factored by MUMPS at every iteration);
    - any other TAO type is given the same callbacks and may or may not cope.
