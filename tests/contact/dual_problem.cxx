@@ -7,12 +7,17 @@
    - Coulomb: msa, merged and monolithic reach the same multipliers, which satisfy the Coulomb
      conditions checked independently: |l_t,k| <= F l_n,k and the projected gradient of the Tresca
      problem with g = F l_n (radii from the solution itself) is small.
-   Options: -nodes <n>, -friction <F>, -equality <m>, -cond <c>. */
+   With -equality_form general the equality is given as G, e (ContactProblemSetEquality(), the form for a
+   dual problem that comes from elsewhere than FETI) instead of the projector Q = G'G and lt = G'e; the
+   Tresca multipliers must then also equal those of the projector form.
+   Options: -nodes <n>, -friction <F>, -equality <m>, -cond <c>, -equality_form <projector,general>. */
 #include "../qp/knownqp.h"
 
 struct Dual {
   Mat                   F = nullptr, Q = nullptr;
   Vec                   h = nullptr, lt = nullptr;
+  Mat                   G = nullptr; /* set: the equality goes in as G l = e (general form) */
+  Vec                   e = nullptr;
   std::vector<PetscInt> normal, t1, t2;
 };
 
@@ -74,7 +79,8 @@ static PetscErrorCode SolveContact(Dual *D, ContactLaw law, PetscReal coef, cons
   PetscFunctionBeginUser;
   PetscCall(ContactProblemCreate(PETSC_COMM_WORLD, &cp));
   PetscCall(ContactProblemSetOperator(cp, D->F, D->h));
-  if (D->Q) PetscCall(ContactProblemSetProjector(cp, D->Q, D->lt));
+  if (D->G) PetscCall(ContactProblemSetEquality(cp, D->G, D->e));
+  else if (D->Q) PetscCall(ContactProblemSetProjector(cp, D->Q, D->lt));
   PetscCall(ContactProblemAddNodes(cp, law, (PetscInt)D->normal.size(), D->normal.data(), D->t1.data(), D->t2.data(), c.data()));
   if (algorithm) PetscCall(PetscOptionsSetValue(NULL, "-contact_coulomb_algorithm", algorithm));
   PetscCall(ContactProblemSetFromOptions(cp));
@@ -220,7 +226,8 @@ int main(int argc, char **argv)
   PetscReal         friction = 0.3, cond = 10, diff;
   Vec               l, ref, lm[3], w;
   ContactStatistics st;
-  const char       *algs[3] = {"msa", "merged", "monolithic"};
+  const char       *algs[3]  = {"msa", "merged", "monolithic"};
+  char              form[32] = "projector";
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "Contact pipelines on a dual problem"));
   PetscCall(ConeFETIInitializePackage());
@@ -228,10 +235,17 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-equality", &m, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-friction", &friction, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-cond", &cond, NULL));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-equality_form", form, sizeof(form), NULL));
+  PetscCheck(!strcmp(form, "projector") || !strcmp(form, "general"), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-equality_form must be projector or general, got %s", form);
   PetscCheck(nodes % 2 == 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-nodes must be even");
   PetscCall(CreateDual(nodes, cond, m, &D, &qp));
   PetscCall(VecDuplicate(D.h, &l));
   PetscCall(VecDuplicate(D.h, &ref));
+  if (!strcmp(form, "general")) {
+    PetscCheck(m > 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-equality_form general needs -equality <m> with m > 0");
+    D.G = qp.C;
+    D.e = qp.d;
+  }
 
   /* frictionless: no tangential multipliers, no mpgp */
   PetscCall(SolveContact(&D, CONTACT_FRICTIONLESS, 0, NULL, l, &st));
@@ -249,6 +263,14 @@ int main(int argc, char **argv)
   PetscCall(RelDiff(ref, l, &diff));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  Tresca vs direct solve: %.2e\n", (double)diff));
   PetscCheck(diff <= 1e-5, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "Tresca solution differs from the direct solve by %g", (double)diff);
+  if (D.G) { /* general form against projector form */
+    D.G = nullptr;
+    PetscCall(SolveContact(&D, CONTACT_TRESCA, 0.2, NULL, ref, &st));
+    D.G = qp.C;
+    PetscCall(RelDiff(ref, l, &diff));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  Tresca general (G, e) vs projector form: %.2e\n", (double)diff));
+    PetscCheck(diff <= 1e-5, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "Tresca solution with G, e differs from the projector form by %g", (double)diff);
+  }
 
   /* Coulomb: three algorithms, one solution */
   PetscCall(VecDuplicate(D.h, &w));
