@@ -88,13 +88,18 @@ PetscErrorCode QPNormSettingsApply(QPNormSettings *norm, Mat A, const char *objp
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* one line on how expansion steps are done, one on arc steps (MPGP) */
+/* one line on how expansion steps are done, one on the proportioning steps' length and one on arc steps (MPGP) */
 PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *core, PetscViewer viewer)
 {
   PetscFunctionBegin;
   if (core->projcg)
     PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: projected full CG step first (%" PetscInt_FMT " not kept), else feasible half step and fixed-length projected step\n", core->projcg_rejected));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: feasible half step and fixed-length projected step\n"));
+  if (core->variant == MPGPVariant::MPGP) {
+    if (core->bb)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "proportioning steps: Barzilai-Borwein length first, kept when q decreases (%" PetscInt_FMT " not kept), else the fixed length\n", core->bb_rejected));
+    else PetscCall(PetscViewerASCIIPrintf(viewer, "proportioning steps: fixed length\n"));
+  }
   if (core->variant == MPGPVariant::MPGP && core->arc > 0)
     PetscCall(PetscViewerASCIIPrintf(viewer,
                                      "arc steps: CG steps move disk blocks on their circle along it while alpha |g.nu|/r <= %g: %" PetscInt_FMT " steps, %" PetscInt_FMT
