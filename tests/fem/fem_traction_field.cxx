@@ -20,10 +20,7 @@ static PetscErrorCode LinearTraction(const PetscReal x[3], PetscReal t[3], void 
 }
 
 /* int_0^LY int_0^LZ y^p z^q dz dy */
-static PetscReal Monomial(int p, int q)
-{
-  return PetscPowReal(LY, p + 1) / (p + 1) * PetscPowReal(LZ, q + 1) / (q + 1);
-}
+static PetscReal Monomial(int p, int q) { return PetscPowReal(LY, p + 1) / (p + 1) * PetscPowReal(LZ, q + 1) / (q + 1); }
 
 static void Cross(const PetscReal a[3], const PetscReal b[3], PetscReal c[3])
 {
@@ -56,7 +53,7 @@ int main(int argc, char **argv)
 
   /* analytic: p = (1, y, z) = e_x + e_y y + e_z z on the face, t = T0 + TY y + TZ z */
   {
-    const PetscReal *tv[3] = {T0, TY, TZ};
+    const PetscReal *tv[3]    = {T0, TY, TZ};
     const PetscReal  pv[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     const int        py[3] = {0, 1, 0}, pz[3] = {0, 0, 1};
     for (int j = 0; j < 3; j++)
@@ -89,8 +86,10 @@ int main(int argc, char **argv)
     err   = PetscMax(err, PetscMax(PetscAbsReal(sums[a] - R[a]), PetscAbsReal(sums[3 + a] - M[a])));
     scale = PetscMax(scale, PetscMax(PetscAbsReal(R[a]), PetscAbsReal(M[a])));
   }
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "resultant  FE (%.12g, %.12g, %.12g) analytic (%.12g, %.12g, %.12g)\n", (double)sums[0], (double)sums[1], (double)sums[2], (double)R[0], (double)R[1], (double)R[2]));
-  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "moment     FE (%.12g, %.12g, %.12g) analytic (%.12g, %.12g, %.12g)\n", (double)sums[3], (double)sums[4], (double)sums[5], (double)M[0], (double)M[1], (double)M[2]));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "resultant  FE (%.12g, %.12g, %.12g) analytic (%.12g, %.12g, %.12g)\n", (double)sums[0], (double)sums[1], (double)sums[2], (double)R[0], (double)R[1],
+                        (double)R[2]));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "moment     FE (%.12g, %.12g, %.12g) analytic (%.12g, %.12g, %.12g)\n", (double)sums[3], (double)sums[4], (double)sums[5], (double)M[0], (double)M[1],
+                        (double)M[2]));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "max error / max |component| = %.3e\n", (double)(err / scale)));
   PetscCheck(err <= 1e-12 * scale, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "Linear traction field: resultant or moment off by %g (relative)", (double)(err / scale));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "traction field check passed\n"));
