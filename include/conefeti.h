@@ -3,9 +3,11 @@
 
    A program that links libconefeti includes this header and calls ConeFETIInitializePackage()
    once after PetscInitialize(). An unmodified PETSc program gets the same solver types with
-   -dll_append /path/to/libconefeti.so. */
+   -dll_append /path/to/libconefeti.so. conefeti/compat.h gives the names that differ between PETSc
+   releases (PETSC_SUCCESS before 3.19, ...), so a program that uses them builds on each. */
 #pragma once
 
+#include <conefeti/compat.h>
 #include <conefeti/sys.h>
 #include <conefeti/qp.h>
 #include <conefeti/feti.h>

@@ -27,7 +27,7 @@ PetscErrorCode ContactProblemCreate(MPI_Comm comm, ContactProblem *cp)
   ContactProblem c;
 
   PetscFunctionBegin;
-  PetscValidPointer(cp, 2);
+  PetscAssertPointer(cp, 2);
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscHeaderCreate(c, CONTACTPROBLEM_CLASSID, "ContactProblem", "Dual contact problem", "Contact", comm, ContactProblemDestroy, ContactProblemView));
   PetscCallCXX(c->data = new ContactProblemData);

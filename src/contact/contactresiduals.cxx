@@ -173,7 +173,7 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
-  PetscValidPointer(r, 2);
+  PetscAssertPointer(r, 2);
   d    = cm->data;
   comm = PetscObjectComm((PetscObject)cm);
   PetscCheck(d->solved, comm, PETSC_ERR_ARG_WRONGSTATE, "ContactModel: solve first");

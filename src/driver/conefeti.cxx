@@ -18,7 +18,7 @@
    -output_unconverged); 1 for bad input or a failure: one message naming the option, file or value, and
    a line of hint (-traceback prints PETSc's full report instead; src/driver/errors.cxx). */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include "driver.h"
 #include <cerrno>
 #include <csignal>

@@ -2,7 +2,7 @@
    check of the -options_file chain. Not part of the library. */
 #pragma once
 #include <petscsys.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <string>
 
 /* errors.cxx: one message per error instead of PETSc's traceback */

@@ -39,7 +39,7 @@ PetscErrorCode FEMCreate(MPI_Comm comm, FEM *fem)
   FEM f;
 
   PetscFunctionBegin;
-  PetscValidPointer(fem, 2);
+  PetscAssertPointer(fem, 2);
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscHeaderCreate(f, FEM_CLASSID, "FEM", "Finite-element model of elastic bodies", "FEM", comm, FEMDestroy, FEMView));
   PetscCallCXX(f->impl = new FEM_Impl());

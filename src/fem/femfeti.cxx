@@ -131,7 +131,7 @@ PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
-  PetscValidPointer(feti, 2);
+  PetscAssertPointer(feti, 2);
   PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FEMSetUp() before FEMCreateFETI()");
   PetscCall(FETICreate(comm, feti));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)fem, &prefix));

@@ -78,7 +78,7 @@ PetscErrorCode FETICreate(MPI_Comm comm, FETI *feti)
   FETI f;
 
   PetscFunctionBegin;
-  PetscValidPointer(feti, 2);
+  PetscAssertPointer(feti, 2);
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscHeaderCreate(f, FETI_CLASSID, "FETI", "FETI dual problem", "FETI", comm, FETIDestroy, FETIView));
   PetscCallCXX(f->impl = new FETI_Impl());

@@ -33,10 +33,10 @@ std::string Format(const char *fmt, ...)
 
 /* What the parser needs to read and check options: the prefix and the communicator for errors */
 struct Reader {
-  PetscOptionItems *PetscOptionsObject;
-  const char       *prefix;
-  MPI_Comm          comm;
-  PetscBool         help;
+  CONEFETI_OPTIONS_ITEMS PetscOptionsObject;
+  const char            *prefix;
+  MPI_Comm               comm;
+  PetscBool              help;
 
   /* "-<prefix>name" for messages, from "-name" */
   std::string Full(const std::string &name) const { return "-" + std::string(prefix ? prefix : "") + name.substr(1); }
@@ -510,7 +510,7 @@ PetscErrorCode ContactSceneCreate(MPI_Comm comm, ContactScene *scene)
   ContactScene s;
 
   PetscFunctionBegin;
-  PetscValidPointer(scene, 2);
+  PetscAssertPointer(scene, 2);
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscHeaderCreate(s, CONTACTSCENE_CLASSID, "ContactScene", "Contact scene from options", "ContactScene", comm, ContactSceneDestroy, ContactSceneView));
   PetscCallCXX(s->impl = new Scene_Impl());

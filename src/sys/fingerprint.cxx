@@ -1,7 +1,7 @@
 /* A fingerprint of a vector's bits: a regression check that a solve gave exactly the same result
    (on another number of ranks, after a refactoring) without storing the vector. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <petsc/private/petscimpl.h>
 
 #include <cstdint>

@@ -1,6 +1,6 @@
 /* Package initialization: registers every type conefeti provides, once per PetscInitialize. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <conefeti/private/package.h>
 #include <slepcsys.h>
 

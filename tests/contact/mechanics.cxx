@@ -21,7 +21,7 @@
 
    Every case prints RESULT lines with counts and rounded norms (compared across rank counts). */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <string>
 #include <vector>
 

@@ -4,7 +4,7 @@
    P1 elements converge at order 2 in L2; the discrete L2 error of the nodal values is measured on
    meshes with 6, 12, 24 cells per side and the observed order must exceed 1.8. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <math.h>
 
 static const PetscReal E = 1.0e9, nu = 0.3, amp[3] = {1e-3, -0.5e-3, 0.25e-3};

@@ -3,7 +3,7 @@
    node by node (interior nodes: zero). Checked on a box with unequal spacings in the three directions,
    undecomposed and through the subdomain matrices of a decomposition. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 
 static const PetscReal A[3][3] = {{1.0e-3, 2.0e-4, -3.0e-4}, {-1.0e-4, 5.0e-4, 2.5e-4}, {4.0e-4, -2.0e-4, -6.0e-4}};
 static const PetscReal E = 2.0e11, nu = 0.3;

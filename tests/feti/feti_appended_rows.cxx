@@ -5,7 +5,7 @@
    condition. Also checks FETIComputeAlpha(): with a mask of all rows, and with a mask that leaves the
    appended rows out (gluing and Dirichlet rows still fix every subdomain), alpha is the same. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 
 static PetscErrorCode Bar(PetscBool bottomdirichlet, FEM *fem)
 {

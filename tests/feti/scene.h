@@ -10,7 +10,7 @@
                 edge and keeps exactly one rigid mode, the rotation about that edge */
 #pragma once
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <string.h>
 
 static PetscErrorCode Gravity(const PetscReal x[3], PetscReal f[3], void *ctx)

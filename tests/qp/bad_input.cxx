@@ -3,7 +3,7 @@
    -case selects one misuse; the program installs an error handler that records the message,
    makes the call, and prints "CAUGHT: <message>" (a test checks the text) or "NOT CAUGHT". */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <string>
 
 static std::string caught;

@@ -5,7 +5,7 @@
    histories (relative difference <= 1e-8 while the residual is above 1e-8 |b|) and the final
    iterates (|x_cg - x| <= 1e-10 |x_cg|). Option -type mprgp|mpgp. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <petsc/private/kspimpl.h>
 #include <vector>
 

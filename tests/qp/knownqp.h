@@ -9,7 +9,7 @@
 #pragma once
 
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <cmath>
 #include <cstdint>
 #include <string>

@@ -8,7 +8,7 @@
    the options then choose the final type (-tao_type mpgp, -ksp_type mpgp).
    Prints "RESULT x = (x0, x1) expected (e0, e1) error e" and "CORRECT" when the error is below 1e-8. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <string>
 
 static PetscErrorCode ObjectiveAndGradient(Tao, Vec x, PetscReal *f, Vec g, void *ctx)

@@ -11,7 +11,6 @@
    states and the mechanical residuals. Exit status: 0 when the solve converged, 2 when it did not
    (as the conefeti driver). */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
 
 /* the bottom faces whose centroid lies in x in (xrange[0], xrange[1]) */
 static PetscErrorCode ContactFace(const PetscReal c[3], const PetscReal n[3], PetscBool *tagged, void *ctx)

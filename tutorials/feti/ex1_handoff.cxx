@@ -25,7 +25,6 @@
      is refined. When the solve does not converge (e.g. -feti_ksp_max_it 2) it says so instead of printing
      a deflection and exits with status 2, as the conefeti driver. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
 
 #include <vector>
 

@@ -21,7 +21,6 @@
      number of subdomains grows (numerical scalability); time per F product is about two sparse
      triangular solves per subdomain. The setup time of FETI excludes the preconditioner's factorizations, which happen in the first solve. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
 #include <sys/resource.h>
 
 static PetscErrorCode Gravity(const PetscReal x[3], PetscReal f[3], void *ctx)

@@ -19,7 +19,6 @@
 #pragma once
 
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
 #include <petsctao.h>
 #include <ctime>
 #include <string>

@@ -4,7 +4,7 @@
 #include <petsc/private/petscimpl.h>
 #include <conefeti/sys.h>
 #include <conefeti/fem.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 
 #include <array>
 #include <map>

@@ -4,7 +4,7 @@
 #include <petsc/private/petscimpl.h>
 #include <conefeti/sys.h>
 #include <conefeti/feti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 
 #include <vector>
 

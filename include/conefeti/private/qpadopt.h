@@ -4,7 +4,7 @@
 #pragma once
 
 #include <conefeti/qp.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 
 /* called at the end of each QP type's create function */
 PETSC_INTERN PetscErrorCode TaoQPAdoptComposed_Private(Tao);

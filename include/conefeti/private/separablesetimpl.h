@@ -2,7 +2,7 @@
 #pragma once
 
 #include <conefeti/qp.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <petsc/private/petscimpl.h>
 #include <vector>
 

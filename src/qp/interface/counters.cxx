@@ -1,6 +1,6 @@
 /* QPCounters: human and machine-readable views of the work a QP solver did. */
 #include <conefeti/qp.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 
 /*@C
   QPCountersView - Print QP counters in human-readable form.

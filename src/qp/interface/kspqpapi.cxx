@@ -1,6 +1,6 @@
 /* Public setters/getters of the KSP QP types (mprgp, mpgp), dispatched to the type. */
 #include <conefeti/qp.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <conefeti/private/qpadopt.h>
 #include <petsc/private/kspimpl.h>
 
@@ -125,7 +125,7 @@ PetscErrorCode KSPQPGetCounters(KSP ksp, QPCounters *counters)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(ksp, KSP_CLASSID, 1);
-  PetscValidPointer(counters, 2);
+  PetscAssertPointer(counters, 2);
   *counters = QPCounters{};
   PetscTryMethod(ksp, "KSPQPGetCounters_C", (KSP, QPCounters *), (ksp, counters));
   PetscFunctionReturn(PETSC_SUCCESS);

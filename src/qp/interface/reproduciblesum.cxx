@@ -1,6 +1,6 @@
 /* Rank-count independent sums (see reproduciblesum.h). */
 #include <conefeti/private/reproduciblesum.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <petscvec.h>
 #include <vector>
 

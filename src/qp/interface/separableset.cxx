@@ -42,7 +42,7 @@ PetscErrorCode SeparableSetCreate(MPI_Comm comm, PetscInt n, PetscInt N, Separab
   PetscLayout  map;
 
   PetscFunctionBegin;
-  PetscValidPointer(set, 4);
+  PetscAssertPointer(set, 4);
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscLayoutCreateFromSizes(comm, n, N, 1, &map));
   PetscCall(PetscHeaderCreate(s, SEPARABLESET_CLASSID, "SeparableSet", "Separable convex set", "QP", comm, SeparableSetDestroy, SeparableSetView));

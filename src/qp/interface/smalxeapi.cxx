@@ -1,6 +1,6 @@
 /* Public functions of the TAO type smalxe, dispatched to the type. */
 #include <conefeti/qp.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <petsc/private/taoimpl.h>
 
 /*@C
@@ -79,7 +79,7 @@ PetscErrorCode TaoSMALXEGetSubsolver(Tao tao, Tao *sub)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
-  PetscValidPointer(sub, 2);
+  PetscAssertPointer(sub, 2);
   PetscUseMethod(tao, "TaoSMALXEGetSubsolver_C", (Tao, Tao *), (tao, sub));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -135,7 +135,7 @@ PetscErrorCode TaoSMALXEGetBlockSubsolver(Tao tao, PetscInt k, Tao *sub)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
-  PetscValidPointer(sub, 3);
+  PetscAssertPointer(sub, 3);
   PetscUseMethod(tao, "TaoSMALXEGetBlockSubsolver_C", (Tao, PetscInt, Tao *), (tao, k, sub));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

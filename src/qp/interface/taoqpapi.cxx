@@ -1,6 +1,6 @@
 /* Public setters/getters of the TAO QP types (mprgp, mpgp, smalxe), dispatched to the type. */
 #include <conefeti/qp.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <conefeti/private/qpadopt.h>
 #include <petsc/private/taoimpl.h>
 
@@ -153,7 +153,7 @@ PetscErrorCode TaoQPGetCounters(Tao tao, QPCounters *counters)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
-  PetscValidPointer(counters, 2);
+  PetscAssertPointer(counters, 2);
   *counters = QPCounters{};
   PetscTryMethod(tao, "TaoQPGetCounters_C", (Tao, QPCounters *), (tao, counters));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -274,7 +274,7 @@ PetscErrorCode TaoQPGetPC(Tao tao, PC *pc)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
-  PetscValidPointer(pc, 2);
+  PetscAssertPointer(pc, 2);
   *pc = NULL;
   PetscTryMethod(tao, "TaoQPGetPC_C", (Tao, PC *), (tao, pc));
   PetscFunctionReturn(PETSC_SUCCESS);
