@@ -6,7 +6,7 @@
    field that is ignored gets neither: the test fails on both. Checked on the face x = 1 of a box with
    unequal spacings, undecomposed and decomposed, on 1 and 2 ranks. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 
 /* t(x) = t0 + ty y + tz z on the face x = 1 */
 static const PetscReal T0[3] = {2.0, -1.0, 0.5}, TY[3] = {3.0, 0.25, -4.0}, TZ[3] = {-1.5, 2.0, 1.0};

@@ -5,7 +5,7 @@
    is changed in place (the set must notice through its object state) and finally removed (NULL).
    Fails if the shift is ignored, applied with the wrong sign, or a stale value is used. */
 #include <conefeti.h>
-#include <conefeti/private/compat.h>
+#include <conefeti/compat.h>
 #include <vector>
 
 static const PetscInt UNIT = 7; /* per unit: 2 scalars, a disk (2), a cone (3) */
