@@ -157,6 +157,9 @@ PetscReal Relative(PetscReal r, PetscReal scale, PetscReal largest) { return r /
   |l_t| >= (1 - 1e-3) g (on the boundary of its friction disk; frictionless nodes in contact always slip), and
   sticks otherwise. Whether stick nodes really do not move is what the slip_rule residual checks.
 
+  `ContactModelSolve()` computes them for its verdict; a second call with u and lambda unchanged (their
+  `PetscObjectState`) returns the same values without computing them again.
+
   Level: beginner
 
 .seealso: `ContactResiduals`, `ContactModelGetNodeStates()`, `ContactModelSolve()`
@@ -177,6 +180,15 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   d    = cm->data;
   comm = PetscObjectComm((PetscObject)cm);
   PetscCheck(d->solved, comm, PETSC_ERR_ARG_WRONGSTATE, "ContactModel: solve first");
+  {
+    PetscObjectState su, sl;
+    PetscCall(PetscObjectStateGet((PetscObject)d->u, &su));
+    PetscCall(PetscObjectStateGet((PetscObject)d->lambda, &sl));
+    if (su == d->residuals_state[0] && sl == d->residuals_state[1]) { /* the same u and lambda as last time */
+      *r = d->residuals;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+  }
   *r = ContactResiduals{};
   for (PetscInt &w : r->where) w = -1;
   PetscCall(FEMGetNumBodies(d->fem, &nbodies));
@@ -332,6 +344,9 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   PetscCall(VecDestroy(&Ku));
   PetscCall(VecDestroy(&Btl));
   PetscCall(VecDestroy(&Bu));
+  d->residuals = *r;
+  PetscCall(PetscObjectStateGet((PetscObject)d->u, &d->residuals_state[0]));
+  PetscCall(PetscObjectStateGet((PetscObject)d->lambda, &d->residuals_state[1]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -24,6 +24,11 @@ struct ContactModelData {
   ContactPipeline              pipeline = CONTACT_PIPELINE_LINEAR;
   ContactStatistics            stats    = {}; /* of the last ContactModelSolve(): all its solves, and the verdict */
 
+  /* the residuals of the last ContactModelComputeResiduals(), valid while u and lambda keep these states
+     (ContactModelSolve() computes them for its verdict; the summary asks again) */
+  ContactResiduals residuals = {};
+  PetscObjectState residuals_state[2] = {-1, -1};
+
   /* acceptance of a solution by its mechanical residuals (ContactModelSolve()) */
   PetscReal acceptance_factor = 10; /* every residual <= factor * the solver's relative tolerance */
   PetscInt  refine_max        = 3;  /* tighter solves, warm started, when the solver's own test passed but the residuals did not */
