@@ -26,7 +26,7 @@ struct ContactModelData {
 
   /* the residuals of the last ContactModelComputeResiduals(), valid while u and lambda keep these states
      (ContactModelSolve() computes them for its verdict; the summary asks again) */
-  ContactResiduals residuals = {};
+  ContactResiduals residuals          = {};
   PetscObjectState residuals_state[2] = {-1, -1};
 
   /* acceptance of a solution by its mechanical residuals (ContactModelSolve()) */
