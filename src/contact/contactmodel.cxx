@@ -658,7 +658,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
       char what[200];
       d->stats.converged = PETSC_FALSE;
       PetscCall(PetscStrncpy(d->stats.failed_check, ContactChecks[r.worst], sizeof(d->stats.failed_check)));
-      PetscCall(ContactModelDescribeResidual_Private(cm, &r, r.worst, what, sizeof(what)));
+      PetscCall(ContactResidualsDescribe_Private(&r, r.worst, what, sizeof(what)));
       PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "%s, above the acceptance %.1e, after %" PetscInt_FMT " solve%s down to relative tolerance %.0e (the solver's own test passed)",
                               what, (double)d->stats.acceptance, round + 1, round ? "s" : "", (double)tol));
       break;

@@ -403,7 +403,7 @@ PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], 
 }
 
 /* what a failed check means, for the sentence that says why a solve did not converge */
-PetscErrorCode ContactModelDescribeResidual_Private(ContactModel cm, const ContactResiduals *r, ContactCheck c, char buf[], size_t len)
+PetscErrorCode ContactResidualsDescribe_Private(const ContactResiduals *r, ContactCheck c, char buf[], size_t len)
 {
   static const char *const meaning[CONTACT_NUM_CHECKS] = {"the forces on the body do not balance: K u != f - B'l",
                                                           "the body's subdomains do not fit together or its supports move: B u != c",
@@ -416,7 +416,6 @@ PetscErrorCode ContactModelDescribeResidual_Private(ContactModel cm, const Conta
   const bool               perbody                     = c == CONTACT_CHECK_EQUILIBRIUM || c == CONTACT_CHECK_GLUING;
 
   PetscFunctionBegin;
-  (void)cm;
   if (r->where[c] >= 0) PetscCall(PetscSNPrintf(buf, len, "%s of %s %" PetscInt_FMT " is %.1e (%s)", ContactChecks[c], perbody ? "body" : "contact zone", r->where[c], (double)value[c], meaning[c]));
   else PetscCall(PetscSNPrintf(buf, len, "%s is %.1e (%s)", ContactChecks[c], (double)value[c], meaning[c]));
   PetscFunctionReturn(PETSC_SUCCESS);

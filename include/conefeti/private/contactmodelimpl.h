@@ -50,4 +50,4 @@ struct _p_ContactModel {
 };
 
 /* "<check> of body b is <value> (<what it means>)" for the check c of r */
-PETSC_INTERN PetscErrorCode ContactModelDescribeResidual_Private(ContactModel, const ContactResiduals *, ContactCheck, char[], size_t);
+PETSC_INTERN PetscErrorCode ContactResidualsDescribe_Private(const ContactResiduals *, ContactCheck, char[], size_t);
