@@ -94,6 +94,8 @@ PETSC_EXTERN PetscLogEvent FEM_SetUp, FEM_Assembly, FEM_Decompose;
 PETSC_EXTERN PetscErrorCode FEMCreate(MPI_Comm, FEM *);
 PETSC_EXTERN PetscErrorCode FEMDestroy(FEM *);
 PETSC_EXTERN PetscErrorCode FEMAddBox(FEM, const PetscReal[3], const PetscReal[3], const PetscInt[3], PetscInt *);
+PETSC_EXTERN PetscErrorCode FEMAddMesh(FEM, PetscInt, const PetscReal[], PetscInt, const PetscInt[], PetscInt *);
+PETSC_EXTERN PetscErrorCode FEMAddFacetSet(FEM, PetscInt, const char[], PetscInt, const PetscInt[]);
 PETSC_EXTERN PetscErrorCode FEMSetMaterial(FEM, PetscInt, PetscReal, PetscReal);
 PETSC_EXTERN PetscErrorCode FEMGetMaterial(FEM, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FEMTagFaces(FEM, PetscInt, const char[], FEMFacePredicate, void *);
