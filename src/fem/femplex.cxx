@@ -217,8 +217,8 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
   if (!others.empty()) {
     std::string list;
     for (const auto &o : others) list += Format("%s%ld of type %s", list.empty() ? "" : ", ", o.second, DMPolytopeTypes[o.first]);
-    body.error = Format("%s: %ld tetrahedra and cells %s; a body is a mesh of linear tetrahedra only (in Gmsh: Mesh.SubdivisionAlgorithm 0, no Recombine)", name, (long)(cellvertices.size() / 4),
-                        list.c_str());
+    body.error =
+        Format("%s: %ld tetrahedra and cells %s; a body is a mesh of linear tetrahedra only (in Gmsh: Mesh.SubdivisionAlgorithm 0, no Recombine)", name, (long)(cellvertices.size() / 4), list.c_str());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (cellvertices.empty()) {
@@ -264,10 +264,10 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
         for (PetscInt d = 0; d < 3; d++) l2 += PetscSqr(body.coords[3 * id[a] + d] - body.coords[3 * id[b] + d]);
         lmax = std::max(lmax, std::sqrt(l2));
       }
-    const std::string which = Format("%s: tetrahedron %ld (DMPlex cell %" PetscInt_FMT ", vertices at (%g,%g,%g), (%g,%g,%g), (%g,%g,%g), (%g,%g,%g))", name, (long)t, c, (double)body.coords[3 * id[0]],
-                                     (double)body.coords[3 * id[0] + 1], (double)body.coords[3 * id[0] + 2], (double)body.coords[3 * id[1]], (double)body.coords[3 * id[1] + 1],
-                                     (double)body.coords[3 * id[1] + 2], (double)body.coords[3 * id[2]], (double)body.coords[3 * id[2] + 1], (double)body.coords[3 * id[2] + 2],
-                                     (double)body.coords[3 * id[3]], (double)body.coords[3 * id[3] + 1], (double)body.coords[3 * id[3] + 2]);
+    const std::string which = Format("%s: tetrahedron %ld (DMPlex cell %" PetscInt_FMT ", vertices at (%g,%g,%g), (%g,%g,%g), (%g,%g,%g), (%g,%g,%g))", name, (long)t, c,
+                                     (double)body.coords[3 * id[0]], (double)body.coords[3 * id[0] + 1], (double)body.coords[3 * id[0] + 2], (double)body.coords[3 * id[1]],
+                                     (double)body.coords[3 * id[1] + 1], (double)body.coords[3 * id[1] + 2], (double)body.coords[3 * id[2]], (double)body.coords[3 * id[2] + 1],
+                                     (double)body.coords[3 * id[2] + 2], (double)body.coords[3 * id[3]], (double)body.coords[3 * id[3] + 1], (double)body.coords[3 * id[3] + 2]);
     if (!std::isfinite(det)) {
       body.error = which + " has a coordinate that is not a finite number";
       PetscFunctionReturn(PETSC_SUCCESS);
@@ -326,7 +326,7 @@ PetscErrorCode CheckPlacement(MPI_Comm comm, DM dm, std::string &error)
 {
   PetscMPIInt rank, size, dmsize = 1;
   PetscInt    cells = 0, others = 0;
-  PetscBool   plex  = PETSC_TRUE, given = dm ? PETSC_TRUE : PETSC_FALSE;
+  PetscBool   plex = PETSC_TRUE, given = dm ? PETSC_TRUE : PETSC_FALSE;
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -489,7 +489,7 @@ PetscErrorCode ReadPhysicalNames(const char filename[], double *version, std::ve
   FILE *fp;
   char  line[4096];
   bool  insection = false, informat = false;
-  long  expected  = -1;
+  long  expected = -1;
 
   PetscFunctionBegin;
   names.clear();
@@ -557,8 +557,8 @@ PetscErrorCode ReadOnRankZero(const char filename[], DM *dm, std::string &error)
   PetscBool                 exists, multiset, multiple, isgmsh = PETSC_FALSE;
   double                    version = 0;
   std::vector<PhysicalName> names;
-  PetscErrorCode ierr;
-  size_t         len;
+  PetscErrorCode            ierr;
+  size_t                    len;
 
   PetscFunctionBegin;
   *dm = NULL;
@@ -585,7 +585,7 @@ PetscErrorCode ReadOnRankZero(const char filename[], DM *dm, std::string &error)
   PetscCall(PetscPopErrorHandler());
   if (multiple) PetscCall(PetscOptionsClearValue(NULL, "-dm_plex_gmsh_multiple_tags"));
   if (ierr) {
-    const char *text = NULL;
+    const char *text     = NULL;
     char       *specific = NULL;
     (void)PetscErrorMessage(ierr, &text, &specific);
     std::string why = specific && specific[0] ? specific : (text ? text : "unknown error");
