@@ -1109,8 +1109,10 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
       const SceneBody &body = impl.bodies[b];
       PetscCall(FEMGetTaggedNodes(impl.fem, (PetscInt)b, sel->tag.c_str(), &n, NULL, NULL, NULL));
       if (!body.mesh.empty())
-        PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG, "%s '%s' selects no boundary triangle of body %d, the mesh %s (conditions apply to triangle centroids)", sel->option.c_str(), sel->text.c_str(),
-                   (int)b, body.mesh.c_str());
+        PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG,
+                   "%s '%s' selects no boundary triangle of body %d, the mesh %s (conditions apply to triangle centroids; a surface between two volumes of the mesh is no boundary: make a body of "
+                   "each with -scene_body<b>_volume)",
+                   sel->option.c_str(), sel->text.c_str(), (int)b, body.mesh.c_str());
       PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG, "%s '%s' selects no boundary triangle of body %d, the box [%g,%g]x[%g,%g]x[%g,%g] (conditions apply to triangle centroids)", sel->option.c_str(),
                  sel->text.c_str(), (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1], (double)body.lower[2], (double)body.upper[2]);
     }

@@ -16,4 +16,5 @@ $w "$out/hexahedra.msh" $box --hexahedra
 head -c 1500 "$out/box-4.1.msh" >"$out/truncated.msh"
 head -c 3000 "$out/box-4.1-binary.msh" >"$out/truncated-binary.msh"
 gmsh -3 "$src/meshes/block-hole.geo" -o "$out/block-hole.msh" >"$out/block-hole.log" 2>&1 || { cat "$out/block-hole.log"; exit 1; }
+gmsh -3 "$src/meshes/two-volumes.geo" -o "$out/two-volumes.msh" >"$out/two-volumes.log" 2>&1 || { cat "$out/two-volumes.log"; exit 1; }
 echo "make-meshes.sh: meshes in $out"

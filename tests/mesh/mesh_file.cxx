@@ -32,7 +32,8 @@ static PetscErrorCode MatchNodes(FEM box, FEM mesh, std::vector<PetscInt> &map)
   map.assign(nb, -1);
   for (PetscInt n = 0; n < nb; n++) {
     auto it = where.find({xb[3 * n], xb[3 * n + 1], xb[3 * n + 2]});
-    PetscCheck(it != where.end(), PETSC_COMM_WORLD, PETSC_ERR_PLIB, "box node %" PetscInt_FMT " at (%g,%g,%g) is no node of the mesh", n, (double)xb[3 * n], (double)xb[3 * n + 1], (double)xb[3 * n + 2]);
+    PetscCheck(it != where.end(), PETSC_COMM_WORLD, PETSC_ERR_PLIB, "box node %" PetscInt_FMT " at (%g,%g,%g) is no node of the mesh", n, (double)xb[3 * n], (double)xb[3 * n + 1],
+               (double)xb[3 * n + 2]);
     map[n] = it->second;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -177,7 +178,8 @@ int main(int argc, char **argv)
         PetscCall(VecRestoreArrayRead(vm[q], &b));
       }
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "relative differences: K x %.2e, f %.2e, u %.2e\n", (double)(err[0] / scale[0]), (double)(err[1] / scale[1]), (double)(err[2] / scale[2])));
-    if (rank == 0) PetscCheck(scale[1] > 0 && err[0] < 1e-12 * scale[0] && err[1] < 1e-12 * scale[1] && err[2] < 1e-8 * scale[2], PETSC_COMM_SELF, PETSC_ERR_PLIB, "the body from the file differs from the box");
+    if (rank == 0)
+      PetscCheck(scale[1] > 0 && err[0] < 1e-12 * scale[0] && err[1] < 1e-12 * scale[1] && err[2] < 1e-8 * scale[2], PETSC_COMM_SELF, PETSC_ERR_PLIB, "the body from the file differs from the box");
     for (int q = 0; q < 3; q++) {
       PetscCall(VecDestroy(&vb[q]));
       PetscCall(VecDestroy(&vm[q]));
