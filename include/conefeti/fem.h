@@ -12,6 +12,7 @@
 #pragma once
 
 #include <petscmat.h>
+#include <petscdmplex.h>
 #include <conefeti/feti.h>
 
 /*S
@@ -96,6 +97,9 @@ PETSC_EXTERN PetscErrorCode FEMDestroy(FEM *);
 PETSC_EXTERN PetscErrorCode FEMAddBox(FEM, const PetscReal[3], const PetscReal[3], const PetscInt[3], PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMAddMesh(FEM, PetscInt, const PetscReal[], PetscInt, const PetscInt[], PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMAddFacetSet(FEM, PetscInt, const char[], PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode FEMAddDMPlex(FEM, DM, PetscInt *);
+PETSC_EXTERN PetscErrorCode FEMCreateDMPlexFromFile(MPI_Comm, const char[], DM *);
+PETSC_EXTERN PetscErrorCode FEMDMPlexGetFacetSetNames(DM, PetscInt *, char ***);
 PETSC_EXTERN PetscErrorCode FEMSetMaterial(FEM, PetscInt, PetscReal, PetscReal);
 PETSC_EXTERN PetscErrorCode FEMGetMaterial(FEM, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FEMTagFaces(FEM, PetscInt, const char[], FEMFacePredicate, void *);
