@@ -7,26 +7,27 @@
 # --quick   skip the long ones (the ablation tables, feti, qp)
 # --only    run only the named parts (below)
 #
-# The parts, what each writes and how long it took on the project's test machine (2 cores shared with
-# other jobs; an idle machine is about twice as fast):
+# The parts, what each writes and how long it takes. "measured": on the project's test machine (2 cores)
+# while other jobs shared it, at the commit of the page; "page": the time the page states for its command.
 #
 #   brick         docs/brick-benchmark.md: the defaults table and the paper's-tolerance table
-#                 (scripts/bench-brick.py at 1e-6 and 1e-4)                                       ~3 min
-#   accuracy      docs/accuracy-cost.md: monolithic from 1e-2 to 1e-8 (scripts/bench-accuracy.py)  ~1 min
+#                 (scripts/bench-brick.py at 1e-6 and 1e-4)                            1.5 min measured
+#   accuracy      docs/accuracy-cost.md: monolithic from 1e-2 to 1e-8 (scripts/bench-accuracy.py) 1 min page
 #   precision     docs/figures/work-precision*.png and docs/work-precision.md's table
-#                 (scripts/work-precision.py: brick, two bodies, 1e-1 to 1e-10)                 ~15-25 min
+#                 (scripts/work-precision.py: brick, two bodies, 1e-1 to 1e-10)       12.5 min measured
 #   solutions     docs/figures/solution-brick.png, solution-twobodies.png (build/conefeti -output,
-#                 scripts/render-solution.py)                                                      ~1 min
+#                 scripts/render-solution.py)                                         0.5 min measured
 #   ablations     docs/brick-ablations.md: every table (scripts/bench-brick.py --extra ...,
 #                 scripts/goals-brick.py); the prose beside them was written for the numbers at the
-#                 commits the page names, so read the diff                                       ~20 min
+#                 commits the page names, so read the diff                              ~10 min page
 #   feti          build/figures/feti-benchmark.md (scripts/bench-feti.py, as docs/feti-benchmark.md
-#                 says; copied into that page by hand: its tables are interleaved with text)     ~15 min
-#   qp            build/figures/qp-benchmark.md (scripts/bench-qp.sh; likewise by hand)           ~11 min
+#                 says; copied into that page by hand: its tables are interleaved with text) 15 min page
+#   qp            build/figures/qp-benchmark.md (scripts/bench-qp.sh; likewise by hand)       11 min page
 #
+# Everything: about 50 minutes, plus the build (3-6 min from clean); --quick: about 15 minutes.
 # Tables go into their pages between a marker `<!-- generated: NAME -->` and the end of the fenced block
 # after it (scripts/docs-block.py), with a first line "# made at commit <hash> on <machine>, <date>".
-# Everything at once takes about 1 h 15 min here. Needs python3-matplotlib (scripts/setup.sh).
+# Needs python3-matplotlib (scripts/setup.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
