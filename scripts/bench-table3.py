@@ -92,7 +92,7 @@ def main():
         say("### Coulomb algorithm `%s`" % algorithm)
         say()
         say("| n | paper: m | paper: Time | " + " | ".join("paper: Time%d" % p for p in polygons if p in (2, 4)) + " | m: disks | " +
-            " | ".join("m: k = %d" % p for p in polygons) + " | time [s]: disks | " + " | ".join("k = %d" % p for p in polygons) + " |")
+            " | ".join("m: k = %d" % p for p in polygons) + " | solve [s]: disks | " + " | ".join("k = %d" % p for p in polygons) + " |")
         say("|" + "---|" * (3 + len([p for p in polygons if p in (2, 4)]) + 1 + len(polygons) + 1 + len(polygons)))
         for k, disk, polys in rows:
             n = disk["n"]
