@@ -27,28 +27,40 @@ from seedpaper import brick_n
 PAPER = {900: (180, 2, 15, 61), 2646: (378, 12, 101, 548), 5832: (648, 38, 486, 2114), 10890: (990, 94, 1542, 7724), 18252: (1404, 254, 5004, 20534)}
 
 
-def run(build, k, polygon, algorithm, rtol, workdir, env, repeat):
-    """One configuration, run `repeat` times (the counts are the same every time; the time is the smallest)."""
+def run(build, k, polygon, algorithm, rtol, workdir, env, output):
+    """One run of one configuration: its JSON line (and, with output, the displacements of its HDF5 file)."""
     base = os.path.join(workdir, "k%d-p%d-%s" % (k, polygon, algorithm))
     cmd = [os.path.join(build, "conefeti"), "-options_file", "petsc-options/brick.opts", "-scene_refine", str(k), "-contact_friction_polygon", str(polygon),
-           "-contact_coulomb_algorithm", algorithm, "-contact_rtol", str(rtol), "-summary_table", "0", "-summary_json", base + ".json"]
-    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
-    best = None
-    for r in range(repeat):
-        out = subprocess.run(cmd + (["-output", base] if r == 0 else []), capture_output=True, text=True, env=env, cwd=root)
-        if out.returncode not in (0, 2) or not os.path.exists(base + ".json"):
-            sys.exit("bench-table3.py: conefeti failed (%s):\n%s" % (" ".join(cmd), (out.stdout + out.stderr)[-2000:]))
-        with open(base + ".json") as f:
-            s = json.load(f)
-        if best is None:
-            best = s
-        best["time_solve"] = min(best["time_solve"], s["time_solve"])
-        best["time_setup"] = min(best["time_setup"], s["time_setup"])
-    best["u"] = None
-    if os.path.exists(base + ".h5"):
+           "-contact_coulomb_algorithm", algorithm, "-contact_rtol", str(rtol), "-summary_table", "0", "-summary_json", base + ".json"] + (["-output", base] if output else [])
+    out = subprocess.run(cmd, capture_output=True, text=True, env=env, cwd=os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+    if out.returncode not in (0, 2) or not os.path.exists(base + ".json"):
+        sys.exit("bench-table3.py: conefeti failed (%s):\n%s" % (" ".join(cmd), (out.stdout + out.stderr)[-2000:]))
+    with open(base + ".json") as f:
+        s = json.load(f)
+    s["u"] = None
+    if output:
         with h5py.File(base + ".h5", "r") as h:
-            best["u"] = np.array(h["volume/displacement"])
-    return best
+            s["u"] = np.array(h["volume/displacement"])
+    return s
+
+
+def run_size(build, k, polygons, algorithm, rtol, env, repeat):
+    """The disks and every polygon at one size, interleaved `repeat` times (the machine's load then falls on all
+    of them alike); the counts are the same every time, the times are the smallest."""
+    best = {}
+    with tempfile.TemporaryDirectory() as wd:
+        for r in range(repeat):
+            for p in [0] + polygons:
+                s = run(build, k, p, algorithm, rtol, wd, env, r == 0)
+                if p not in best:
+                    best[p] = s
+                else:
+                    best[p]["time_solve"] = min(best[p]["time_solve"], s["time_solve"])
+    disk = best[0]
+    polys = [best[p] for p in polygons]
+    for s in polys:
+        s["err"] = float(np.linalg.norm(s["u"] - disk["u"]) / np.linalg.norm(disk["u"]))
+    return disk, polys
 
 
 def fmt_time(t):
@@ -61,7 +73,7 @@ def main():
     ap.add_argument("--polygons", default="2,4")
     ap.add_argument("--algorithms", default="monolithic,msa", help="Coulomb algorithms, each a table (the first is the default's)")
     ap.add_argument("--rtol", type=float, default=1e-6)
-    ap.add_argument("--repeat", type=int, default=3, help="runs per configuration; the times are the smallest")
+    ap.add_argument("--repeat", type=int, default=5, help="runs per configuration; the times are the smallest")
     ap.add_argument("--build", default="build")
     ap.add_argument("--hugepages", type=int, default=1, help="1: transparent huge pages (scripts/hugepages.py), 0: without")
     ap.add_argument("--markdown", default="", help="also write the tables into this file (between the markers of docs/table3.md)")
@@ -74,19 +86,13 @@ def main():
     say = lambda s="": (print(s), lines.append(s))
     commit = subprocess.run(["git", "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
     say("<!-- made by: scripts/bench-table3.py %s -->" % " ".join(sys.argv[1:]))
-    say("Command: `scripts/bench-table3.py %s` at commit %s on %s (%s, %d cores, 1 rank, %s, -contact_rtol %g; times: the solve, smallest of %d runs)." %
-        (" ".join(sys.argv[1:]), commit or "?", platform.node() or "?", platform.machine(), os.cpu_count() or 0, hugepages.describe(a.hugepages), a.rtol, a.repeat))
+    say("Command: `scripts/bench-table3.py %s` at commit %s on %s (%s, %d cores, 1 rank, %s, -contact_rtol %g; times: the solve, smallest of %d interleaved runs; load average %.1f at the start)." %
+        (" ".join(sys.argv[1:]), commit or "?", platform.node() or "?", platform.machine(), os.cpu_count() or 0, hugepages.describe(a.hugepages), a.rtol, a.repeat, os.getloadavg()[0]))
     t_all = time.time()
     for algorithm in a.algorithms.split(","):
         rows = []
         for k in sizes:
-            with tempfile.TemporaryDirectory() as wd:
-                disk = run(build, k, 0, algorithm, a.rtol, wd, env, a.repeat)
-                polys = [run(build, k, p, algorithm, a.rtol, wd, env, a.repeat) for p in polygons]
-                for s in polys:
-                    s["err"] = float(np.linalg.norm(s["u"] - disk["u"]) / np.linalg.norm(disk["u"])) if s["u"] is not None and disk["u"] is not None else float("nan")
-                for s in [disk] + polys:
-                    s["u"] = None
+            disk, polys = run_size(build, k, polygons, algorithm, a.rtol, env, a.repeat)
             rows.append((k, disk, polys))
         say()
         say("### Coulomb algorithm `%s`" % algorithm)
