@@ -353,6 +353,9 @@ PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name
   none unless chosen; with bounds a PC M preconditions the CG steps in face, z = [M^-1]_FF g_F on the
   free entries F (see `TaoQPGetPC()`).
 
+  References:
+. * - Z. Dostal, J. Schoberl, Minimizing quadratic functions over non-negative cone with the rate of convergence and finite termination, Computational Optimization and Applications (2005)
+
   Level: beginner
 
 .seealso: `KSPMPGP`, `TAOMPRGP`, `KSPMPRGPSetBounds()`
@@ -373,6 +376,9 @@ PETSC_INTERN PetscErrorCode KSPCreate_MPRGP(KSP ksp)
 
   Notes:
   The set comes from `KSPQPSetConstraints()`; bounds as for `KSPMPRGP`.
+
+  References:
+. * - R. Kucera, Convergence rate of an optimization algorithm for minimizing quadratic functions with separable convex constraints, SIAM J. Optim. (2008)
 
   Level: beginner
 
