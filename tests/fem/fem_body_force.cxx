@@ -37,8 +37,8 @@ static PetscReal Integral(int c, int d)
 
 int main(int argc, char **argv)
 {
-  FEM                fem;
-  Mat                K;
+  FEM       fem;
+  Mat       K;
   Vec       f;
   PetscReal lo[3] = {0, 0, 0}, lo2[3] = {5, 0, 0}, hi2[3] = {6, 1, 1}, R[3], M[3], sums[3], origin[3] = {0, 0, 0}, fr[3], mr[3], magnitude;
   PetscInt  cells[3] = {3, 2, 5}, cells2[3] = {1, 1, 1}, body, other, parts[3] = {2, 1, 2}, one[3] = {1, 1, 1};

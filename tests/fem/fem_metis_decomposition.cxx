@@ -35,7 +35,7 @@ static bool FaceConnected(PetscInt ne, const PetscInt *conn, const PetscInt *nod
       adj[kv.second[1]].push_back(kv.second[0]);
     }
   std::vector<char>     seen(ne, 0);
-  std::vector<PetscInt> stack = {0};
+  std::vector<PetscInt> stack   = {0};
   PetscInt              reached = 0;
   if (ne == 0) return false;
   seen[0] = 1;
