@@ -13,6 +13,7 @@ packages=(
   openmpi-bin                           # mpiexec for the parallel tests
   clang-format                          # style check (a test)
   python3 python3-numpy python3-h5py    # result checks and benchmark tables
+  gmsh python3-gmsh                     # meshes of your own geometry (meshes/*.geo); the mesh-file tests make theirs at test time
 )
 
 missing=()
