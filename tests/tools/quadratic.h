@@ -1,7 +1,8 @@
-/* The quadratic q(x) = 1/2 x'Ax - b'x as TAO callbacks, shared by the unmodified host programs
-   (plain_tao.c, obstacle_tao.c, equality_tao.c); they include only PETSc, not conefeti. */
-#ifndef CONEFETI_TESTS_HOST_QUADRATIC_H
-#define CONEFETI_TESTS_HOST_QUADRATIC_H
+/* The quadratic q(x) = 1/2 x'Ax - b'x as TAO callbacks, shared by the test programs (tests/host's
+   unmodified PETSc programs, which include only PETSc, and tests/qp); tests/CMakeLists.txt puts this
+   folder on every test's include path. */
+#ifndef CONEFETI_TESTS_TOOLS_QUADRATIC_H
+#define CONEFETI_TESTS_TOOLS_QUADRATIC_H
 #include <petsctao.h>
 
 typedef struct {
