@@ -11,7 +11,7 @@ typedef struct {
 } Quadratic;
 
 /* f = 1/2 x'Ax - b'x, g = Ax - b */
-static PetscErrorCode QuadraticObjectiveGradient(Tao tao, Vec x, PetscReal *f, Vec g, void *ctx)
+static inline PetscErrorCode QuadraticObjectiveGradient(Tao tao, Vec x, PetscReal *f, Vec g, void *ctx)
 {
   Quadratic  *q = (Quadratic *)ctx;
   PetscScalar xg, xb;
@@ -27,7 +27,7 @@ static PetscErrorCode QuadraticObjectiveGradient(Tao tao, Vec x, PetscReal *f, V
 }
 
 /* the Hessian is the constant A, set once with TaoSetHessian() */
-static PetscErrorCode QuadraticHessian(Tao tao, Vec x, Mat H, Mat Hpre, void *ctx)
+static inline PetscErrorCode QuadraticHessian(Tao tao, Vec x, Mat H, Mat Hpre, void *ctx)
 {
   (void)tao;
   (void)x;
