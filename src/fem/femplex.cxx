@@ -278,7 +278,8 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
     }
     PetscCall(DMPlexComputeCellGeometryAffineFEM(dm, c, v0, J, NULL, &detJ));
     if (detJ < 0) {
-      body.error = Format("%s is inverted (negative volume %g): its vertices are listed in the wrong order in the mesh", which.c_str(), (double)(-std::fabs(det) / 6));
+      body.error = Format("%s is inverted (negative volume %g in DMPlex's orientation convention, which is the reverse of Gmsh's and Exodus's): its vertices are listed in the wrong order in the mesh",
+                          which.c_str(), (double)(-std::fabs(det) / 6));
       PetscFunctionReturn(PETSC_SUCCESS);
     }
     if (det < 0) std::swap(id[1], id[2]);
