@@ -388,7 +388,7 @@ PetscErrorCode BcastString(MPI_Comm comm, std::string &s)
   cells must all be on rank 0: either a sequential `DM` on rank 0 (the other ranks pass NULL or their own,
   ignored, copy), or a `DM` on the model's communicator that has not been distributed (`DMPlexDistribute()`);
   the model decomposes the body itself (METIS, -fem_subdomains). Rank 0 holds the `DM` and the converted
-  arrays; `FEMAddMesh()` broadcasts a copy (coordinates and connectivity, about 40 bytes per tetrahedron) to
+  arrays; `FEMAddMesh()` broadcasts a copy (coordinates and connectivity) to
   every rank.
 
   Cells keep DMPlex's orientation convention: a cell that PETSc's geometry finds inverted (|J| < 0, for a Gmsh

@@ -37,7 +37,7 @@ static void Cube(std::vector<PetscReal> &X, std::vector<PetscInt> &tets)
       for (PetscInt i = 0; i < N; i++)
         for (PetscInt t = 0; t < 6; t++) {
           PetscInt off[3] = {0, 0, 0}, v[4];
-          v[0] = Node(i, j, k);
+          v[0]            = Node(i, j, k);
           for (PetscInt s = 0; s < 3; s++) {
             off[kuhn[t][s]] = 1;
             v[s + 1]        = Node(i + off[0], j + off[1], k + off[2]);
@@ -91,8 +91,8 @@ static PetscErrorCode Run(const char *casename)
   PetscCall(FEMSetMaterial(mesh, body, 2e11, 0.3));
   PetscCall(FEMSetDirichlet(mesh, body, "z0", NULL));
   {
-    PetscMPIInt    size;
-    PetscInt       parts[3] = {1, 1, 1};
+    PetscMPIInt size;
+    PetscInt    parts[3] = {1, 1, 1};
     PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
     parts[0] = size;
     PetscCall(FEMSetDecomposition(mesh, body, FEM_DECOMPOSITION_METIS, parts));
@@ -118,7 +118,8 @@ static PetscErrorCode Run(const char *casename)
       const PetscReal *x  = &xm[3 * nodesm[i]];
       const PetscInt   id = Node((PetscInt)std::lround(x[0] * N), (PetscInt)std::lround(x[1] * N), (PetscInt)std::lround(x[2] * N));
       const PetscInt  *j  = std::lower_bound(nodesb, nodesb + nb, id);
-      PetscCheck(j < nodesb + nb && *j == id, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "node %" PetscInt_FMT " of loaded, at (%g,%g,%g), is no node of z1", nodesm[i], (double)x[0], (double)x[1], (double)x[2]);
+      PetscCheck(j < nodesb + nb && *j == id, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "node %" PetscInt_FMT " of loaded, at (%g,%g,%g), is no node of z1", nodesm[i], (double)x[0], (double)x[1],
+                 (double)x[2]);
       const PetscInt k = (PetscInt)(j - nodesb);
       err              = PetscMax(err, PetscAbsReal(am[i] - ab[k]));
       for (int d = 0; d < 3; d++) err = PetscMax(err, PetscAbsReal(nrm[3 * i + d] - nrb[3 * k + d]));
