@@ -1,6 +1,6 @@
 /* Layer fem: bodies as P1 tetrahedral meshes (generated for boxes, or given: FEMAddMesh(), FEMAddDMPlex()),
    linear elasticity, decomposition into subdomains (structured for boxes, or METIS), and the constraint rows
-   (gluing, Dirichlet, appended contact rows) that turn a scene into a FETI problem (see conefeti/feti.h).
+   (gluing, Dirichlet, and the caller's contact rows) that turn a scene into a FETI problem (see conefeti/feti.h).
 
    Numbering used throughout:
      body node     a given mesh: its own node numbers; a box: node (i,j,k), 0 <= i <= nx, ...; id = i + (nx+1)*(j + (ny+1)*k)
@@ -123,10 +123,10 @@ PETSC_EXTERN PetscErrorCode FEMGetTaggedNodes(FEM, PetscInt, const char[], Petsc
 PETSC_EXTERN PetscErrorCode FEMGetNodeCopies(FEM, PetscInt, PetscInt, PetscInt *, const PetscInt **, const PetscInt **);
 PETSC_EXTERN PetscErrorCode FEMGetNumSubdomains(FEM, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMGetSubdomainMesh(FEM, PetscInt, PetscInt *, PetscInt *, const PetscInt **, PetscInt *, const PetscInt **);
-PETSC_EXTERN PetscErrorCode FEMAddConstraintRows(FEM, PetscInt, const FETIRowKind[], const PetscInt[], const PetscInt[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[]);
-PETSC_EXTERN PetscErrorCode FEMGetAppendedRows(FEM, PetscInt *, const PetscInt **);
 
 PETSC_EXTERN PetscErrorCode FEMCreateFETI(FEM, FETI *);
+PETSC_EXTERN PetscErrorCode FEMCreateFETIWithRows(FEM, PetscInt, const FETIRowKind[], const PetscInt[], const PetscInt[], const PetscInt[], const PetscInt[], const PetscScalar[], const PetscScalar[],
+                                                  PetscInt[], FETI *);
 PETSC_EXTERN PetscErrorCode FEMAssembleGlobal(FEM, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode FEMComputeLoadResultant(FEM, PetscInt, const PetscReal[3], PetscReal[3], PetscReal[3], PetscReal *);
 PETSC_EXTERN PetscErrorCode FEMCreateGlobalCoordinates(FEM, Vec *);

@@ -152,8 +152,9 @@ std::vector<std::array<PetscReal, 3>> RowDirections(const ContactModelData &d, c
   return dirs;
 }
 
-/* the rows of all contact nodes, appended to the model's B in node order (N, then T1, T2 or the polygon's rows) */
-PetscErrorCode AppendRows(ContactModel cm)
+/* the FETI problem with the rows of all contact nodes in B, in node order (N, then T1, T2 or the polygon's rows);
+   d.rows learns where each went */
+PetscErrorCode CreateFETIWithContactRows(ContactModel cm)
 {
   ContactModelData        &d = *cm->data;
   std::vector<FETIRowKind> kinds;
@@ -183,7 +184,8 @@ PetscErrorCode AppendRows(ContactModel cm)
       rhs.push_back(r == 0 ? k.gap : 0.0);
     }
   }
-  if (!kinds.empty()) PetscCall(FEMAddConstraintRows(d.fem, (PetscInt)kinds.size(), kinds.data(), rowptr.data(), body.data(), node.data(), comp.data(), coef.data(), rhs.data()));
+  PetscCallCXX(d.rows.assign(kinds.size(), -1));
+  PetscCall(FEMCreateFETIWithRows(d.fem, (PetscInt)kinds.size(), kinds.data(), rowptr.data(), body.data(), node.data(), comp.data(), coef.data(), rhs.data(), d.rows.data(), &d.feti));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -191,14 +193,13 @@ PetscErrorCode AppendRows(ContactModel cm)
 PetscErrorCode BuildContactProblem(ContactModel cm)
 {
   ContactModelData &d = *cm->data;
-  PetscInt          nrows, rstart, rend;
-  const PetscInt   *rows;
+  PetscInt          rstart, rend;
+  const PetscInt   *rows = d.rows.data();
   Mat               F, Q;
   Vec               h, e, lt;
   const char       *prefix;
 
   PetscFunctionBegin;
-  PetscCall(FEMGetAppendedRows(d.fem, &nrows, &rows));
   PetscCall(VecGetOwnershipRange(d.lambda, &rstart, &rend));
   for (size_t k = 0; k < d.nodes.size(); k++) {
     const PetscInt r = rows[d.nodes[k].first_row];
@@ -434,7 +435,6 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   }
   PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG,
              "the contact zones have no admissible node (all fixed, or no matching nodes between bodies)");
-  PetscCall(AppendRows(cm));
   /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported
      as converged); named here, before any factorization (contactrigidmotions.cxx) */
   {
@@ -446,7 +446,7 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
     }
     PetscCall(ContactCheckRigidMotions_Private(cm, d->fem, d->zones, holding));
   }
-  PetscCall(FEMCreateFETI(d->fem, &d->feti));
+  PetscCall(CreateFETIWithContactRows(cm));
   /* contact needs hundreds of F products: dense K+ blocks on the interface pay for their setup (-feti_kplus_explicit) */
   if (!d->zones.empty()) PetscCall(FETISetKplusExplicit(d->feti, PETSC_TRUE));
   PetscCall(FETISetFromOptions(d->feti));

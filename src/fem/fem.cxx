@@ -865,7 +865,7 @@ PetscErrorCode FEMGetBodyNodeOffset(FEM fem, PetscInt body, PetscInt *offset)
 
   Level: intermediate
 
-.seealso: `FEMTagFaces()`, `FEMGetNodeCopies()`, `FEMAddConstraintRows()`
+.seealso: `FEMTagFaces()`, `FEMGetNodeCopies()`, `FEMCreateFETIWithRows()`
 @*/
 PetscErrorCode FEMGetTaggedNodes(FEM fem, PetscInt body, const char tag[], PetscInt *n, const PetscInt **nodes, const PetscReal **areas, const PetscReal **normals)
 {
@@ -901,7 +901,7 @@ PetscErrorCode FEMGetTaggedNodes(FEM fem, PetscInt body, const char tag[], Petsc
 
   Level: intermediate
 
-.seealso: `FEMAddConstraintRows()`, `FEMGetTaggedNodes()`
+.seealso: `FEMCreateFETIWithRows()`, `FEMGetTaggedNodes()`
 @*/
 PetscErrorCode FEMGetNodeCopies(FEM fem, PetscInt body, PetscInt node, PetscInt *ncopies, const PetscInt **subdomains, const PetscInt **dofs)
 {
@@ -977,88 +977,6 @@ PetscErrorCode FEMGetSubdomainMesh(FEM fem, PetscInt s, PetscInt *body, PetscInt
   if (nodes) *nodes = sd.nodes.data();
   if (nelements) *nelements = (PetscInt)sd.elements.size();
   if (conn) *conn = sd.conn.data();
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/*@C
-  FEMAddConstraintRows - Append constraint rows (e.g. contact) to the B the model will build, in body-node terms.
-
-  Collective (the same rows on every rank)
-
-  Input Parameters:
-+ fem    - the model, set up
-. nrows  - number of rows
-. kinds  - kind of each row (typically `FETI_ROW_CONTACT_NORMAL` or `FETI_ROW_CONTACT_TANGENTIAL`)
-. rowptr - nrows + 1 offsets: row r has the terms rowptr[r] <= t < rowptr[r+1]
-. body   - per term: the body
-. node   - per term: the body node (on the body's boundary)
-. comp   - per term: the displacement component 0, 1, 2
-. coef   - per term: the coefficient
-- rhs    - per row: the right-hand side c (the gap for a contact row)
-
-  Notes:
-  Row r reads sum_t coef[t] u(body[t], node[t])[comp[t]] (<= or =) rhs[r]. A node held by several
-  subdomains is addressed through its copy in the lowest subdomain (the copies are glued).
-  The rows are placed with the rank owning the lowest subdomain they touch, after that subdomain's
-  gluing and Dirichlet rows and in the order given; consecutive rows of the same call stay consecutive
-  there (so a normal and its two tangential rows form one block on one rank). `FEMGetAppendedRows()`
-  tells where each row ended up. Call before `FEMCreateFETI()`.
-
-  Level: intermediate
-
-.seealso: `FEMGetAppendedRows()`, `FEMGetNodeCopies()`, `FEMCreateFETI()`
-@*/
-PetscErrorCode FEMAddConstraintRows(FEM fem, PetscInt nrows, const FETIRowKind kinds[], const PetscInt rowptr[], const PetscInt body[], const PetscInt node[], const PetscInt comp[],
-                                    const PetscScalar coef[], const PetscScalar rhs[])
-{
-  FEM_Impl &impl = *fem->impl;
-
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
-  PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMSetUp() before FEMAddConstraintRows()");
-  for (PetscInt r = 0; r < nrows; r++) {
-    FEMAppendedRow row;
-    PetscCheck(rowptr[r + 1] > rowptr[r], PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Appended row %" PetscInt_FMT " has no term", r);
-    row.kind = kinds[r];
-    row.rhs  = rhs ? rhs[r] : 0.0;
-    for (PetscInt t = rowptr[r]; t < rowptr[r + 1]; t++) {
-      PetscCall(CheckSetUpBody(fem, body[t]));
-      PetscCheck(comp[t] >= 0 && comp[t] < 3, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "Appended row %" PetscInt_FMT ": component %" PetscInt_FMT " must be 0, 1 or 2", r, comp[t]);
-      PetscCheck(impl.copies.Find(body[t], node[t]) >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
-                 "Appended row %" PetscInt_FMT ": node %" PetscInt_FMT " of body %" PetscInt_FMT " is not on the body's boundary", r, node[t], body[t]);
-      PetscCallCXX(row.body.push_back(body[t]));
-      PetscCallCXX(row.node.push_back(node[t]));
-      PetscCallCXX(row.comp.push_back(comp[t]));
-      PetscCallCXX(row.coef.push_back(coef[t]));
-    }
-    PetscCallCXX(impl.appended.push_back(row));
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/*@C
-  FEMGetAppendedRows - Where the rows given to `FEMAddConstraintRows()` are in B (the multiplier indices).
-
-  Not Collective
-
-  Input Parameter:
-. fem - the model, after `FEMCreateFETI()`
-
-  Output Parameters:
-+ n    - number of appended rows (all calls together)
-- rows - global row of B (multiplier index) of each, in the order appended (do not free)
-
-  Level: intermediate
-
-.seealso: `FEMAddConstraintRows()`
-@*/
-PetscErrorCode FEMGetAppendedRows(FEM fem, PetscInt *n, const PetscInt **rows)
-{
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
-  PetscCheck(fem->impl->appendedrows.size() == fem->impl->appended.size(), PetscObjectComm((PetscObject)fem), PETSC_ERR_ORDER, "Call FEMCreateFETI() before FEMGetAppendedRows()");
-  if (n) *n = (PetscInt)fem->impl->appendedrows.size();
-  if (rows) *rows = fem->impl->appendedrows.data();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,5 +1,6 @@
 /* From the decomposed model to the FETI input: subdomain matrices and loads, coordinates, Dirichlet
-   dofs (primal mode), and the constraint matrix B with its row kinds and right-hand side.
+   dofs (primal mode), and the constraint matrix B with its row kinds and right-hand side, including the rows
+   the caller hands over (FEMCreateFETIWithRows(): contact).
 
    Gluing: at a node held by k >= 2 subdomains (copies 0..k-1 in increasing subdomain order) each
    free component gets the k-1 Helmert rows
@@ -22,7 +23,15 @@ struct LocalRow {
   FETIRowKind           kind;
   std::vector<RowEntry> entries;
   PetscScalar           rhs;
-  PetscInt              appended; /* index into the appended rows, or -1 */
+  PetscInt              extra; /* index into the caller's rows, or -1 */
+};
+
+/* A row of the caller's (contact) in body-node terms */
+struct ExtraRow {
+  FETIRowKind              kind;
+  std::vector<PetscInt>    body, node, comp;
+  std::vector<PetscScalar> coef;
+  PetscScalar              rhs;
 };
 
 /* Primal dof of the lowest copy of a body node component */
@@ -36,21 +45,49 @@ static PetscErrorCode FirstCopyDof(FEM_Impl &impl, PetscInt body, PetscInt node,
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
+/* The caller's rows, checked: every term on a boundary node of an existing body */
+static PetscErrorCode GatherExtraRows(FEM fem, PetscInt nrows, const FETIRowKind kinds[], const PetscInt rowptr[], const PetscInt body[], const PetscInt node[], const PetscInt comp[],
+                                      const PetscScalar coef[], const PetscScalar rhs[], std::vector<ExtraRow> &extra)
 {
-  FEM_Impl                          &impl = *fem->impl;
-  std::vector<std::vector<PetscInt>> appendedbyanchor(impl.nlocal);
+  FEM_Impl &impl = *fem->impl;
 
   PetscFunctionBegin;
-  for (size_t a = 0; a < impl.appended.size(); a++) {
-    const FEMAppendedRow &r      = impl.appended[a];
-    PetscInt              anchor = PETSC_MAX_INT;
+  for (PetscInt r = 0; r < nrows; r++) {
+    ExtraRow row;
+    PetscCheck(rowptr[r + 1] > rowptr[r], PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FEMCreateFETIWithRows(): row %" PetscInt_FMT " has no term", r);
+    row.kind = kinds[r];
+    row.rhs  = rhs ? rhs[r] : 0.0;
+    for (PetscInt t = rowptr[r]; t < rowptr[r + 1]; t++) {
+      PetscCheck(body[t] >= 0 && body[t] < (PetscInt)impl.bodies.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                 "FEMCreateFETIWithRows(): row %" PetscInt_FMT ": body %" PetscInt_FMT " does not exist", r, body[t]);
+      PetscCheck(comp[t] >= 0 && comp[t] < 3, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "FEMCreateFETIWithRows(): row %" PetscInt_FMT ": component %" PetscInt_FMT " must be 0, 1 or 2", r, comp[t]);
+      PetscCheck(impl.copies.Find(body[t], node[t]) >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                 "FEMCreateFETIWithRows(): row %" PetscInt_FMT ": node %" PetscInt_FMT " of body %" PetscInt_FMT " is not on the body's boundary", r, node[t], body[t]);
+      PetscCallCXX(row.body.push_back(body[t]));
+      PetscCallCXX(row.node.push_back(node[t]));
+      PetscCallCXX(row.comp.push_back(comp[t]));
+      PetscCallCXX(row.coef.push_back(coef[t]));
+    }
+    PetscCallCXX(extra.push_back(std::move(row)));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode BuildRows(FEM fem, const std::vector<ExtraRow> &extra, std::vector<LocalRow> &rows)
+{
+  FEM_Impl                          &impl = *fem->impl;
+  std::vector<std::vector<PetscInt>> extrabyanchor(impl.nlocal);
+
+  PetscFunctionBegin;
+  for (size_t a = 0; a < extra.size(); a++) {
+    const ExtraRow &r      = extra[a];
+    PetscInt        anchor = PETSC_MAX_INT;
     for (size_t t = 0; t < r.body.size(); t++) {
       PetscInt dof = -1, sub = -1;
       PetscCall(FirstCopyDof(impl, r.body[t], r.node[t], r.comp[t], &dof, &sub));
       anchor = std::min(anchor, sub);
     }
-    if (anchor >= impl.firstlocal && anchor < impl.firstlocal + impl.nlocal) PetscCallCXX(appendedbyanchor[anchor - impl.firstlocal].push_back((PetscInt)a));
+    if (anchor >= impl.firstlocal && anchor < impl.firstlocal + impl.nlocal) PetscCallCXX(extrabyanchor[anchor - impl.firstlocal].push_back((PetscInt)a));
   }
   for (PetscInt s = 0; s < impl.nlocal; s++) {
     const FEMSubdomain &sd = impl.local[s];
@@ -76,9 +113,9 @@ static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
         }
       }
     }
-    for (PetscInt a : appendedbyanchor[s]) {
-      const FEMAppendedRow &r = impl.appended[a];
-      LocalRow              row{r.kind, {}, r.rhs, a};
+    for (PetscInt a : extrabyanchor[s]) {
+      const ExtraRow &r = extra[a];
+      LocalRow        row{r.kind, {}, r.rhs, a};
       for (size_t t = 0; t < r.body.size(); t++) {
         PetscInt dof = -1, sub = -1;
         PetscCall(FirstCopyDof(impl, r.body[t], r.node[t], r.comp[t], &dof, &sub));
@@ -92,12 +129,12 @@ static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
 
 /*@C
   FEMCreateFETI - Build the FETI problem of the model: subdomain stiffness matrices, loads, coordinates,
-  Dirichlet dofs (primal mode) and the constraint matrix B with gluing, Dirichlet and appended rows.
+  Dirichlet dofs (primal mode) and the constraint matrix B with gluing and Dirichlet rows.
 
   Collective
 
   Input Parameter:
-. fem - the model, set up (and with any `FEMAddConstraintRows()` done)
+. fem - the model, set up
 
   Output Parameter:
 . feti - the FETI problem, not yet set up: call `FETISetFromOptions()` and `FETISetUp()` (its options prefix is the model's)
@@ -117,22 +154,65 @@ static PetscErrorCode BuildRows(FEM fem, std::vector<LocalRow> &rows)
 
   Level: beginner
 
-.seealso: `FEMSetUp()`, `FETISetUp()`, `FETISolveLinear()`, `FEMAddConstraintRows()`
+.seealso: `FEMSetUp()`, `FETISetUp()`, `FETISolveLinear()`, `FEMCreateFETIWithRows()`
 @*/
 PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
+{
+  PetscFunctionBegin;
+  PetscCall(FEMCreateFETIWithRows(fem, 0, NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, feti));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMCreateFETIWithRows - Build the FETI problem of the model (`FEMCreateFETI()`) with more constraint rows in B, given in
+  body-node terms (the rows of contact).
+
+  Collective (the same rows on every rank)
+
+  Input Parameters:
++ fem    - the model, set up
+. nrows  - number of rows
+. kinds  - kind of each row (typically `FETI_ROW_CONTACT_NORMAL` or `FETI_ROW_CONTACT_TANGENTIAL`)
+. rowptr - nrows + 1 offsets: row r has the terms rowptr[r] <= t < rowptr[r+1]
+. body   - per term: the body
+. node   - per term: the body node (on the body's boundary)
+. comp   - per term: the displacement component 0, 1, 2
+. coef   - per term: the coefficient
+- rhs    - per row: the right-hand side c (the gap for a contact row), or NULL for zeros
+
+  Output Parameters:
++ rowindex - per row: its global row in B (its multiplier index), the same on every rank (may be NULL)
+- feti     - the new FETI object, not yet set up
+
+  Notes:
+  Row r reads sum_t coef[t] u(body[t], node[t])[comp[t]] (<= or =) rhs[r]. A node held by several subdomains is
+  addressed through its copy in the lowest subdomain (the copies are glued). The rows are placed with the rank
+  owning the lowest subdomain they touch, after that subdomain's gluing and Dirichlet rows and in the order given;
+  consecutive rows stay consecutive there (so a normal and its two tangential rows form one block on one rank).
+  The model keeps none of them: they pass through, from the caller to the FETI object.
+
+  Level: intermediate
+
+.seealso: `FEMCreateFETI()`, `FEMGetNodeCopies()`, `FEMGetTaggedNodes()`
+@*/
+PetscErrorCode FEMCreateFETIWithRows(FEM fem, PetscInt nextra, const FETIRowKind kinds[], const PetscInt rowptr[], const PetscInt body[], const PetscInt node[], const PetscInt comp[],
+                                     const PetscScalar coef[], const PetscScalar rhs[], PetscInt rowindex[], FETI *feti)
 {
   FEM_Impl             &impl = *fem->impl;
   MPI_Comm              comm = PetscObjectComm((PetscObject)fem);
   std::vector<Mat>      K(impl.nlocal);
   std::vector<Vec>      f(impl.nlocal);
   std::vector<LocalRow> rows;
+  std::vector<ExtraRow> extra;
   PetscInt              nprimal = 0, first, nrows, firstrow;
   const char           *prefix;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
-  PetscAssertPointer(feti, 2);
+  PetscAssertPointer(feti, 11);
   PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FEMSetUp() before FEMCreateFETI()");
+  PetscCheck(nextra >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "FEMCreateFETIWithRows(): %" PetscInt_FMT " rows", nextra);
+  PetscCall(GatherExtraRows(fem, nextra, kinds, rowptr, body, node, comp, coef, rhs, extra));
   PetscCall(FETICreate(comm, feti));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)fem, &prefix));
   PetscCall(FETISetOptionsPrefix(*feti, prefix));
@@ -185,7 +265,7 @@ PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, impl.dirichletrows.data(), (PetscMPIInt)impl.nsubdomains, MPIU_INT, MPI_MAX, comm));
 
   /* B: rows numbered rank by rank */
-  PetscCall(BuildRows(fem, rows));
+  PetscCall(BuildRows(fem, extra, rows));
   nrows = (PetscInt)rows.size();
   PetscCallMPI(MPI_Scan(&nrows, &firstrow, 1, MPIU_INT, MPI_SUM, comm));
   firstrow -= nrows;
@@ -195,14 +275,14 @@ PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
     Vec                      c;
     std::vector<PetscInt>    dnnz(nrows), onnz(nrows);
     std::vector<FETIRowKind> kinds(nrows);
-    std::vector<PetscInt>    appendedrows(impl.appended.size(), -1);
+    std::vector<PetscInt>    extrarows(nextra, -1);
     for (PetscInt r = 0; r < nrows; r++) {
       for (const RowEntry &e : rows[r].entries) {
         if (e.col >= first && e.col < first + nprimal) dnnz[r]++;
         else onnz[r]++;
       }
       kinds[r] = rows[r].kind;
-      if (rows[r].appended >= 0) appendedrows[rows[r].appended] = firstrow + r;
+      if (rows[r].extra >= 0) extrarows[rows[r].extra] = firstrow + r;
     }
     PetscCall(MatCreate(comm, &B));
     PetscCall(MatSetSizes(B, nrows, nprimal, PETSC_DETERMINE, PETSC_DETERMINE));
@@ -221,9 +301,9 @@ PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
     PetscCall(FETISetConstraints(*feti, B, c, kinds.data()));
     PetscCall(MatDestroy(&B));
     PetscCall(VecDestroy(&c));
-    /* every rank learns where every appended row went */
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, appendedrows.data(), (PetscMPIInt)appendedrows.size(), MPIU_INT, MPI_MAX, comm));
-    impl.appendedrows = appendedrows;
+    /* every rank learns where every extra row went */
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, extrarows.data(), (PetscMPIInt)nextra, MPIU_INT, MPI_MAX, comm));
+    if (rowindex) std::copy(extrarows.begin(), extrarows.end(), rowindex);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

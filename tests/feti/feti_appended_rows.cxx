@@ -1,4 +1,4 @@
-/* Rows appended in body-node terms (FEMAddConstraintRows(), as the contact layer will add them) reach B
+/* Rows appended in body-node terms (FEMCreateFETIWithRows(), as the contact layer hands them over) reach B
    with their kind and right-hand side, and act on the right dofs: a clamped bar whose bottom face z0
    gets one row u_z = 0 per node (kind contact-normal, gap 0, solved here as equalities) must give the
    same displacements as the undecomposed direct solve with u_z = 0 imposed on z0 as a Dirichlet
@@ -34,7 +34,8 @@ int main(int argc, char **argv)
   KSP                ksp;
   PC                 pc;
   PetscInt           n, nappended, rstart, rend;
-  const PetscInt    *nodes, *rows;
+  const PetscInt    *nodes;
+  PetscInt          *rows;
   const FETIRowKind *kinds;
   PetscReal          err, norm, da, na;
   PetscBool          x0;
@@ -65,14 +66,14 @@ int main(int argc, char **argv)
       ptr[m + 1] = m + 1;
       m++;
     }
-    PetscCall(FEMAddConstraintRows(fem, m, k, ptr, body, node, comp, coef, rhs));
+    PetscCall(PetscMalloc1(m, &rows));
+    PetscCall(FEMCreateFETIWithRows(fem, m, k, ptr, body, node, comp, coef, rhs, rows, &feti));
+    nappended = m;
     PetscCall(PetscFree7(k, ptr, body, node, comp, coef, rhs));
   }
-  PetscCall(FEMCreateFETI(fem, &feti));
   PetscCall(FETISetFromOptions(feti));
   PetscCall(FETISetUp(feti));
   /* the appended rows are in B with their kind */
-  PetscCall(FEMGetAppendedRows(fem, &nappended, &rows));
   PetscCall(FETIGetConstraints(feti, NULL, &c, &kinds));
   PetscCall(VecGetOwnershipRange(c, &rstart, &rend));
   for (PetscInt i = 0; i < nappended; i++)
@@ -122,6 +123,7 @@ int main(int argc, char **argv)
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "alpha without the appended rows differs by %.2e relative\n", (double)(da / na)));
   PetscCheck(da <= 1e-6 * na, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "alpha from a partial mask differs: %g", (double)(da / na));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "appended rows behave\n"));
+  PetscCall(PetscFree(rows));
 
   PetscCall(KSPDestroy(&ksp));
   PetscCall(MatDestroy(&K));

@@ -17,6 +17,7 @@ struct ContactModelData {
   FEM                          fem = nullptr;
   std::vector<ContactZone>     zones;
   std::vector<ContactNodeInfo> nodes;     /* all contact nodes, the same on every rank */
+  std::vector<PetscInt>        rows;      /* multiplier index of each contact row (node k's rows start at nodes[k].first_row) */
   std::vector<PetscInt>        unmatched; /* per zone: nodes of a node-to-node zone's first face without a partner */
   FETI                         feti   = nullptr;
   ContactProblem               cp     = nullptr;

@@ -116,29 +116,20 @@ struct FEMCopyTable {
   const PetscInt *Dofs(PetscInt i) const { return dofs.data() + offset[i]; }
 };
 
-struct FEMAppendedRow {
-  FETIRowKind              kind;
-  std::vector<PetscInt>    body, node, comp;
-  std::vector<PetscScalar> coef;
-  PetscScalar              rhs;
-};
-
 struct FEM_Impl {
-  std::vector<FEMBody>        bodies;
-  FEMDirichletMode            dirichletmode = FEM_DIRICHLET_MULTIPLIERS;
-  PetscReal                   dirichlethold = 0.25;     /* -fem_dirichlet_min_hold: primal mode, subdomains held less firmly by Gamma_u get multipliers */
-  std::vector<PetscInt>       dirichletrows;            /* per subdomain (all ranks), set by FEMCreateFETI(): 1 when its Dirichlet dofs are rows of B */
-  PetscBool                   sbaij       = PETSC_TRUE; /* symmetric storage: half of AIJ (CHOLMOD factors a transient AIJ copy) */
-  PetscBool                   setupcalled = PETSC_FALSE;
-  PetscInt                    nsubdomains = 0, firstlocal = 0, nlocal = 0;
-  std::vector<PetscInt>       subprimaloffset; /* nsubdomains + 1 */
-  std::vector<FEMSubdomain>   local;
-  FEMCopyTable                copies;
-  std::vector<FEMAppendedRow> appended;
-  std::vector<PetscInt>       appendedrows; /* multiplier index of each appended row, set by FEMCreateFETI() */
-  PetscInt                    nglobalnodes        = 0;
-  VecScatter                  primaltoglobal      = nullptr;
-  Vec                         inversemultiplicity = nullptr;
+  std::vector<FEMBody>      bodies;
+  FEMDirichletMode          dirichletmode = FEM_DIRICHLET_MULTIPLIERS;
+  PetscReal                 dirichlethold = 0.25;     /* -fem_dirichlet_min_hold: primal mode, subdomains held less firmly by Gamma_u get multipliers */
+  std::vector<PetscInt>     dirichletrows;            /* per subdomain (all ranks), set by FEMCreateFETI(): 1 when its Dirichlet dofs are rows of B */
+  PetscBool                 sbaij       = PETSC_TRUE; /* symmetric storage: half of AIJ (CHOLMOD factors a transient AIJ copy) */
+  PetscBool                 setupcalled = PETSC_FALSE;
+  PetscInt                  nsubdomains = 0, firstlocal = 0, nlocal = 0;
+  std::vector<PetscInt>     subprimaloffset; /* nsubdomains + 1 */
+  std::vector<FEMSubdomain> local;
+  FEMCopyTable              copies;
+  PetscInt                  nglobalnodes        = 0;
+  VecScatter                primaltoglobal      = nullptr;
+  Vec                       inversemultiplicity = nullptr;
 };
 
 struct _FEMOps {
