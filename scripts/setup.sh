@@ -13,6 +13,8 @@ packages=(
   openmpi-bin                           # mpiexec for the parallel tests
   clang-format                          # style check (a test)
   python3 python3-numpy python3-h5py    # result checks and benchmark tables
+  python3-matplotlib                    # validation plots (scripts/bench-hertz.py)
+  gmsh                                  # graded meshes of the validation scenes (meshes/*.geo)
 )
 
 missing=()
