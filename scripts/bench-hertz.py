@@ -47,7 +47,7 @@ def has_mesh_reader(build):
     return "scene_body0_mesh" in out
 
 
-HBLOCK = 4.0                               # the graded block's width and height (meshes/indentation.geo): 40 a
+HBLOCK = 10.0                              # the graded block's width and height (meshes/indentation.geo): 100 a
 
 
 def gmsh(geo, h, out, **params):
