@@ -49,9 +49,7 @@ PetscErrorCode ContactZoneCheckObstacle(const ContactZone *zone)
   PetscAssertPointer(zone, 1);
   if (zone->type != CONTACT_ZONE_FOUNDATION) PetscFunctionReturn(PETSC_SUCCESS);
   switch (zone->shape) {
-  case CONTACT_OBSTACLE_PLANE:
-    PetscCheck(Length(zone->normal) > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "contact zone: the foundation plane needs a nonzero normal");
-    break;
+  case CONTACT_OBSTACLE_PLANE: PetscCheck(Length(zone->normal) > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "contact zone: the foundation plane needs a nonzero normal"); break;
   case CONTACT_OBSTACLE_SPHERE:
   case CONTACT_OBSTACLE_CYLINDER:
     PetscCheck(zone->radius > 0 && zone->radius < PETSC_MAX_REAL, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "contact zone: the %s obstacle needs a finite radius > 0, got %g",

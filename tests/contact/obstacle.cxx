@@ -31,19 +31,19 @@ static PetscReal AxisDist(const PetscReal x[3], const PetscReal c[3], const Pets
 
 static PetscErrorCode CaseClosestPoint(void)
 {
-  ContactZone sphere = {}, cyl = {}, plane = {};
-  PetscReal   worst = 0;
-  PetscInt    inside = 0, count = 0;
-  PetscRandom rnd;
+  ContactZone     sphere = {}, cyl = {}, plane = {};
+  PetscReal       worst  = 0;
+  PetscInt        inside = 0, count = 0;
+  PetscRandom     rnd;
   const PetscReal axis[3] = {0.6, 0, 0.8}; /* unit */
 
   PetscFunctionBeginUser;
-  sphere.type   = CONTACT_ZONE_FOUNDATION;
-  sphere.shape  = CONTACT_OBSTACLE_SPHERE;
-  sphere.radius = 0.7;
+  sphere.type      = CONTACT_ZONE_FOUNDATION;
+  sphere.shape     = CONTACT_OBSTACLE_SPHERE;
+  sphere.radius    = 0.7;
   sphere.center[0] = 0.1, sphere.center[1] = -0.2, sphere.center[2] = 0.3;
-  cyl           = sphere;
-  cyl.shape     = CONTACT_OBSTACLE_CYLINDER;
+  cyl         = sphere;
+  cyl.shape   = CONTACT_OBSTACLE_CYLINDER;
   cyl.axis[0] = 3, cyl.axis[1] = 0, cyl.axis[2] = 4; /* not unit: only the direction matters */
   plane.type      = CONTACT_ZONE_FOUNDATION;
   plane.point[2]  = 0.25;
@@ -58,14 +58,14 @@ static PetscErrorCode CaseClosestPoint(void)
       const PetscReal nlen = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
       e                    = PetscMax(e, std::fabs(nlen - 1));
       for (int i = 0; i < 3; i++) e = PetscMax(e, std::fabs(chi[i] - x[i] - gap * n[i])); /* chi - x = gap n */
-      PetscReal out[3];                                                                  /* outward normal of the obstacle at chi */
+      PetscReal out[3];                                                                   /* outward normal of the obstacle at chi */
       if (z->shape == CONTACT_OBSTACLE_SPHERE) {
         expect = Dist(x, z->center) - z->radius;
         e      = PetscMax(e, std::fabs(Dist(chi, z->center) - z->radius));
         for (int i = 0; i < 3; i++) out[i] = (chi[i] - z->center[i]) / z->radius;
       } else if (z->shape == CONTACT_OBSTACLE_CYLINDER) {
-        expect = AxisDist(x, z->center, axis) - z->radius;
-        e      = PetscMax(e, std::fabs(AxisDist(chi, z->center, axis) - z->radius));
+        expect         = AxisDist(x, z->center, axis) - z->radius;
+        e              = PetscMax(e, std::fabs(AxisDist(chi, z->center, axis) - z->radius));
         PetscReal y[3] = {chi[0] - z->center[0], chi[1] - z->center[1], chi[2] - z->center[2]}, s = y[0] * axis[0] + y[1] * axis[1] + y[2] * axis[2];
         for (int i = 0; i < 3; i++) out[i] = (y[i] - s * axis[i]) / z->radius;
       } else {
@@ -82,7 +82,8 @@ static PetscErrorCode CaseClosestPoint(void)
   }
   PetscCall(PetscRandomDestroy(&rnd));
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%" PetscInt_FMT " points (%" PetscInt_FMT " inside an obstacle): largest error %.2e\n", count, inside, (double)worst));
-  PetscCheck(worst < 1e-13 && inside > 10 && inside < count - 10, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "closest point, gap or normal wrong (error %g) or the points do not cover both sides", (double)worst);
+  PetscCheck(worst < 1e-13 && inside > 10 && inside < count - 10, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "closest point, gap or normal wrong (error %g) or the points do not cover both sides",
+             (double)worst);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -117,7 +118,7 @@ static PetscErrorCode CaseBoxNodes(const char *shape, PetscReal overlap)
   ContactModel     cm;
   PetscInt         n, below = 0, negative = 0, total;
   const PetscReal *X, *area;
-  PetscReal        e = 0;
+  PetscReal        e        = 0;
   const PetscBool  cylinder = std::string(shape) == "cylinder" ? PETSC_TRUE : PETSC_FALSE;
 
   PetscFunctionBeginUser;
@@ -131,7 +132,7 @@ static PetscErrorCode CaseBoxNodes(const char *shape, PetscReal overlap)
   std::vector<PetscReal> normal(3 * n), gap(n);
   PetscCall(ContactModelGetNodeGeometry(cm, normal.data(), gap.data()));
   for (PetscInt j = 0; j < n; j++) {
-    const PetscReal *x = &X[3 * j];
+    const PetscReal *x    = &X[3 * j];
     PetscReal        y[3] = {z.center[0] - x[0], z.center[1] - x[1], z.center[2] - x[2]}, d;
     if (cylinder) y[1] = 0; /* the part normal to the axis y */
     d = std::sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
