@@ -11,12 +11,12 @@
 SetFactory("OpenCASCADE");
 
 DefineConstant[
-  L  = {10.0, Name "Parameters/L: block width (quarter)"},
-  H  = {10.0, Name "Parameters/H: block height"},
+  L  = {20.0, Name "Parameters/L: block width (quarter)"},
+  H  = {20.0, Name "Parameters/H: block height"},
   h  = {0.02, Name "Parameters/h: mesh size at the contact"},
-  hc = {1.0,  Name "Parameters/hc: mesh size far from the contact"},
+  hc = {2.0,  Name "Parameters/hc: mesh size far from the contact"},
   rf = {0.25, Name "Parameters/rf: radius of the finely meshed region"},
-  rg = {5.0,  Name "Parameters/rg: distance over which the size grows from h to hc"}
+  rg = {10.0, Name "Parameters/rg: distance over which the size grows from h to hc"}
 ];
 
 Box(1) = {0, 0, 0, L, L, H};

@@ -47,7 +47,7 @@ def has_mesh_reader(build):
     return "scene_body0_mesh" in out
 
 
-HBLOCK = 10.0                              # the graded block's width and height (meshes/indentation.geo): 100 a
+HBLOCK = 20.0                              # the graded block's width and height (meshes/indentation.geo): 200 a
 
 
 def gmsh(geo, h, out, **params):
