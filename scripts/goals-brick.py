@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Which solver configurations meet issue 5's goals on the seed paper's brick, and what they cost elsewhere.
+"""Which solver configurations meet the benchmark's goals on the seed paper's brick, and what they cost elsewhere.
 
 For each configuration (a set of extra brick options) runs the brick at the paper's five sizes for
 F = 0.1 and 0.3 and checks the goals: Iter <= 5 (F = 0.1) and <= 7 (F = 0.3), n_A <= the paper's at
@@ -90,7 +90,7 @@ def main():
         configs += list(grid(a.grid))
     if not configs:
         configs = [("default", [])]
-    print("# issue 5's goals on the brick, per configuration (this machine, %s)" % hugepages.describe(a.hugepages))
+    print("# the benchmark's goals on the brick, per configuration (this machine, %s)" % hugepages.describe(a.hugepages))
     print("# command: %s" % " ".join(sys.argv))
     print("# Iter and n_A at n = 900, 2646, 5832, 10890, 18252; growth = n_A(18252)/n_A(900); paper total = n_A summed over both tables"
           + ("; others = n_A summed over 18 other bricks (largest Iter)" if a.others else ""))

@@ -3,7 +3,7 @@ transparent huge pages for glibc's large allocations (GLIBC_TUNABLES=glibc.mallo
 
 Why: most of the brick's setup time is first-touch page faults on large, short-lived blocks (MUMPS
 fronts and the Schur complement that becomes (K+)_bb); with 2 MB pages there are 512 times fewer.
-Results (Iter, n_A, residuals) are bitwise the same either way; only time changes. docs/brick-benchmark.md
+Results (Iter, n_A, residuals) are bitwise the same either way; only time changes. docs/brick-ablations.md ("Huge pages")
 shows both.
 """
 import os

@@ -13,8 +13,8 @@ packages=(
   openmpi-bin                           # mpiexec for the parallel tests
   clang-format                          # style check (a test)
   python3 python3-numpy python3-h5py    # result checks and benchmark tables
-  python3-matplotlib                    # validation plots (scripts/bench-hertz.py)
-  gmsh                                  # graded meshes of the validation scenes (meshes/*.geo)
+  gmsh python3-gmsh                     # meshes of your own geometry (meshes/*.geo); the mesh-file tests make theirs at test time
+  python3-matplotlib                    # the figures of docs/ (scripts/figures.sh, scripts/bench-hertz.py)
 )
 
 missing=()

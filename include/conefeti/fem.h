@@ -1,9 +1,9 @@
-/* Layer fem: structured tetrahedral meshes of boxes, P1 linear elasticity, decomposition into
-   subdomains (structured or METIS), and the constraint rows (gluing, Dirichlet, appended contact
-   rows) that turn a scene into a FETI problem (see conefeti/feti.h).
+/* Layer fem: bodies as P1 tetrahedral meshes (generated for boxes, or given: FEMAddMesh(), FEMAddDMPlex()),
+   linear elasticity, decomposition into subdomains (structured for boxes, or METIS), and the constraint rows
+   (gluing, Dirichlet, appended contact rows) that turn a scene into a FETI problem (see conefeti/feti.h).
 
    Numbering used throughout:
-     body node     node (i,j,k) of box b, 0 <= i <= nx, ...; id = i + (nx+1)*(j + (ny+1)*k)
+     body node     a given mesh: its own node numbers; a box: node (i,j,k), 0 <= i <= nx, ...; id = i + (nx+1)*(j + (ny+1)*k)
      global dof    3*(first node of body b + node) + component, bodies concatenated (FEMAssembleGlobal())
      subdomain     global id, bodies in order and subdomains of a body in order; subdomains are
                    spread over the ranks in contiguous ranges
@@ -12,10 +12,11 @@
 #pragma once
 
 #include <petscmat.h>
+#include <petscdmplex.h>
 #include <conefeti/feti.h>
 
 /*S
-  FEM - A finite-element model of linear elastic bodies (boxes meshed by tetrahedra): materials,
+  FEM - A finite-element model of linear elastic bodies (tetrahedral meshes, of boxes or given): materials,
   loads, Dirichlet boundaries, tagged boundary faces, and the decomposition into subdomains from
   which a `FETI` problem is built.
 
@@ -96,9 +97,13 @@ PETSC_EXTERN PetscErrorCode FEMDestroy(FEM *);
 PETSC_EXTERN PetscErrorCode FEMAddBox(FEM, const PetscReal[3], const PetscReal[3], const PetscInt[3], PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMAddMesh(FEM, PetscInt, const PetscReal[], PetscInt, const PetscInt[], PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMAddFacetSet(FEM, PetscInt, const char[], PetscInt, const PetscInt[]);
+PETSC_EXTERN PetscErrorCode FEMAddDMPlex(FEM, DM, PetscInt *);
+PETSC_EXTERN PetscErrorCode FEMCreateDMPlexFromFile(MPI_Comm, const char[], DM *);
+PETSC_EXTERN PetscErrorCode FEMDMPlexGetFacetSetNames(DM, PetscInt *, char ***);
 PETSC_EXTERN PetscErrorCode FEMSetMaterial(FEM, PetscInt, PetscReal, PetscReal);
 PETSC_EXTERN PetscErrorCode FEMGetMaterial(FEM, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FEMTagFaces(FEM, PetscInt, const char[], FEMFacePredicate, void *);
+PETSC_EXTERN PetscErrorCode FEMTagFacesWithin(FEM, PetscInt, const char[], const char[], FEMFacePredicate, void *);
 PETSC_EXTERN PetscErrorCode FEMSetDirichlet(FEM, PetscInt, const char[], const PetscBool[3]);
 PETSC_EXTERN PetscErrorCode FEMSetTraction(FEM, PetscInt, const char[], const PetscReal[3]);
 PETSC_EXTERN PetscErrorCode FEMSetTractionField(FEM, PetscInt, const char[], FEMVectorField, void *);

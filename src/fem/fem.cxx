@@ -73,6 +73,9 @@ PetscErrorCode FEMDestroy(FEM *fem)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The nodes of a body, before FEMSetUp() generates the boxes */
+static double BodyNodeCount(const FEMBody &b) { return b.isbox ? ((double)b.cells[0] + 1) * ((double)b.cells[1] + 1) * ((double)b.cells[2] + 1) : (double)b.nnodes; }
+
 static PetscErrorCode CheckBody(FEM fem, PetscInt body)
 {
   PetscFunctionBegin;
@@ -127,7 +130,7 @@ PetscErrorCode FEMAddBox(FEM fem, const PetscReal lower[3], const PetscReal uppe
        overflowing product stays far above the limit), so a box too large fails here, not in the mesher */
     const double nodes = ((double)cells[0] + 1) * ((double)cells[1] + 1) * ((double)cells[2] + 1), tets = 6.0 * cells[0] * cells[1] * cells[2];
     double       total = 3 * nodes; /* the undecomposed dofs of all bodies, numbered together */
-    for (const FEMBody &o : fem->impl->bodies) total += 3.0 * (o.cells[0] + 1) * (o.cells[1] + 1) * (o.cells[2] + 1);
+    for (const FEMBody &o : fem->impl->bodies) total += 3.0 * BodyNodeCount(o);
     PetscCheck(3 * nodes <= PETSC_MAX_INT && tets <= PETSC_MAX_INT, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE,
                "The box of %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT
                " cells has %.4g unknowns (3 per node) and %.4g tetrahedra: its mesh does not fit %d-bit PetscInt indices (at most %" PetscInt_FMT "); use fewer cells",
@@ -141,6 +144,136 @@ PetscErrorCode FEMAddBox(FEM fem, const PetscReal lower[3], const PetscReal uppe
   b.nu = 0.277;
   PetscCallCXX(fem->impl->bodies.push_back(b));
   if (body) *body = (PetscInt)fem->impl->bodies.size() - 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMAddMesh - Add a body given as a mesh of linear (P1) tetrahedra.
+
+  Collective
+
+  Input Parameters:
++ fem    - the model
+. nnodes - number of nodes (used on rank 0 only)
+. coords - 3 nnodes coordinates, node-major (rank 0 only; NULL elsewhere)
+. ntets  - number of tetrahedra (rank 0 only)
+- tets   - 4 ntets node ids, 0-based, each tetrahedron positively oriented: the fourth node lies on the side of
+           the counter-clockwise normal of the first three (rank 0 only; NULL elsewhere)
+
+  Output Parameter:
+. body - the index of the new body (may be NULL)
+
+  Notes:
+  Only rank 0's arrays are read; they are broadcast and copied, so the caller may free them on return. The mesh is
+  checked here: a node index out of range, a coordinate that is not finite, an inverted or degenerate (flat)
+  tetrahedron, and a node that no tetrahedron uses are errors naming the element or node.
+
+  Like a box, the body has the built-in boundary tags x0, x1, y0, y1, z0, z1: the boundary triangles whose outward
+  normal points mostly along -x, +x, -y, +y, -z, +z. Name other parts of the boundary with `FEMAddFacetSet()` (the
+  physical surfaces of a Gmsh model) or `FEMTagFaces()`. Several bodies may come from meshes and boxes together.
+
+  A mesh body is decomposed by METIS (`FEM_DECOMPOSITION_METIS`, one subdomain unless `FEMSetDecomposition()` or
+  -fem_subdomains asks for more; structured counts px,py,pz ask for px py pz parts). Pieces of the mesh that share
+  no face become subdomains of their own. Every rank keeps a copy of the whole mesh (about 100 bytes per node
+  with the boundary data), which bounds the size of a mesh to the memory of one rank.
+
+  Level: beginner
+
+.seealso: `FEMAddFacetSet()`, `FEMAddBox()`, `FEMSetDecomposition()`
+@*/
+PetscErrorCode FEMAddMesh(FEM fem, PetscInt nnodes, const PetscReal coords[], PetscInt ntets, const PetscInt tets[], PetscInt *body)
+{
+  MPI_Comm    comm = PetscObjectComm((PetscObject)fem);
+  PetscMPIInt rank;
+  PetscInt    sizes[2] = {nnodes, ntets};
+  FEMBody     b;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(!fem->impl->setupcalled, comm, PETSC_ERR_ORDER, "Add bodies before FEMSetUp()");
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Bcast(sizes, 2, MPIU_INT, 0, comm));
+  PetscCheck(sizes[0] >= 4 && sizes[1] >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE,
+             "FEMAddMesh(): a mesh needs at least 4 nodes and one tetrahedron, got %" PetscInt_FMT " nodes and %" PetscInt_FMT " tetrahedra", sizes[0], sizes[1]);
+  {
+    double total = 3.0 * sizes[0];
+    for (const FEMBody &o : fem->impl->bodies) total += 3.0 * BodyNodeCount(o);
+    PetscCheck(4.0 * sizes[1] <= PETSC_MAX_INT && total <= PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "FEMAddMesh(): with this mesh (%" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra) the model has %.4g unknowns: they do not fit %d-bit PetscInt indices (at most %" PetscInt_FMT ")",
+               sizes[0], sizes[1], total, (int)(8 * sizeof(PetscInt)), (PetscInt)PETSC_MAX_INT);
+  }
+  if (rank == 0) {
+    PetscAssertPointer(coords, 3);
+    PetscAssertPointer(tets, 5);
+  }
+  b.isbox     = PETSC_FALSE;
+  b.nnodes    = sizes[0];
+  b.nelements = sizes[1];
+  PetscCallCXX(b.coords.resize(3 * (size_t)b.nnodes));
+  PetscCallCXX(b.conn.resize(4 * (size_t)b.nelements));
+  if (rank == 0) {
+    std::copy(coords, coords + 3 * (size_t)b.nnodes, b.coords.begin());
+    std::copy(tets, tets + 4 * (size_t)b.nelements, b.conn.begin());
+  }
+  PetscCallMPI(MPI_Bcast(b.coords.data(), (PetscMPIInt)(3 * b.nnodes), MPIU_REAL, 0, comm));
+  PetscCallMPI(MPI_Bcast(b.conn.data(), (PetscMPIInt)(4 * b.nelements), MPIU_INT, 0, comm));
+  PetscCall(FEMCheckMesh(comm, (PetscInt)fem->impl->bodies.size(), b));
+  b.E             = 2.12e11;
+  b.nu            = 0.277;
+  b.decomposition = FEM_DECOMPOSITION_METIS;
+  PetscCallCXX(fem->impl->bodies.push_back(std::move(b)));
+  if (body) *body = (PetscInt)fem->impl->bodies.size() - 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMAddFacetSet - Name a set of boundary triangles of a mesh body: a boundary tag, like a Gmsh physical surface.
+
+  Collective
+
+  Input Parameters:
++ fem        - the model
+. body       - a body from `FEMAddMesh()`
+. name       - the tag name (a built-in name x0 ... z1 is replaced)
+. ntriangles - number of triangles (rank 0 only)
+- triangles  - 3 ntriangles body node ids, in any order within a triangle (rank 0 only; NULL elsewhere)
+
+  Notes:
+  Only rank 0's arrays are read. Each triangle must be a face of exactly one tetrahedron of the body; `FEMSetUp()`
+  reports one that is not. The name is then accepted wherever a tag is (`FEMSetDirichlet()`, `FEMSetTraction()`,
+  `FEMGetTaggedNodes()`, `FEMTagFacesWithin()`, contact zones).
+
+  Level: beginner
+
+.seealso: `FEMAddMesh()`, `FEMTagFaces()`
+@*/
+PetscErrorCode FEMAddFacetSet(FEM fem, PetscInt body, const char name[], PetscInt ntriangles, const PetscInt triangles[])
+{
+  MPI_Comm              comm = PetscObjectComm((PetscObject)fem);
+  PetscMPIInt           rank;
+  PetscInt              n = ntriangles;
+  std::vector<PetscInt> tri;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscValidCharPointer(name, 3);
+  PetscCheck(!fem->impl->bodies[body].isbox, comm, PETSC_ERR_ARG_WRONG, "FEMAddFacetSet(): body %" PetscInt_FMT " is a box; name parts of a box's boundary with FEMTagFaces()", body);
+  PetscCheck(name[0], comm, PETSC_ERR_ARG_WRONG, "FEMAddFacetSet(): body %" PetscInt_FMT ": the set needs a name", body);
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, comm));
+  PetscCheck(n >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "FEMAddFacetSet(): facet set \"%s\" of body %" PetscInt_FMT ": %" PetscInt_FMT " triangles", name, body, n);
+  PetscCallCXX(tri.resize(3 * (size_t)n));
+  if (rank == 0 && n) {
+    PetscAssertPointer(triangles, 5);
+    std::copy(triangles, triangles + 3 * (size_t)n, tri.begin());
+  }
+  PetscCallMPI(MPI_Bcast(tri.data(), (PetscMPIInt)(3 * n), MPIU_INT, 0, comm));
+  for (PetscInt i = 0; i < 3 * n; i++)
+    PetscCheck(tri[i] >= 0 && tri[i] < fem->impl->bodies[body].nnodes, comm, PETSC_ERR_ARG_OUTOFRANGE,
+               "FEMAddFacetSet(): facet set \"%s\" of body %" PetscInt_FMT ": triangle %" PetscInt_FMT " has node %" PetscInt_FMT ", outside 0..%" PetscInt_FMT, name, body, i / 3, tri[i],
+               fem->impl->bodies[body].nnodes - 1);
+  fem->impl->bodies[body].facetsets[name] = std::move(tri);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -202,7 +335,39 @@ PetscErrorCode FEMTagFaces(FEM fem, PetscInt body, const char tag[], FEMFacePred
   PetscCall(CheckBody(fem, body));
   PetscValidCharPointer(tag, 3);
   PetscCheck(predicate, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_NULL, "FEMTagFaces(): tag \"%s\" needs a predicate", tag);
-  PetscCallCXX(fem->impl->bodies[body].usertags.push_back({tag, predicate, ctx}));
+  PetscCallCXX(fem->impl->bodies[body].usertags.push_back({tag, "", predicate, ctx}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMTagFacesWithin - Define a boundary tag of a body as the triangles of another tag that satisfy a predicate.
+
+  Logically Collective
+
+  Input Parameters:
++ fem       - the model
+. body      - the body
+. tag       - the new tag's name
+. within    - an existing tag: built-in, a facet set (`FEMAddFacetSet()`), or a tag defined before this one
+. predicate - called with the centroid and the outward unit normal of each triangle of within; sets tagged
+- ctx       - context for the predicate
+
+  Notes:
+  `FEMSetUp()` evaluates the tags in the order they were defined; it reports a within tag that does not exist.
+
+  Level: intermediate
+
+.seealso: `FEMTagFaces()`, `FEMAddFacetSet()`
+@*/
+PetscErrorCode FEMTagFacesWithin(FEM fem, PetscInt body, const char tag[], const char within[], FEMFacePredicate predicate, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscValidCharPointer(tag, 3);
+  PetscValidCharPointer(within, 4);
+  PetscCheck(predicate, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_NULL, "FEMTagFacesWithin(): tag \"%s\" needs a predicate", tag);
+  PetscCallCXX(fem->impl->bodies[body].usertags.push_back({tag, within, predicate, ctx}));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -331,6 +496,8 @@ PetscErrorCode FEMSetBodyForce(FEM fem, PetscInt body, FEMVectorField field, voi
 
   Notes:
   METIS asks for contiguous parts; a part that is still not face-connected becomes several subdomains.
+  The structured decomposition needs a box (`FEMAddBox()`); for a mesh body (`FEMAddMesh()`) structured counts
+  px,py,pz ask METIS for px py pz parts.
 
   Level: beginner
 
@@ -500,9 +667,9 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
 . fem - the model
 
   Notes:
-  Every rank holds the node coordinates, boundary triangles and element-to-subdomain map of every body
-  (4 bytes per element); element connectivity is implicit in the structured boxes. Each rank builds
-  the nodes and elements of its own subdomains only. There must be at least as many subdomains as ranks.
+  Every rank holds the node coordinates, the connectivity, the boundary triangles and the element-to-subdomain map
+  of every body (about 20 bytes per element and 30 per node). Each rank builds the nodes and elements of its own
+  subdomains only. There must be at least as many subdomains as ranks.
 
   Level: beginner
 
@@ -518,10 +685,12 @@ PetscErrorCode FEMSetUp(FEM fem)
   PetscCheck(!impl.bodies.empty(), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONGSTATE, "The model has no body: call FEMAddBox() before FEMSetUp()");
   PetscCall(PetscLogEventBegin(FEM_SetUp, fem, 0, 0, 0));
   impl.nglobalnodes = 0;
-  for (FEMBody &b : impl.bodies) {
+  for (size_t i = 0; i < impl.bodies.size(); i++) {
+    FEMBody &b   = impl.bodies[i];
     b.nodeoffset = impl.nglobalnodes;
-    PetscCall(FEMBoxBuildMesh(b));
-    PetscCall(FEMBoxBuildTags(b));
+    if (b.isbox) PetscCall(FEMBoxBuildMesh(b));
+    else PetscCall(FEMBuildBoundary(b));
+    PetscCall(FEMBuildTags((PetscInt)i, b));
     impl.nglobalnodes += b.nnodes;
   }
   PetscCall(PetscLogEventBegin(FEM_Decompose, fem, 0, 0, 0));
@@ -572,10 +741,14 @@ PetscErrorCode FEMView(FEM fem, PetscViewer viewer)
                                    impl.dirichletmode == FEM_DIRICHLET_PRIMAL ? "kept in the primal" : "by multipliers (Total FETI)"));
   for (size_t i = 0; i < impl.bodies.size(); i++) {
     const FEMBody &b = impl.bodies[i];
-    PetscCall(PetscViewerASCIIPrintf(
-        viewer, "body %d: box [%g,%g]x[%g,%g]x[%g,%g], %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT " cells, E %g, nu %g, %s decomposition %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT,
-        (int)i, (double)b.lower[0], (double)b.upper[0], (double)b.lower[1], (double)b.upper[1], (double)b.lower[2], (double)b.upper[2], b.cells[0], b.cells[1], b.cells[2], (double)b.E, (double)b.nu,
-        FEMDecompositionTypes[b.decomposition], b.parts[0], b.parts[1], b.parts[2]));
+    if (!b.isbox)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "body %d: mesh of %" PetscInt_FMT " nodes and %" PetscInt_FMT " tetrahedra, E %g, nu %g, metis decomposition %" PetscInt_FMT, (int)i, b.nnodes,
+                                       b.nelements, (double)b.E, (double)b.nu, b.decomposition == FEM_DECOMPOSITION_METIS ? b.parts[0] : b.parts[0] * b.parts[1] * b.parts[2]));
+    else
+      PetscCall(PetscViewerASCIIPrintf(
+          viewer, "body %d: box [%g,%g]x[%g,%g]x[%g,%g], %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT " cells, E %g, nu %g, %s decomposition %" PetscInt_FMT "x%" PetscInt_FMT "x%" PetscInt_FMT,
+          (int)i, (double)b.lower[0], (double)b.upper[0], (double)b.lower[1], (double)b.upper[1], (double)b.lower[2], (double)b.upper[2], b.cells[0], b.cells[1], b.cells[2], (double)b.E, (double)b.nu,
+          FEMDecompositionTypes[b.decomposition], b.parts[0], b.parts[1], b.parts[2]));
     if (impl.setupcalled) PetscCall(PetscViewerASCIIPrintf(viewer, " -> %" PetscInt_FMT " subdomains, %" PetscInt_FMT " nodes, %" PetscInt_FMT " tetrahedra", b.nsub, b.nnodes, b.nelements));
     PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
   }

@@ -98,7 +98,7 @@ PetscErrorCode FEMAssembleSubdomain(FEM fem, const FEMSubdomain &sd, Mat *K, Vec
     PetscInt  v[4], loc[4];
     PetscReal X[12], Ke[144], fe[12];
     PetscBool loaded;
-    FEMBoxElementNodes(b, sd.elements[e], v);
+    FEMElementNodes(b, sd.elements[e], v);
     ElementCoordinates(b, v, X);
     PetscCall(FEMElementStiffness(X, b.E, b.nu, Ke, NULL));
     for (PetscInt a = 0; a < 4; a++) loc[a] = sd.conn[4 * e + a];
@@ -168,7 +168,7 @@ PetscErrorCode FEMComputeLoadResultant(FEM fem, PetscInt body, const PetscReal p
         PetscReal fe[12];
         PetscBool loaded;
         if (!b.bodyforce && !std::binary_search(tractionelements.begin(), tractionelements.end(), e)) continue;
-        FEMBoxElementNodes(b, e, v);
+        FEMElementNodes(b, e, v);
         PetscCall(ElementRHS(b, e, v, tractiontris, fe, &loaded));
         for (PetscInt a = 0; a < 4; a++) {
           const PetscReal *f = &fe[3 * a], *x = &b.coords[3 * v[a]];
@@ -190,10 +190,6 @@ PetscErrorCode FEMComputeLoadResultant(FEM fem, PetscInt body, const PetscReal p
   if (magnitude) *magnitude = sum[6];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
-
-/* Neighbours of a node in the Kuhn mesh: along the axes, the positive face diagonals and the main diagonal, both ways */
-static const PetscInt KuhnNeighbour[15][3] = {{0, 0, 0},   {1, 0, 0}, {-1, 0, 0},  {0, 1, 0}, {0, -1, 0},  {0, 0, 1}, {0, 0, -1},  {1, 1, 0},
-                                              {-1, -1, 0}, {1, 0, 1}, {-1, 0, -1}, {0, 1, 1}, {0, -1, -1}, {1, 1, 1}, {-1, -1, -1}};
 
 /*@C
   FEMAssembleGlobal - Assemble the undecomposed global stiffness matrix and load vector of all bodies,
@@ -235,15 +231,25 @@ PetscErrorCode FEMAssembleGlobal(FEM fem, Mat *K, Vec *f)
   first = last - nlocalnodes;
   PetscCallCXX(dnnz.assign(nlocalnodes, 0));
   PetscCallCXX(onnz.assign(nlocalnodes, 0));
+  /* block nonzeros of the local rows: the nodes that share an element with the row's node */
   for (const FEMBody &b : impl.bodies) {
     const PetscInt lo = std::max(first, b.nodeoffset), hi = std::min(last, b.nodeoffset + b.nnodes);
+    if (lo >= hi) continue;
+    std::vector<std::vector<PetscInt>> adj(hi - lo);
+    for (PetscInt e = 0; e < b.nelements; e++) {
+      PetscInt v[4];
+      FEMElementNodes(b, e, v);
+      for (PetscInt a = 0; a < 4; a++) {
+        const PetscInt g = b.nodeoffset + v[a];
+        if (g < lo || g >= hi) continue;
+        for (PetscInt c = 0; c < 4; c++) PetscCallCXX(adj[g - lo].push_back(b.nodeoffset + v[c]));
+      }
+    }
     for (PetscInt g = lo; g < hi; g++) {
-      PetscInt ijk[3];
-      FEMBoxNodeIJK(b, g - b.nodeoffset, ijk);
-      for (const auto &o : KuhnNeighbour) {
-        const PetscInt i = ijk[0] + o[0], j = ijk[1] + o[1], k = ijk[2] + o[2];
-        if (i < 0 || j < 0 || k < 0 || i > b.cells[0] || j > b.cells[1] || k > b.cells[2]) continue;
-        const PetscInt col = b.nodeoffset + i + (b.cells[0] + 1) * (j + (b.cells[1] + 1) * k);
+      std::vector<PetscInt> &cols = adj[g - lo];
+      std::sort(cols.begin(), cols.end());
+      cols.erase(std::unique(cols.begin(), cols.end()), cols.end());
+      for (PetscInt col : cols) {
         if (col >= first && col < last) dnnz[g - first]++;
         else onnz[g - first]++;
       }
@@ -265,7 +271,7 @@ PetscErrorCode FEMAssembleGlobal(FEM fem, Mat *K, Vec *f)
       PetscInt  v[4], rows[4];
       PetscReal X[12], Ke[144], fe[12];
       PetscBool loaded;
-      FEMBoxElementNodes(b, e, v);
+      FEMElementNodes(b, e, v);
       ElementCoordinates(b, v, X);
       PetscCall(FEMElementStiffness(X, b.E, b.nu, Ke, NULL));
       for (PetscInt a = 0; a < 4; a++) rows[a] = b.nodeoffset + v[a];

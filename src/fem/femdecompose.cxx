@@ -40,7 +40,8 @@ static PetscInt UnionFind(std::vector<PetscInt> &parent, PetscInt x)
    component then becomes a subdomain of its own. Runs on rank 0 only. */
 static PetscErrorCode DecomposeMETIS(FEMBody &b)
 {
-  const PetscInt        nparts = b.parts[0];
+  /* a given mesh has no axes to cut along: structured counts px,py,pz ask for px py pz parts */
+  const PetscInt        nparts = b.decomposition == FEM_DECOMPOSITION_METIS ? b.parts[0] : b.parts[0] * b.parts[1] * b.parts[2];
   idx_t                 ne = (idx_t)b.nelements, nn = (idx_t)b.nnodes, ncommon = 3, numflag = 0, *xadj = nullptr, *adjncy = nullptr;
   std::vector<idx_t>    eptr, eind, epart;
   std::vector<PetscInt> parent;
@@ -52,7 +53,7 @@ static PetscErrorCode DecomposeMETIS(FEMBody &b)
   PetscCallCXX(eind.resize(4 * (size_t)ne));
   for (PetscInt e = 0; e < b.nelements; e++) {
     PetscInt v[4];
-    FEMBoxElementNodes(b, e, v);
+    FEMElementNodes(b, e, v);
     eptr[e] = (idx_t)(4 * e);
     for (PetscInt a = 0; a < 4; a++) eind[4 * e + a] = (idx_t)v[a];
   }
@@ -103,7 +104,7 @@ PetscErrorCode FEMDecomposeBody(MPI_Comm comm, FEMBody &b)
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (b.decomposition == FEM_DECOMPOSITION_STRUCTURED) {
+  if (b.decomposition == FEM_DECOMPOSITION_STRUCTURED && b.isbox) {
     PetscCall(DecomposeStructured(b));
   } else {
     PetscInt nsub = 0;
@@ -115,6 +116,7 @@ PetscErrorCode FEMDecomposeBody(MPI_Comm comm, FEMBody &b)
     PetscCallMPI(MPI_Bcast(b.part.data(), (PetscMPIInt)b.nelements, MPIU_INT, 0, comm));
     b.nsub = nsub;
   }
+  PetscCall(FEMMarkInterfaceNodes(b));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -198,7 +200,7 @@ PetscErrorCode FEMBuildLocalSubdomains(FEM fem)
     PetscCallCXX(sd.nodes.reserve(sd.elements.size()));
     for (PetscInt e : sd.elements) {
       PetscInt v[4];
-      FEMBoxElementNodes(b, e, v);
+      FEMElementNodes(b, e, v);
       for (PetscInt a = 0; a < 4; a++) PetscCallCXX(sd.nodes.push_back(v[a]));
     }
     std::sort(sd.nodes.begin(), sd.nodes.end());
@@ -206,7 +208,7 @@ PetscErrorCode FEMBuildLocalSubdomains(FEM fem)
     PetscCallCXX(sd.conn.resize(4 * sd.elements.size()));
     for (size_t e = 0; e < sd.elements.size(); e++) {
       PetscInt v[4];
-      FEMBoxElementNodes(b, sd.elements[e], v);
+      FEMElementNodes(b, sd.elements[e], v);
       for (PetscInt a = 0; a < 4; a++) sd.conn[4 * e + a] = (PetscInt)(std::lower_bound(sd.nodes.begin(), sd.nodes.end(), v[a]) - sd.nodes.begin());
     }
     ndofs[sd.id] = 3 * (PetscInt)sd.nodes.size();
@@ -226,13 +228,12 @@ PetscErrorCode FEMBuildLocalSubdomains(FEM fem)
   for (FEMSubdomain &sd : impl.local) sd.primaloffset = impl.subprimaloffset[sd.id];
 
   /* copies of boundary and interface nodes: (body, node, subdomain, primal dof) from every rank */
-  std::vector<PetscInt> mine, all, subs;
+  std::vector<PetscInt> mine, all;
   for (FEMSubdomain &sd : impl.local) {
     const FEMBody &b = impl.bodies[sd.body];
     for (size_t l = 0; l < sd.nodes.size(); l++) {
       const PetscInt n = sd.nodes[l];
-      PetscCall(FEMBoxNodeSubdomains(b, n, subs));
-      if (subs.size() < 2 && !b.onboundary[n]) continue;
+      if (!b.oninterface[n] && !b.onboundary[n]) continue;
       PetscCallCXX(mine.insert(mine.end(), {sd.body, n, sd.id, sd.primaloffset + 3 * (PetscInt)l}));
     }
   }

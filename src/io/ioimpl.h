@@ -12,7 +12,8 @@
 #include <vector>
 
 /* A part of a box face: the built-in face and conditions on the centroid of its boundary triangles,
-   written FACE[/AXIS OP VALUE]..., e.g. "z0/x>1" (docs/scenes.md). */
+   written FACE[/AXIS OP VALUE]..., e.g. "z0/x>1" (docs/scenes.md); on a mesh body FACE may also be a
+   physical surface of the mesh file (a facet set of the body, FEMAddDMPlex()). */
 struct SceneCondition {
   PetscInt  axis;    /* 0, 1, 2 */
   PetscBool greater; /* > or >= (else < or <=) */
@@ -21,9 +22,10 @@ struct SceneCondition {
 };
 
 struct SceneSelector {
-  std::string                 text;   /* as given */
-  std::string                 option; /* the option it came from, for messages */
-  PetscInt                    face = -1;
+  std::string                 text;      /* as given */
+  std::string                 option;    /* the option it came from, for messages */
+  PetscInt                    face = -1; /* x0 ... z1, or -1: the physical surface `name` */
+  std::string                 name;      /* as written (spaces removed); after setup the facet set's own name */
   std::vector<SceneCondition> conditions;
   std::string                 tag; /* the FEM boundary tag it becomes */
 };
@@ -39,6 +41,10 @@ struct SceneTraction {
 };
 
 struct SceneBody {
+  std::string                mesh;      /* a mesh file (-scene_body<b>_mesh), else a box */
+  PetscReal                  scale = 1; /* mesh: x -> scale x + translate */
+  std::array<PetscReal, 3>   translate{};
+  std::string                volume; /* mesh: only the cells of this physical volume (name or number) */
   std::array<PetscReal, 3>   lower{}, upper{};
   std::array<PetscInt, 3>    cells{};
   PetscReal                  E = 2.12e11, nu = 0.277;

@@ -204,13 +204,16 @@ struct Reader {
   }
 };
 
+const char *const SelectorUsage = "use FACE or FACE/COND[/COND...] with FACE one of x0 x1 y0 y1 z0 z1 (or, on a body from -scene_body<b>_mesh, a physical surface of the mesh) and COND like x>1, "
+                                  "y<=0.5 (a condition on the centroids of the face's triangles)";
+
 /* FACE[/AXIS OP VALUE]..., OP one of > >= < <= */
 PetscErrorCode ParseSelector(MPI_Comm comm, const std::string &option, const std::string &given, SceneSelector &sel)
 {
   std::string              text;
   std::vector<std::string> parts;
   std::string              cur;
-  const char              *usage = "use FACE or FACE/COND[/COND...] with FACE one of x0 x1 y0 y1 z0 z1 and COND like x>1, y<=0.5 (a condition on the centroids of the face's triangles)";
+  const char              *usage = SelectorUsage;
 
   PetscFunctionBegin;
   for (char c : given)
@@ -227,7 +230,10 @@ PetscErrorCode ParseSelector(MPI_Comm comm, const std::string &option, const std
   sel.option = option;
   for (PetscInt f = 0; f < 6; f++)
     if (parts[0] == SceneFaceNames[f]) sel.face = f;
-  PetscCheck(sel.face >= 0, comm, PETSC_ERR_ARG_WRONG, "%s '%s': unknown face '%s' (%s)", option.c_str(), given.c_str(), parts[0].c_str(), usage);
+  /* any other FACE is a physical surface of a mesh body, checked against the mesh file at setup (and against the
+     body's kind by CheckBoxSelectors()) */
+  PetscCheck(sel.face >= 0 || !parts[0].empty(), comm, PETSC_ERR_ARG_WRONG, "%s '%s': no face before the first '/' (%s)", option.c_str(), given.c_str(), usage);
+  if (sel.face < 0) sel.name = parts[0];
   for (size_t i = 1; i < parts.size(); i++) {
     const std::string &p = parts[i];
     SceneCondition     c{};
@@ -249,7 +255,7 @@ PetscErrorCode ParseSelector(MPI_Comm comm, const std::string &option, const std
     c.value = v;
     sel.conditions.push_back(c);
   }
-  sel.tag = sel.conditions.empty() ? std::string(SceneFaceNames[sel.face]) : text;
+  sel.tag = sel.conditions.empty() ? (sel.face >= 0 ? std::string(SceneFaceNames[sel.face]) : sel.name) : text;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -260,7 +266,8 @@ PetscErrorCode SelectorPredicate(const PetscReal centroid[3], const PetscReal no
 
   for (PetscInt d = 1; d < 3; d++)
     if (std::fabs(normal[d]) > std::fabs(normal[axis])) axis = d;
-  *tagged = (2 * axis + (normal[axis] > 0 ? 1 : 0)) == sel->face ? PETSC_TRUE : PETSC_FALSE;
+  /* a physical surface's triangles are chosen by FEMTagFacesWithin(): only the conditions are left */
+  *tagged = sel->face < 0 || (2 * axis + (normal[axis] > 0 ? 1 : 0)) == sel->face ? PETSC_TRUE : PETSC_FALSE;
   for (const SceneCondition &c : sel->conditions) {
     const PetscReal x  = centroid[c.axis];
     const PetscBool ok = c.greater ? (c.equal ? (x >= c.value ? PETSC_TRUE : PETSC_FALSE) : (x > c.value ? PETSC_TRUE : PETSC_FALSE))
@@ -297,11 +304,35 @@ PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody
   PetscInt          n, parts[3] = {1, 1, 1};
   PetscReal         femE = 2.12e11, femnu = 0.277;
 
+  PetscBool setmesh, setscale, settranslate, setvolume;
+
   PetscFunctionBegin;
   PetscCall(r.Reals(s + "lower", "Lower corner of the box (x,y,z)", "3 numbers x,y,z", 3, 3, body.lower.data(), NULL, &setlo));
   PetscCall(r.Reals(s + "upper", "Upper corner of the box (x,y,z)", "3 numbers x,y,z", 3, 3, body.upper.data(), NULL, &setup));
   PetscCall(r.Ints(s + "cells", "Hexahedra along x,y,z (each cut into 6 tetrahedra), multiplied by -scene_refine", "3 positive integers nx,ny,nz", 3, 3, body.cells.data(), NULL, &setcells));
-  if (exists) {
+  /* or a mesh file of tetrahedra (instead of the box options) */
+  PetscCall(r.String(s + "mesh", "Mesh file of tetrahedra (Gmsh .msh 2.2/4.x, or any DMPlexCreateFromFile() format) instead of a box", "a mesh file name", body.mesh, &setmesh));
+  PetscCall(r.Real(s + "scale", "Mesh: multiply the file's coordinates by this factor (e.g. 1e-3 for a mesh in mm)", "a scale factor > 0", &body.scale, &setscale));
+  PetscCall(r.Reals(s + "translate", "Mesh: then add this vector to the coordinates", "3 numbers x,y,z", 3, 3, body.translate.data(), NULL, &settranslate));
+  PetscCall(r.String(s + "volume", "Mesh: only the cells of this physical volume (a name or number of the file)", "a physical volume", body.volume, &setvolume));
+  if (exists && setmesh) {
+    PetscCheck(!setlo && !setup && !setcells, comm, PETSC_ERR_ARG_WRONG, "body %d has both %s and %s: a body is either a mesh file or a box (_lower, _upper, _cells)", (int)b,
+               r.Full(s + "mesh").c_str(),
+               r.Full(s + (setlo   ? "lower"
+                           : setup ? "upper"
+                                   : "cells"))
+                   .c_str());
+    PetscCheck(body.scale > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: the scale must be positive (a mirror image would turn every tetrahedron inside out)", r.Full(s + "scale").c_str(),
+               (double)body.scale);
+  } else if (exists) {
+    PetscCheck(!setscale && !settranslate && !setvolume, comm, PETSC_ERR_ARG_WRONG, "%s applies to a body from a mesh file: body %d is a box (give %s, or remove it)",
+               r.Full(s + (setscale       ? "scale"
+                           : settranslate ? "translate"
+                                          : "volume"))
+                   .c_str(),
+               (int)b, r.Full(s + "mesh").c_str());
+  }
+  if (exists && !setmesh) {
     PetscCheck(setlo && setup && setcells, comm, PETSC_ERR_ARG_WRONG, "body %d needs %s, %s and %s", (int)b, r.Full(s + "lower").c_str(), r.Full(s + "upper").c_str(), r.Full(s + "cells").c_str());
     for (PetscInt d = 0; d < 3; d++) {
       PetscCheck(body.upper[d] > body.lower[d], comm, PETSC_ERR_ARG_OUTOFRANGE, "%s and %s: upper %g must exceed lower %g along %c", r.Full(s + "lower").c_str(), r.Full(s + "upper").c_str(),
@@ -325,6 +356,12 @@ PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody
   PetscCall(r.Enum(s + "decomposition", "How the body is cut into subdomains (default: from the count of -scene_body<b>_subdomains, else -fem_decomposition)", FEMDecompositionTypes,
                    (PetscEnum *)&body.decomposition, &setdec));
   PetscCall(r.Ints(s + "subdomains", "Subdomains: px,py,pz (structured) or n (metis)", "px,py,pz (structured) or one count n (metis)", 1, 3, parts, &n, &setparts));
+  if (exists && setmesh && (setdec || setparts)) {
+    PetscCheck(!(setdec && body.decomposition == FEM_DECOMPOSITION_STRUCTURED) && !(setparts && n != 1), comm, PETSC_ERR_ARG_WRONG,
+               "%s: a body from a mesh file is decomposed by METIS only: give one subdomain count, %s n", r.Full(s + (setparts && n != 1 ? "subdomains" : "decomposition")).c_str(),
+               r.Full(s + "subdomains").c_str());
+    body.decomposition = FEM_DECOMPOSITION_METIS;
+  }
   if (exists && (setdec || setparts)) {
     if (!setdec) body.decomposition = n == 1 ? FEM_DECOMPOSITION_METIS : FEM_DECOMPOSITION_STRUCTURED;
     if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED) {
@@ -484,6 +521,27 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A physical surface name selects on a body from a mesh file only: on a box FACE is one of x0 ... z1 */
+PetscErrorCode CheckBoxSelectors(MPI_Comm comm, const Scene_Impl &impl)
+{
+  std::vector<std::pair<const SceneSelector *, PetscInt>> all;
+
+  PetscFunctionBegin;
+  for (size_t b = 0; b < impl.bodies.size(); b++) {
+    for (const SceneSupport &sp : impl.bodies[b].supports) all.emplace_back(&sp.selector, (PetscInt)b);
+    for (const SceneTraction &t : impl.bodies[b].tractions) all.emplace_back(&t.selector, (PetscInt)b);
+  }
+  for (const SceneZoneSpec &z : impl.zones) {
+    all.emplace_back(&z.face, z.zone.body);
+    if (z.zone.type == CONTACT_ZONE_BODIES) all.emplace_back(&z.other, z.zone.other_body);
+  }
+  for (const auto &[sel, b] : all) {
+    if (sel->face >= 0 || b < 0 || b >= (PetscInt)impl.bodies.size() || !impl.bodies[b].mesh.empty()) continue;
+    PetscCheck(PETSC_FALSE, comm, PETSC_ERR_ARG_WRONG, "%s '%s': unknown face '%s' (body %d is a box: %s)", sel->option.c_str(), sel->text.c_str(), sel->name.c_str(), (int)b, SelectorUsage);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* every -<prefix>scene_* option must have been used by the parser */
 PetscErrorCode CheckUnused(MPI_Comm comm, const char *prefix)
 {
@@ -510,6 +568,191 @@ PetscErrorCode CheckUnused(MPI_Comm comm, const char *prefix)
 }
 
 } // namespace
+
+/* The physical volumes of a mesh read by FEMCreateDMPlexFromFile() (rank 0): the labels named after them and the
+   values of "Cell Sets", for the message when -scene_body<b>_volume names none of them */
+static PetscErrorCode VolumeNames(DM dm, std::string &list)
+{
+  PetscInt nlabels, cStart, cEnd;
+
+  PetscFunctionBegin;
+  list.clear();
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetNumLabels(dm, &nlabels));
+  for (PetscInt l = 0; l < nlabels; l++) {
+    const char     *name;
+    DMLabel         label;
+    IS              values;
+    PetscInt        n;
+    const PetscInt *v;
+    PetscCall(DMGetLabelName(dm, l, &name));
+    if (!strcmp(name, "depth") || !strcmp(name, "celltype")) continue;
+    PetscCall(DMGetLabelByNum(dm, l, &label));
+    PetscCall(DMLabelGetValueIS(label, &values));
+    PetscCall(ISGetLocalSize(values, &n));
+    PetscCall(ISGetIndices(values, &v));
+    for (PetscInt i = 0; i < n; i++) {
+      PetscInt first = -1;
+      PetscCall(DMLabelGetStratumBounds(label, v[i], &first, NULL));
+      if (first < cStart || first >= cEnd) continue; /* not cells (strata of a Gmsh label hold one dimension) */
+      if (!strcmp(name, "Cell Sets")) list += (list.empty() ? "" : ", ") + Format("%" PetscInt_FMT, v[i]);
+      else if (i == 0) list += (list.empty() ? "" : ", ") + std::string(name);
+    }
+    PetscCall(ISRestoreIndices(values, &v));
+    PetscCall(ISDestroy(&values));
+  }
+  if (list.empty()) list = "none";
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Rank 0: the cells of the physical volume `volume` (a name, else a number of "Cell Sets") as their own mesh */
+static PetscErrorCode RestrictToVolume(DM dm, const std::string &volume, const std::string &file, DM *sub, std::string &error)
+{
+  DMLabel  label = NULL;
+  PetscInt value = 0, cStart, cEnd, ncells = 0;
+
+  PetscFunctionBegin;
+  *sub = NULL;
+  PetscCall(DMPlexGetHeightStratum(dm, 0, &cStart, &cEnd));
+  PetscCall(DMGetLabel(dm, volume.c_str(), &label));
+  if (label) {
+    IS       values;
+    PetscInt n;
+    PetscCall(DMLabelGetValueIS(label, &values));
+    PetscCall(ISGetLocalSize(values, &n));
+    if (n == 1) PetscCall(ISGetMinMax(values, &value, NULL));
+    else label = NULL;
+    PetscCall(ISDestroy(&values));
+  } else {
+    char *end = nullptr;
+    value     = (PetscInt)std::strtol(volume.c_str(), &end, 10);
+    if (!volume.empty() && *end == 0) PetscCall(DMGetLabel(dm, "Cell Sets", &label));
+  }
+  if (label) {
+    IS points;
+    PetscCall(DMLabelGetStratumIS(label, value, &points));
+    if (points) {
+      PetscInt        n;
+      const PetscInt *p;
+      PetscCall(ISGetLocalSize(points, &n));
+      PetscCall(ISGetIndices(points, &p));
+      for (PetscInt i = 0; i < n; i++)
+        if (p[i] >= cStart && p[i] < cEnd) ncells++;
+      PetscCall(ISRestoreIndices(points, &p));
+      PetscCall(ISDestroy(&points));
+    }
+  }
+  if (!ncells) {
+    std::string list;
+    PetscCall(VolumeNames(dm, list));
+    error = Format("%s: no physical volume '%s' in the mesh (its volumes: %s)", file.c_str(), volume.c_str(), list.c_str());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(DMPlexFilter(dm, label, value, sub));
+  PetscCall(PetscObjectSetName((PetscObject)*sub, file.c_str()));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A body from a mesh file: read on rank 0 (FEMCreateDMPlexFromFile()), scaled and moved, restricted to a physical
+   volume, added by FEMAddDMPlex(). names: the facet sets the body got (the physical surfaces), on every rank. */
+static PetscErrorCode AddMeshBodyInner(MPI_Comm comm, FEM fem, const SceneBody &body, PetscInt *id, std::vector<std::string> &names)
+{
+  DM          dm = NULL, sub = NULL;
+  PetscMPIInt rank;
+  char        error[1024] = "";
+  std::string joined;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(FEMCreateDMPlexFromFile(comm, body.mesh.c_str(), &dm));
+  if (!rank) {
+    std::string err;
+    if (body.scale != 1 || body.translate[0] != 0 || body.translate[1] != 0 || body.translate[2] != 0) {
+      Vec          X;
+      PetscScalar *x;
+      PetscInt     n;
+      PetscCall(DMGetCoordinatesLocal(dm, &X));
+      PetscCall(VecGetLocalSize(X, &n));
+      PetscCall(VecGetArray(X, &x));
+      for (PetscInt i = 0; i < n; i++) x[i] = body.scale * x[i] + body.translate[i % 3];
+      PetscCall(VecRestoreArray(X, &x));
+      PetscCall(DMSetCoordinatesLocal(dm, X));
+    }
+    if (!body.volume.empty()) PetscCall(RestrictToVolume(dm, body.volume, body.mesh, &sub, err));
+    PetscCall(PetscStrncpy(error, err.c_str(), sizeof(error)));
+  }
+  PetscCallMPI(MPI_Bcast(error, sizeof(error), MPI_CHAR, 0, comm));
+  if (error[0]) PetscCall(DMDestroy(&dm));
+  PetscCheck(!error[0], comm, PETSC_ERR_ARG_WRONG, "%s", error);
+  PetscCall(FEMAddDMPlex(fem, sub ? sub : dm, id));
+  if (!rank) {
+    PetscInt n;
+    char   **list;
+    PetscCall(FEMDMPlexGetFacetSetNames(sub ? sub : dm, &n, &list));
+    for (PetscInt i = 0; i < n; i++) joined += std::string(i ? "\n" : "") + list[i];
+    PetscCall(PetscStrArrayDestroy(&list));
+  }
+  PetscCall(DMDestroy(&sub));
+  PetscCall(DMDestroy(&dm));
+  {
+    long len = (long)joined.size();
+    PetscCallMPI(MPI_Bcast(&len, 1, MPI_LONG, 0, comm));
+    if (rank) joined.assign((size_t)len, ' ');
+    if (len) PetscCallMPI(MPI_Bcast(&joined[0], (PetscMPIInt)len, MPI_CHAR, 0, comm));
+  }
+  names.clear();
+  for (size_t start = 0, end; !joined.empty() && start <= joined.size(); start = end + 1) {
+    end = joined.find('\n', start);
+    if (end == std::string::npos) end = joined.size();
+    names.push_back(joined.substr(start, end - start));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The errors of reading and converting the mesh (the FEM layer's too: an inverted tetrahedron, a triangle of a
+   facet set that is not on the boundary) name the option and the file, once */
+static PetscErrorCode AddMeshBody(MPI_Comm comm, const char prefix[], FEM fem, const SceneBody &body, PetscInt b, PetscInt *id, std::vector<std::string> &names)
+{
+  PetscErrorCode ierr;
+
+  PetscFunctionBegin;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = AddMeshBodyInner(comm, fem, body, id, names);
+  PetscCall(PetscPopErrorHandler());
+  if (ierr) {
+    const char *text  = NULL;
+    char       *inner = NULL;
+    std::string why;
+    (void)PetscErrorMessage(ierr, &text, &inner);
+    why = inner && inner[0] ? inner : (text ? text : "unknown error");
+    if (!why.compare(0, body.mesh.size() + 2, body.mesh + ": ")) why = why.substr(body.mesh.size() + 2);
+    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+    SETERRQ(comm, ierr, "-%sscene_body%d_mesh %s: %s", prefix ? prefix : "", (int)b, body.mesh.c_str(), why.c_str());
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The FEM tag of a physical surface selector of mesh body b: the facet set whose name matches (spaces ignored:
+   the options parser drops them), else an error listing the surfaces */
+static PetscErrorCode ResolveSurface(MPI_Comm comm, const SceneBody &body, PetscInt b, const std::vector<std::string> &names, SceneSelector &sel)
+{
+  std::string list;
+
+  PetscFunctionBegin;
+  for (const std::string &n : names) {
+    std::string compact;
+    for (char c : n)
+      if (c != ' ' && c != '\t') compact += c;
+    if (compact == sel.name) {
+      sel.name = n;
+      if (sel.conditions.empty()) sel.tag = n;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    list += (list.empty() ? "" : ", ") + n;
+  }
+  SETERRQ(comm, PETSC_ERR_ARG_WRONG, "%s '%s': body %d's mesh %s has no physical surface '%s' (it has: %s; and the built-in x0 x1 y0 y1 z0 z1)", sel.option.c_str(), sel.text.c_str(), (int)b,
+          body.mesh.c_str(), sel.name.c_str(), list.empty() ? "none" : list.c_str());
+}
 
 static PetscErrorCode ContactSceneReset(ContactScene scene)
 {
@@ -568,6 +811,7 @@ template <class Full> static PetscErrorCode CheckMemory(MPI_Comm comm, const cha
   PetscFunctionBegin;
   for (const SceneBody &body : impl.bodies) {
     double nodes = 1, nsub = 1;
+    if (!body.mesh.empty()) continue; /* unknown before the file is read; FETISetUp() checks it */
     for (PetscInt d = 0; d < 3; d++) nodes *= (double)body.cells[d] * impl.refine + 1;
     if (body.decompositionset) nsub = body.decomposition == FEM_DECOMPOSITION_STRUCTURED ? (double)body.parts[0] * body.parts[1] * body.parts[2] : (double)body.parts[0];
     need += 3 * nodes * nnzperdof * 8.5; /* SBAIJ with 3x3 blocks: 8 bytes a value, an index per 9 */
@@ -738,7 +982,7 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   for (PetscInt b = 0;; b++) {
     PetscBool exists;
     SceneBody body;
-    PetscCall(AnySet(r, Format("-scene_body%d_", (int)b), {"lower", "upper", "cells"}, &exists));
+    PetscCall(AnySet(r, Format("-scene_body%d_", (int)b), {"lower", "upper", "cells", "mesh"}, &exists));
     if (!exists && !(help && b == 0)) break;
     PetscCall(ReadBody(r, b, exists, body));
     if (exists) PetscCallCXX(impl.bodies.push_back(body));
@@ -756,12 +1000,14 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   PetscOptionsEnd();
   impl.name = name;
   PetscCall(CheckUnused(comm, prefix));
+  PetscCall(CheckBoxSelectors(comm, impl));
   /* mesh sizes after refinement, and subdomain counts that fit them. The sizes are counted in floating point:
      the products of the refined cell counts can overflow any integer type */
   const auto full  = [&](const std::string &name) { return "-" + std::string(prefix ? prefix : "") + name.substr(1); };
   double     total = 0; /* unknowns of all bodies: the FEM numbers them together */
   for (size_t b = 0; b < impl.bodies.size(); b++) {
-    SceneBody        &body = impl.bodies[b];
+    SceneBody &body = impl.bodies[b];
+    if (!body.mesh.empty()) continue; /* its size is known when the file is read */
     double            c[3], nodes = 1, tets = 6;
     const std::string opt   = full(Format("-scene_body%d_cells", (int)b));
     std::string       given = Format("%s %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT, opt.c_str(), body.cells[0], body.cells[1], body.cells[2]);
@@ -821,8 +1067,9 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
   PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
   if (impl.setup) PetscFunctionReturn(PETSC_SUCCESS);
   comm = PetscObjectComm((PetscObject)scene);
-  PetscCheck(!impl.bodies.empty(), comm, PETSC_ERR_ARG_WRONGSTATE,
-             "the scene has no body: give one with -scene_body0_lower, -scene_body0_upper and -scene_body0_cells (e.g. -options_file petsc-options/brick.opts; see docs/scenes.md)");
+  PetscCheck(
+      !impl.bodies.empty(), comm, PETSC_ERR_ARG_WRONGSTATE,
+      "the scene has no body: give one with -scene_body0_lower, -scene_body0_upper and -scene_body0_cells, or -scene_body0_mesh (e.g. -options_file petsc-options/brick.opts; see docs/scenes.md)");
   {
     /* every rank needs a subdomain: say which scene options to change (METIS may add subdomains, never remove them) */
     PetscMPIInt size;
@@ -848,8 +1095,12 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
     std::set<std::string>        tagged;
     std::vector<SceneSelector *> selectors;
 
-    for (PetscInt d = 0; d < 3; d++) cells[d] = body.cells[d] * impl.refine;
-    PetscCall(FEMAddBox(impl.fem, body.lower.data(), body.upper.data(), cells, &id));
+    std::vector<std::string> surfaces; /* a mesh body's physical surfaces */
+
+    if (body.mesh.empty()) {
+      for (PetscInt d = 0; d < 3; d++) cells[d] = body.cells[d] * impl.refine;
+      PetscCall(FEMAddBox(impl.fem, body.lower.data(), body.upper.data(), cells, &id));
+    } else PetscCall(AddMeshBody(comm, prefix, impl.fem, body, b, &id, surfaces));
     PetscCall(FEMSetMaterial(impl.fem, id, body.E, body.nu));
     if (body.decompositionset) PetscCall(FEMSetDecomposition(impl.fem, id, body.decomposition, body.parts.data()));
     /* the parts of faces become boundary tags, one per distinct selector */
@@ -860,11 +1111,15 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
       if (z.zone.type == CONTACT_ZONE_BODIES && z.zone.other_body == b) selectors.push_back(&z.other);
     }
     for (SceneSelector *sel : selectors) {
-      if (sel->conditions.empty() || tagged.count(sel->tag)) continue;
+      if (sel->face < 0) PetscCall(ResolveSurface(comm, body, b, surfaces, *sel));
       PetscCheck(sel->tag.size() < sizeof(((ContactZone *)0)->face), comm, PETSC_ERR_ARG_WRONG, "%s '%s': the selector is too long (at most %d characters)", sel->option.c_str(), sel->text.c_str(),
                  (int)sizeof(((ContactZone *)0)->face) - 1);
+      if (sel->conditions.empty() || tagged.count(sel->tag)) continue;
       PetscCallCXX(impl.predicates.push_back(std::make_unique<SceneSelector>(*sel)));
-      PetscCall(FEMTagFaces(impl.fem, id, sel->tag.c_str(), SelectorPredicate, impl.predicates.back().get()));
+      /* part of a physical surface: its triangles that meet the conditions; part of a box face: the boundary
+         triangles facing that way that meet them */
+      if (sel->face < 0) PetscCall(FEMTagFacesWithin(impl.fem, id, sel->tag.c_str(), sel->name.c_str(), SelectorPredicate, impl.predicates.back().get()));
+      else PetscCall(FEMTagFaces(impl.fem, id, sel->tag.c_str(), SelectorPredicate, impl.predicates.back().get()));
       tagged.insert(sel->tag);
     }
     for (const SceneSupport &sp : body.supports) {
@@ -889,6 +1144,11 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
       PetscInt         n;
       const SceneBody &body = impl.bodies[b];
       PetscCall(FEMGetTaggedNodes(impl.fem, (PetscInt)b, sel->tag.c_str(), &n, NULL, NULL, NULL));
+      if (!body.mesh.empty())
+        PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG,
+                   "%s '%s' selects no boundary triangle of body %d, the mesh %s (conditions apply to triangle centroids; a surface between two volumes of the mesh is no boundary: make a body of "
+                   "each with -scene_body<b>_volume)",
+                   sel->option.c_str(), sel->text.c_str(), (int)b, body.mesh.c_str());
       PetscCheck(n > 0, comm, PETSC_ERR_ARG_WRONG, "%s '%s' selects no boundary triangle of body %d, the box [%g,%g]x[%g,%g]x[%g,%g] (conditions apply to triangle centroids)", sel->option.c_str(),
                  sel->text.c_str(), (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1], (double)body.lower[2], (double)body.upper[2]);
     }
@@ -980,9 +1240,17 @@ PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
                  impl.zones.size() == 1 ? "" : "s", (int)impl.refine);
   for (size_t b = 0; b < impl.bodies.size(); b++) {
     const SceneBody &body = impl.bodies[b];
-    text += Format("  body %d: box [%g,%g]x[%g,%g]x[%g,%g], %dx%dx%d cells, E %g, nu %g", (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1],
-                   (double)body.lower[2], (double)body.upper[2], (int)(body.cells[0] * impl.refine), (int)(body.cells[1] * impl.refine), (int)(body.cells[2] * impl.refine), (double)body.E,
-                   (double)body.nu);
+    if (!body.mesh.empty()) {
+      text += Format("  body %d: mesh %s", (int)b, body.mesh.c_str());
+      if (!body.volume.empty()) text += Format(", volume %s", body.volume.c_str());
+      if (body.scale != 1) text += Format(", scaled by %g", (double)body.scale);
+      if (body.translate[0] != 0 || body.translate[1] != 0 || body.translate[2] != 0)
+        text += Format(", moved by (%g, %g, %g)", (double)body.translate[0], (double)body.translate[1], (double)body.translate[2]);
+      text += Format(", E %g, nu %g", (double)body.E, (double)body.nu);
+    } else
+      text += Format("  body %d: box [%g,%g]x[%g,%g]x[%g,%g], %dx%dx%d cells, E %g, nu %g", (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1],
+                     (double)body.lower[2], (double)body.upper[2], (int)(body.cells[0] * impl.refine), (int)(body.cells[1] * impl.refine), (int)(body.cells[2] * impl.refine), (double)body.E,
+                     (double)body.nu);
     if (body.decompositionset) {
       if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED) text += Format(", structured %dx%dx%d subdomains", (int)body.parts[0], (int)body.parts[1], (int)body.parts[2]);
       else text += Format(", METIS %d subdomains", (int)body.parts[0]);

@@ -11,14 +11,15 @@
 #include <string>
 #include <vector>
 
-/* The six box faces in the order of the built-in tags x0, x1, y0, y1, z0, z1 */
+/* The built-in tags x0, x1, y0, y1, z0, z1: the boundary triangles whose outward normal points mostly
+   along -x, +x, -y, +y, -z, +z (on a box: exactly its six faces) */
 PETSC_INTERN const char *const FEMBoxFaceNames[6];
 
-/* A boundary triangle of a box: one face of exactly one tetrahedron */
+/* A boundary triangle: one face of exactly one tetrahedron */
 struct FEMBoundaryTriangle {
   std::array<PetscInt, 3>  v;       /* body node ids */
   PetscInt                 element; /* body element id of the tetrahedron it bounds */
-  PetscInt                 face;    /* box face 0..5 (x0, x1, y0, y1, z0, z1) */
+  PetscInt                 face;    /* built-in tag 0..5 (x0, x1, y0, y1, z0, z1) of its outward normal */
   PetscReal                area;
   std::array<PetscReal, 3> normal; /* outward unit normal */
 };
@@ -31,6 +32,7 @@ struct FEMTaggedNodes {
 
 struct FEMUserTag {
   std::string      name;
+  std::string      within; /* empty: all boundary triangles; else only those of this tag */
   FEMFacePredicate predicate;
   void            *ctx;
 };
@@ -47,30 +49,38 @@ struct FEMTractionSpec {
   std::array<PetscReal, 3> value;
 };
 
+/* A body is a P1 tetrahedral mesh: generated from a box (FEMAddBox()) or given (FEMAddMesh()) */
 struct FEMBody {
-  std::array<PetscReal, 3>      lower{}, upper{};
-  std::array<PetscInt, 3>       cells{};
-  PetscReal                     E = 0, nu = 0;
-  PetscBool                     materialset   = PETSC_FALSE;
-  FEMDecompositionType          decomposition = FEM_DECOMPOSITION_STRUCTURED;
-  std::array<PetscInt, 3>       parts{1, 1, 1};
-  PetscBool                     decompositionset = PETSC_FALSE;
-  std::vector<FEMUserTag>       usertags;
-  std::vector<FEMDirichletSpec> dirichlet;
-  std::vector<FEMTractionSpec>  tractions;
-  FEMVectorField                bodyforce    = nullptr;
-  void                         *bodyforcectx = nullptr;
+  PetscBool                                    isbox = PETSC_TRUE; /* box: lower, upper, cells define it and the mesh is generated in FEMSetUp() */
+  std::array<PetscReal, 3>                     lower{}, upper{};
+  std::array<PetscInt, 3>                      cells{};
+  std::map<std::string, std::vector<PetscInt>> facetsets; /* FEMAddFacetSet(): 3 node ids per triangle */
+  PetscReal                                    E = 0, nu = 0;
+  PetscBool                                    materialset   = PETSC_FALSE;
+  FEMDecompositionType                         decomposition = FEM_DECOMPOSITION_STRUCTURED;
+  std::array<PetscInt, 3>                      parts{1, 1, 1};
+  PetscBool                                    decompositionset = PETSC_FALSE;
+  std::vector<FEMUserTag>                      usertags;
+  std::vector<FEMDirichletSpec>                dirichlet;
+  std::vector<FEMTractionSpec>                 tractions;
+  FEMVectorField                               bodyforce    = nullptr;
+  void                                        *bodyforcectx = nullptr;
+
+  /* Given by FEMAddMesh() or built by FEMSetUp() for a box, on every rank */
+  PetscInt               nnodes = 0, nelements = 0;
+  std::vector<PetscReal> coords; /* 3 per node */
+  std::vector<PetscInt>  conn;   /* 4 node ids per element, positively oriented */
 
   /* Built by FEMSetUp() on every rank */
-  PetscInt                                     nnodes = 0, nelements = 0, nodeoffset = 0;
+  PetscInt                                     nodeoffset = 0;
   PetscInt                                     firstsub = 0, nsub = 0;
-  std::vector<PetscReal>                       coords; /* 3 per node */
   std::vector<FEMBoundaryTriangle>             boundary;
   std::map<std::string, std::vector<PetscInt>> tags; /* tag -> indices into boundary */
   std::map<std::string, FEMTaggedNodes>        taggednodes;
   std::vector<PetscInt>                        part;          /* element -> subdomain index within the body */
   std::vector<unsigned char>                   dirichletmask; /* node -> fixed component bits */
-  std::vector<unsigned char>                   onboundary;    /* node -> 1 when on the box boundary */
+  std::vector<unsigned char>                   onboundary;    /* node -> 1 when on the body's boundary */
+  std::vector<unsigned char>                   oninterface;   /* node -> 1 when elements of two subdomains share it */
 };
 
 /* One subdomain owned by this rank */
@@ -140,12 +150,20 @@ struct _p_FEM {
   FEM_Impl *impl;
 };
 
+/* The nodes of body element e */
+static inline void FEMElementNodes(const FEMBody &b, PetscInt e, PetscInt v[4])
+{
+  for (PetscInt a = 0; a < 4; a++) v[a] = b.conn[4 * (size_t)e + a];
+}
+
 /* Mesh of a box (femmesh.cxx) */
-PETSC_INTERN void           FEMBoxElementNodes(const FEMBody &, PetscInt, PetscInt[4]);
-PETSC_INTERN void           FEMBoxNodeIJK(const FEMBody &, PetscInt, PetscInt[3]);
 PETSC_INTERN PetscErrorCode FEMBoxBuildMesh(FEMBody &);
-PETSC_INTERN PetscErrorCode FEMBoxBuildTags(FEMBody &);
-PETSC_INTERN PetscErrorCode FEMBoxNodeSubdomains(const FEMBody &, PetscInt, std::vector<PetscInt> &);
+
+/* Any tetrahedral mesh (femtopology.cxx): boundary triangles, tags, Dirichlet mask, interface nodes */
+PETSC_INTERN PetscErrorCode FEMCheckMesh(MPI_Comm, PetscInt, const FEMBody &);
+PETSC_INTERN PetscErrorCode FEMBuildBoundary(FEMBody &);
+PETSC_INTERN PetscErrorCode FEMBuildTags(PetscInt, FEMBody &);
+PETSC_INTERN PetscErrorCode FEMMarkInterfaceNodes(FEMBody &);
 
 /* Elasticity (femelasticity.cxx) */
 PETSC_INTERN PetscErrorCode FEMElementLoad(const PetscReal[12], FEMVectorField, void *, PetscReal[12]);

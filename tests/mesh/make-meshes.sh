@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# usage: make-meshes.sh SOURCE_DIR OUT_DIR
+# The mesh files of the tests/mesh tests, made at test time (none is committed): the generator's box in the
+# four Gmsh encodings (write-box-msh.py), broken files for the error tests, and meshes/block-hole.geo meshed by gmsh.
+set -euo pipefail
+src=$1; out=$2
+mkdir -p "$out"
+w="/usr/bin/python3 $src/tests/mesh/write-box-msh.py"
+box="--lower 0,0,0 --upper 1,0.5,2 --cells 3,2,4"
+$w "$out/box-2.2.msh" $box --version 2.2
+$w "$out/box-2.2-binary.msh" $box --version 2.2 --binary
+$w "$out/box-4.1.msh" $box --version 4.1
+$w "$out/box-4.1-binary.msh" $box --version 4.1 --binary
+$w "$out/inverted.msh" $box --invert
+$w "$out/hexahedra.msh" $box --hexahedra
+head -c 1500 "$out/box-4.1.msh" >"$out/truncated.msh"
+head -c 3000 "$out/box-4.1-binary.msh" >"$out/truncated-binary.msh"
+gmsh -3 "$src/meshes/block-hole.geo" -o "$out/block-hole.msh" >"$out/block-hole.log" 2>&1 || { cat "$out/block-hole.log"; exit 1; }
+gmsh -3 "$src/meshes/two-volumes.geo" -o "$out/two-volumes.msh" >"$out/two-volumes.log" 2>&1 || { cat "$out/two-volumes.log"; exit 1; }
+echo "make-meshes.sh: meshes in $out"
