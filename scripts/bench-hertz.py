@@ -18,7 +18,7 @@ mesh's nodal pressures are plotted against Hertz's p(r) = p0 sqrt(1 - r^2/a^2).
 
 usage: scripts/bench-hertz.py [--case box|indentation|hemisphere] [--sizes 10,20,30 | 0.04,0.02,0.01]
                               [--build build] [--ranks 1] [--write docs/validation.md] [--plot docs/figures/hertz-box.png]
-                              [--check-P 0.25] [--extra "-option value ..."]
+                              [--check a=0.05,P=0.1,p0=0.1] [--extra "-option value ..."]
 """
 import argparse, json, math, os, re, subprocess, sys, tempfile, time
 
@@ -158,7 +158,7 @@ def main():
     ap.add_argument("--extra", default="")
     ap.add_argument("--write", default=None, help="replace this case's table in the file (between its bench-hertz markers)")
     ap.add_argument("--plot", default=None, help="PNG of the finest mesh's nodal pressure against Hertz's p(r)")
-    ap.add_argument("--check-P", type=float, default=None, help="exit 1 unless every mesh's P is within this relative error of Hertz's")
+    ap.add_argument("--check", default=None, help="e.g. a=0.05,P=0.1,p0=0.1: exit 1 unless every mesh converged and has these quantities within these relative errors of Hertz's")
     a = ap.parse_args()
     sizes = (a.sizes or ("10,20,30" if a.case == "box" else "0.04,0.02,0.01")).split(",")
     if a.case != "box" and not has_mesh_reader(a.build):
@@ -174,10 +174,14 @@ def main():
         write_section(a.write, a.case, text)
     if a.plot:
         plot(a.case, rows[-1], a.plot)
-    if a.check_P is not None:
-        PH = hertz(a.case)[1]
-        bad = [x for x in rows if not (x["converged"] and abs(x["P"] - PH) <= a.check_P * PH)]
-        print("check: %s" % ("passed" if not bad else "failed: P %s vs Hertz %.4g" % (", ".join("%.4g" % x["P"] for x in bad), PH)))
+    if a.check:
+        ref = dict(zip(("a", "P", "p0"), hertz(a.case)))
+        bad = ["h = %g did not converge" % x["h"] for x in rows if not x["converged"]]
+        for item in a.check.split(","):
+            q, tol = item.split("=")
+            bad += ["h = %g: %s = %.4g, %+.1f %% from Hertz's %.4g (allowed %g %%)" % (x["h"], q, x[q], 100 * (x[q] / ref[q] - 1), ref[q], 100 * float(tol))
+                    for x in rows if abs(x[q] - ref[q]) > float(tol) * ref[q]]
+        print("check: %s" % ("passed" if not bad else "failed: " + "; ".join(bad)))
         sys.exit(1 if bad else 0)
 
 
