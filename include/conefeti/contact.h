@@ -126,6 +126,8 @@ PETSC_EXTERN PetscErrorCode ContactProblemSetOperator(ContactProblem, Mat, Vec);
 PETSC_EXTERN PetscErrorCode ContactProblemSetEquality(ContactProblem, Mat, Vec);
 PETSC_EXTERN PetscErrorCode ContactProblemSetProjector(ContactProblem, Mat, Vec);
 PETSC_EXTERN PetscErrorCode ContactProblemAddNodes(ContactProblem, ContactLaw, PetscInt, const PetscInt[], const PetscInt[], const PetscInt[], const PetscReal[]);
+PETSC_EXTERN PetscErrorCode ContactProblemAddPolygonNodes(ContactProblem, ContactLaw, PetscInt, PetscInt, const PetscInt[], const PetscInt[], const PetscReal[]);
+PETSC_EXTERN PetscErrorCode ContactProblemGetFrictionPolygon(ContactProblem, PetscInt *, const PetscInt **);
 PETSC_EXTERN PetscErrorCode ContactProblemSetOptionsPrefix(ContactProblem, const char[]);
 PETSC_EXTERN PetscErrorCode ContactProblemSetFromOptions(ContactProblem);
 PETSC_EXTERN PetscErrorCode ContactProblemSetUp(ContactProblem);
@@ -282,6 +284,9 @@ PETSC_EXTERN const char *const ContactChecks[];
 . slip_rule       - max over zones of max |l_t - P_g(l_t + k T u)| / L_z with k = L_z / U_z: zero exactly when stick nodes do not
                     move and slipping nodes move along l_t with |l_t| = g (the friction force -T'l_t opposes the slip)
 . max             - the largest of the above
+. approximation   - with a friction polygon (-contact_friction_polygon): the friction cone and slip rule of the disk law
+                    (|l_t| <= g), which the polygon only approximates, judged like friction_cone and slip_rule (those then
+                    judge the polygon law the solver solved); not in max: the error of the model, not of the solve. 0 with disks
 . worst           - the check of max
 . where           - per check, the body (equilibrium, gluing) or zone (the others) where it is largest (-1: not measured)
 - counts[3]       - number of separated, stick and slip nodes
@@ -300,6 +305,7 @@ typedef struct {
   ContactCheck worst;
   PetscInt     where[CONTACT_NUM_CHECKS];
   PetscInt     counts[3];
+  PetscReal    approximation;
 } ContactResiduals;
 
 /*S

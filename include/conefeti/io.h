@@ -52,6 +52,7 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . fixed_point   - Coulomb: relative fixed-point residual |g - F l_n| / |F l_n| at the end
 . feasibility   - |G l - e| at the end
 . rtol          - the contact solver's relative tolerance (-contact_rtol; 0 for the linear pipeline)
+. friction_polygon - tangential multipliers per friction node when the disks are replaced by polygons (-contact_friction_polygon; 0: disks)
 . acceptance    - the largest mechanical residual a converged solve may have (`ContactModelSolve()`)
 . refinements   - tighter solves after the first, run because the solver's test passed before the residuals did
 . failed_check  - why the solve did not converge: a `ContactChecks` name, "solver", or "" when it converged
@@ -86,6 +87,7 @@ typedef struct {
   PetscInt                unmatched_nodes;
   PetscReal               max_nu;
   PetscReal               contact_force[3], normal_force;
+  PetscInt                friction_polygon;
   ContactResiduals        residuals;
   char                    fingerprint[17];
   PetscBool               finite, converged;

@@ -7,7 +7,9 @@
      - r_i = 0 on every multiplier without a constraint (gluing, Dirichlet);
      - l_n >= 0, r_n >= 0, l_n r_n = 0 on the normal multipliers;
      - r_t = -s l_t with s >= 0 and |l_t| = g, or r_t = 0 and |l_t| <= g, on the tangential pairs
-       (g the Tresca bound, or F max(l_n, 0) for Coulomb: the fixed point is part of the test).
+       (g the Tresca bound, or F max(l_n, 0) for Coulomb: the fixed point is part of the test);
+       with friction polygons, each tangential multiplier in [-c g, c g] with r = 0 inside, r <= 0 at c g,
+       r >= 0 at -c g (c = sin(pi/(2k)), contactpolygon.cxx).
    Each of the last three is the natural residual l - P(l - k r) (P: the projection onto the set) with k
    the ratio of the multipliers' scale to the gradient's, so that all are in units of l and relative to
    max |l|; the equality is relative to the larger of |e| and |G|_F |l| (projector form: |l~| and |l|). */
@@ -71,13 +73,16 @@ PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, P
   lmax = PetscMax(lmax, tiny);
   k    = lmax / PetscMax(PetscMax(hmax, flmax), tiny);
 
-  /* the role of each local multiplier: 0 free, 1 normal, 2 first of a tangential pair, 3 second */
+  /* the role of each local multiplier: 0 free, 1 normal, 2 first of a tangential pair, 3 second, 4 of a friction polygon */
   PetscCallCXX(role.assign(d->nlocal, 0));
   PetscCallCXX(bounds.resize(d->normal.size()));
   PetscCall(ContactProblemGetSlipBounds(cp, lambda, bounds.data()));
   for (size_t j = 0; j < d->normal.size(); j++) {
     role[d->normal[j] - d->rstart] = 1;
-    if (d->law[j] != CONTACT_FRICTIONLESS) {
+    if (d->law[j] == CONTACT_FRICTIONLESS) continue;
+    if (d->polygon)
+      for (PetscInt q = 0; q < d->polygon; q++) role[d->tang[j * d->polygon + q] - d->rstart] = 4;
+    else {
       role[d->t1[j] - d->rstart] = 2;
       role[d->t2[j] - d->rstart] = 3;
     }
@@ -91,6 +96,15 @@ PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, P
   }
   for (size_t j = 0; j < d->normal.size(); j++) {
     if (d->law[j] == CONTACT_FRICTIONLESS) continue;
+    if (d->polygon) { /* friction polygon: each tangential multiplier in its interval [-c g, c g] */
+      const PetscReal c = ContactPolygonBoundFactor(d->polygon) * bounds[j];
+      for (PetscInt q = 0; q < d->polygon; q++) {
+        const PetscInt  i  = d->tang[j * d->polygon + q] - d->rstart;
+        const PetscReal li = PetscRealPart(l[i]);
+        nat                = PetscMax(nat, PetscAbsReal(li - PetscMin(PetscMax(li - k * PetscRealPart(ra[i]), -c), c)));
+      }
+      continue;
+    }
     const PetscInt  a = d->t1[j] - d->rstart, b = d->t2[j] - d->rstart;
     const PetscReal la = PetscRealPart(l[a]), lb = PetscRealPart(l[b]), g = bounds[j];
     PetscReal       y[2] = {la - k * PetscRealPart(ra[a]), lb - k * PetscRealPart(ra[b])}, ny = std::hypot(y[0], y[1]);

@@ -4,6 +4,8 @@
    Rows per contact node k (outward unit normal n of the first body, tangents t1, t2):
      N  u = n.(u_A - u_B) <= d_k   (foundation: u_B = 0, n and d_k from the obstacle's closest point, contactobstacle.cxx)
      T1 u = t1.(u_A - u_B),  T2 u = t2.(u_A - u_B)   (only for Tresca and Coulomb nodes)
+   or, with -contact_friction_polygon k, the k rows D_j u = d_j.(u_A - u_B), d_j = cos(j pi/k) t1 + sin(j pi/k) t2
+   (contactpolygon.cxx)
    With the Lagrangian term l'(B u - c), l_n >= 0 is the contact force magnitude and -T'l_t the
    friction force on the first body, so the slip rule reads: T u = 0 where |l_t| < g, and
    T u = s l_t with s >= 0 where |l_t| = g. Multipliers are nodal forces; stresses divide by the
@@ -12,6 +14,7 @@
 #include <conefeti/private/reproduciblesum.h>
 #include <conefeti/sys.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -146,7 +149,24 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<Pets
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* the rows of all contact nodes, appended to the model's B in node order (N, then T1, T2) */
+/* the directions of a node's rows: n, then t1, t2 (disks) or the friction polygon's d_j; only n when frictionless */
+std::vector<std::array<PetscReal, 3>> RowDirections(const ContactModelData &d, const ContactNodeInfo &k)
+{
+  std::vector<std::array<PetscReal, 3>> dirs{{k.n[0], k.n[1], k.n[2]}};
+  if (k.law == CONTACT_FRICTIONLESS) return dirs;
+  if (!d.polygon) {
+    dirs.push_back({k.t1[0], k.t1[1], k.t1[2]});
+    dirs.push_back({k.t2[0], k.t2[1], k.t2[2]});
+  } else
+    for (PetscInt j = 0; j < d.polygon; j++) {
+      PetscReal a[2];
+      ContactPolygonDirection(d.polygon, j, a);
+      dirs.push_back({a[0] * k.t1[0] + a[1] * k.t2[0], a[0] * k.t1[1] + a[1] * k.t2[1], a[0] * k.t1[2] + a[1] * k.t2[2]});
+    }
+  return dirs;
+}
+
+/* the rows of all contact nodes, appended to the model's B in node order (N, then T1, T2 or the polygon's rows) */
 PetscErrorCode AppendRows(ContactModel cm)
 {
   ContactModelData        &d = *cm->data;
@@ -156,9 +176,9 @@ PetscErrorCode AppendRows(ContactModel cm)
 
   PetscFunctionBegin;
   for (auto &k : d.nodes) {
-    const PetscReal *dirs[3] = {k.n, k.t1, k.t2};
-    const int        nrows   = k.law == CONTACT_FRICTIONLESS ? 1 : 3;
-    k.first_row              = (PetscInt)kinds.size();
+    const auto dirs  = RowDirections(d, k);
+    const int  nrows = (int)dirs.size();
+    k.first_row      = (PetscInt)kinds.size();
     for (int r = 0; r < nrows; r++) {
       kinds.push_back(r == 0 ? FETI_ROW_CONTACT_NORMAL : FETI_ROW_CONTACT_TANGENTIAL);
       for (int c = 0; c < 3; c++) {
@@ -206,7 +226,8 @@ PetscErrorCode BuildContactProblem(ContactModel cm)
   for (PetscInt k : d.local) {
     const ContactNodeInfo &nd = d.nodes[k];
     const PetscInt         r  = rows[nd.first_row];
-    PetscCallCXX(d.mult.insert(d.mult.end(), {r, nd.law == CONTACT_FRICTIONLESS ? -1 : rows[nd.first_row + 1], nd.law == CONTACT_FRICTIONLESS ? -1 : rows[nd.first_row + 2]}));
+    PetscCallCXX(d.mult.push_back(r));
+    for (PetscInt q = 1; q < d.stride; q++) PetscCallCXX(d.mult.push_back(nd.law == CONTACT_FRICTIONLESS ? -1 : rows[nd.first_row + q]));
     PetscCallCXX(d.lbody.push_back(nd.body));
     PetscCallCXX(d.lnode.push_back(nd.node));
     PetscCallCXX(d.lcoords.insert(d.lcoords.end(), {nd.x[0], nd.x[1], nd.x[2]}));
@@ -221,17 +242,19 @@ PetscErrorCode BuildContactProblem(ContactModel cm)
   PetscCall(ContactProblemSetOperator(d.cp, F, h));
   PetscCall(ContactProblemSetProjector(d.cp, Q, lt));
   for (ContactLaw law : {CONTACT_FRICTIONLESS, CONTACT_TRESCA, CONTACT_COULOMB}) {
-    std::vector<PetscInt>  n, t1, t2;
+    std::vector<PetscInt>  n, t1, t2, tang;
     std::vector<PetscReal> c;
     for (size_t j = 0; j < d.local.size(); j++) {
       const ContactNodeInfo &nd = d.nodes[d.local[j]];
       if (nd.law != law) continue;
-      n.push_back(d.mult[3 * j]);
-      t1.push_back(d.mult[3 * j + 1]);
-      t2.push_back(d.mult[3 * j + 2]);
+      n.push_back(d.mult[d.stride * j]);
+      t1.push_back(d.mult[d.stride * j + 1]);
+      t2.push_back(d.mult[d.stride * j + 2]);
+      tang.insert(tang.end(), d.mult.begin() + d.stride * j + 1, d.mult.begin() + d.stride * (j + 1));
       c.push_back(nd.coef);
     }
-    PetscCall(ContactProblemAddNodes(d.cp, law, (PetscInt)n.size(), n.data(), t1.data(), t2.data(), c.data()));
+    if (d.polygon && law != CONTACT_FRICTIONLESS) PetscCall(ContactProblemAddPolygonNodes(d.cp, law, (PetscInt)n.size(), d.polygon, n.data(), tang.data(), c.data()));
+    else PetscCall(ContactProblemAddNodes(d.cp, law, (PetscInt)n.size(), n.data(), t1.data(), t2.data(), c.data()));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -371,6 +394,11 @@ PetscErrorCode ContactModelSetFromOptions(ContactModel cm)
   Input Parameter:
 . cm - the model
 
+  Options Database Key:
+. -contact_friction_polygon <0> - k >= 2: replace each friction disk by a regular 2k-gon inscribed in it, with k tangential rows
+                                  and k multipliers bounded by |m_j| <= sin(pi/(2k)) g (the approximate method of the seed paper's
+                                  Table 3; `ContactProblemAddPolygonNodes()`); 0: the disks
+
   Notes:
   Only what the zones call for is built: no zone means no contact rows (the solve is then a linear
   FETI solve), frictionless zones add normal rows only, Tresca and Coulomb zones add tangential rows.
@@ -400,7 +428,13 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
                              d->acceptance_factor, &d->acceptance_factor, NULL));
   PetscCall(
       PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual does not", "ContactModelSolve", d->refine_max, &d->refine_max, NULL));
+  PetscCall(PetscOptionsInt("-contact_friction_polygon",
+                            "Replace each friction disk by a regular 2k-gon inscribed in it, k tangential multipliers with simple bounds (the seed paper's Table 3; 0: disks)", "ContactModelSetUp",
+                            d->polygon, &d->polygon, NULL));
   PetscOptionsEnd();
+  PetscCheck(d->polygon == 0 || (d->polygon >= 2 && d->polygon <= 64), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
+             "-contact_friction_polygon must be 0 (friction disks) or a number of directions between 2 and 64, got %" PetscInt_FMT, d->polygon);
+  d->stride = 1 + (d->polygon ? d->polygon : 2);
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", (double)d->acceptance_factor);
   PetscCheck(d->refine_max >= 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE, "-contact_refine_max must be >= 0, got %" PetscInt_FMT, d->refine_max);
@@ -419,8 +453,8 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   {
     std::vector<ContactHoldingRow> holding;
     for (const ContactNodeInfo &k : d->nodes) {
-      const PetscReal *dirs[3] = {k.n, k.t1, k.t2};
-      const int        nrows   = k.law == CONTACT_FRICTIONLESS || !(k.coef > 0) ? 1 : 3; /* tangential rows with a zero bound carry no force */
+      const auto dirs  = RowDirections(*d, k);
+      const int  nrows = !(k.coef > 0) ? 1 : (int)dirs.size(); /* tangential rows with a zero bound carry no force */
       for (int r = 0; r < nrows; r++) {
         PetscReal dir[3];
         for (int c = 0; c < 3; c++) dir[c] = (k.fixed & (1u << c)) ? 0 : dirs[r][c]; /* the row as appended */

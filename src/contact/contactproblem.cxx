@@ -67,6 +67,7 @@ PetscErrorCode ContactProblemDestroy(ContactProblem *cp)
   PetscCall(VecDestroy(&d->lt));
   PetscCall(SeparableSetDestroy(&d->set));
   PetscCall(VecDestroy(&d->lb));
+  PetscCall(VecDestroy(&d->ub));
   PetscCall(TaoDestroy(&d->tao));
   PetscCall(MatDestroy(&d->C0));
   PetscCall(VecDestroy(&d->d0));
@@ -206,6 +207,8 @@ PetscErrorCode ContactProblemAddNodes(ContactProblem cp, ContactLaw law, PetscIn
   d = cp->data;
   PetscCheck(n >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddNodes: negative count %" PetscInt_FMT, n);
   PetscCheck(law == CONTACT_FRICTIONLESS || (t1 && t2 && coef) || n == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "ContactProblemAddNodes: %s nodes need t1, t2 and coefficients", ContactLaws[law]);
+  PetscCheck(law == CONTACT_FRICTIONLESS || !d->polygon || n == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+             "ContactProblemAddNodes: the problem has friction polygons (ContactProblemAddPolygonNodes()); its %s nodes cannot have disks too", ContactLaws[law]);
   for (PetscInt k = 0; k < n; k++) {
     PetscReal c = law == CONTACT_FRICTIONLESS ? 0.0 : coef[k];
     PetscCheck(c >= 0 && !PetscIsInfOrNanReal(c), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddNodes: node %" PetscInt_FMT " has invalid %s %g (must be finite and >= 0)", k,
@@ -215,7 +218,92 @@ PetscErrorCode ContactProblemAddNodes(ContactProblem cp, ContactLaw law, PetscIn
     PetscCallCXX(d->t2.push_back(law == CONTACT_FRICTIONLESS ? -1 : t2[k]));
     PetscCallCXX(d->law.push_back(law));
     PetscCallCXX(d->coef.push_back(c));
+    if (d->polygon) PetscCallCXX(d->tang.insert(d->tang.end(), d->polygon, -1));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemAddPolygonNodes - Add contact nodes of one law, owned by this rank, whose friction disk is replaced by
+  a polygon expressed through simple bounds only (the approximate method the seed paper compares with in its Table 3).
+
+  Not Collective
+
+  Input Parameters:
++ cp         - the problem
+. law        - `CONTACT_TRESCA` or `CONTACT_COULOMB` (`CONTACT_FRICTIONLESS` nodes have no tangential multipliers: use
+               `ContactProblemAddNodes()`)
+. n          - number of nodes
+. k          - tangential multipliers per node (k >= 2, the same for every polygon node of the problem)
+. normal     - global index of each node's normal multiplier (constrained to >= 0)
+. tangential - k global indices per node: the multipliers of the rows along d_j = cos(j pi/k) t1 + sin(j pi/k) t2, j = 0..k-1
+- coef       - Tresca: slip bound g_k >= 0; Coulomb: coefficient F_k >= 0 (g_k = F_k max(l_n, 0))
+
+  Notes:
+  Each tangential multiplier is bounded by |m_j| <= sin(pi/(2k)) g: the tangential force sum_j m_j d_j then ranges
+  over a regular 2k-gon inscribed in the disk of radius g (a square for k = 2, an octagon for k = 4), and the
+  dual problem has bounds only, solved by mprgp. A problem's friction nodes are all disks or all polygons.
+  The slip bounds (`ContactProblemGetSlipBounds()`) stay g: the radius of the disk the polygon approximates.
+
+  Level: intermediate
+
+.seealso: `ContactProblemAddNodes()`, `ContactProblemGetFrictionPolygon()`
+@*/
+PetscErrorCode ContactProblemAddPolygonNodes(ContactProblem cp, ContactLaw law, PetscInt n, PetscInt k, const PetscInt normal[], const PetscInt tangential[], const PetscReal coef[])
+{
+  ContactProblemData *d;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCall(CheckNotSetUp(cp, "contact nodes"));
+  d = cp->data;
+  PetscCheck(n >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddPolygonNodes: negative count %" PetscInt_FMT, n);
+  PetscCheck(law != CONTACT_FRICTIONLESS, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "ContactProblemAddPolygonNodes: frictionless nodes have no friction polygon (ContactProblemAddNodes())");
+  PetscCheck(k >= 2, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddPolygonNodes: a friction polygon needs k >= 2 directions, got %" PetscInt_FMT, k);
+  PetscCheck(!d->polygon || d->polygon == k, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "ContactProblemAddPolygonNodes: the problem's polygons have %" PetscInt_FMT " directions, not %" PetscInt_FMT,
+             d->polygon, k);
+  if (n == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(normal && tangential && coef, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "ContactProblemAddPolygonNodes: %s nodes need normal and tangential indices and coefficients", ContactLaws[law]);
+  for (ContactLaw l : d->law)
+    PetscCheck(l == CONTACT_FRICTIONLESS || d->polygon, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+               "ContactProblemAddPolygonNodes: the problem has friction disks (ContactProblemAddNodes()); its nodes cannot have polygons too");
+  if (!d->polygon) PetscCallCXX(d->tang.assign(d->normal.size() * k, -1)); /* the frictionless nodes added so far */
+  d->polygon = k;
+  for (PetscInt i = 0; i < n; i++) {
+    PetscCheck(coef[i] >= 0 && !PetscIsInfOrNanReal(coef[i]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "ContactProblemAddPolygonNodes: node %" PetscInt_FMT " has invalid %s %g (must be finite and >= 0)", i, law == CONTACT_TRESCA ? "slip bound" : "friction coefficient", (double)coef[i]);
+    PetscCallCXX(d->normal.push_back(normal[i]));
+    PetscCallCXX(d->t1.push_back(-1));
+    PetscCallCXX(d->t2.push_back(-1));
+    PetscCallCXX(d->law.push_back(law));
+    PetscCallCXX(d->coef.push_back(coef[i]));
+    PetscCallCXX(d->tang.insert(d->tang.end(), tangential + i * k, tangential + (i + 1) * k));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactProblemGetFrictionPolygon - The friction polygon of the problem's nodes, if they have one.
+
+  Not Collective
+
+  Input Parameter:
+. cp - the problem
+
+  Output Parameters:
++ k          - tangential multipliers per friction node (0: friction disks, `ContactProblemAddNodes()`)
+- tangential - k global indices per local node, in the order of `ContactProblemGetNodes()` (-1 for frictionless nodes), or NULL
+
+  Level: intermediate
+
+.seealso: `ContactProblemAddPolygonNodes()`
+@*/
+PetscErrorCode ContactProblemGetFrictionPolygon(ContactProblem cp, PetscInt *k, const PetscInt **tangential)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  if (k) *k = cp->data->polygon;
+  if (tangential) *tangential = cp->data->polygon ? cp->data->tang.data() : NULL;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -230,7 +318,7 @@ PetscErrorCode ContactProblemAddNodes(ContactProblem cp, ContactLaw law, PetscIn
   Output Parameters:
 + n      - number of local nodes
 . normal - global indices of the normal multipliers
-. t1     - first tangential multipliers (-1 for frictionless nodes)
+. t1     - first tangential multipliers (-1 for frictionless nodes and polygon nodes: `ContactProblemGetFrictionPolygon()`)
 . t2     - second tangential multipliers (-1 for frictionless nodes)
 . law    - law per node
 - coef   - slip bound (Tresca) or coefficient (Coulomb) per node
@@ -418,6 +506,9 @@ PetscErrorCode ContactProblemView(ContactProblem cp, PetscViewer viewer)
                                    counts[0], counts[1], counts[2], d->Q ? "projector form" : (d->G ? "penalty form" : "none")));
   PetscCall(PetscViewerASCIIPrintf(viewer, "pipeline: %s%s%s\n", ContactPipelines[d->pipeline], d->pipeline == CONTACT_PIPELINE_COULOMB ? ", algorithm " : "",
                                    d->pipeline == CONTACT_PIPELINE_COULOMB ? ContactCoulombAlgorithms[d->algorithm] : ""));
+  if (d->polygon)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "friction polygons: %" PetscInt_FMT " bounded tangential multipliers per node, a regular %" PetscInt_FMT "-gon inscribed in each friction disk\n",
+                                     d->polygon, 2 * d->polygon));
   if (d->stats.outer_iterations)
     PetscCall(PetscViewerASCIIPrintf(
         viewer, "last solve: %s; Iter %" PetscInt_FMT ", n_A = %" PetscInt_FMT " (QPP %" PetscInt_FMT " + QPQ %" PetscInt_FMT " + other %" PetscInt_FMT "), norm estimate %" PetscInt_FMT "\n",

@@ -22,9 +22,10 @@ namespace {
 constexpr PetscReal kScaleFloor = 1e-6;
 constexpr PetscReal kTiny       = std::numeric_limits<PetscReal>::min();
 
-/* per local contact node: l_n, l_t (2), (N u - d), T u (2), slip bound g */
+/* per local contact node: l_n, l_t (2), (N u - d), T u (2), slip bound g; with a friction polygon of k directions l_t
+   and T u in the (t1, t2) frame are made from the k multipliers m_j and row values D_j u, kept too (k per node) */
 struct NodeValues {
-  std::vector<PetscReal> ln, lt, gapres, tu, g;
+  std::vector<PetscReal> ln, lt, gapres, tu, g, m, du;
 };
 
 PetscErrorCode EvaluateNodes(ContactModel cm, Vec Bu, NodeValues &v)
@@ -49,14 +50,26 @@ PetscErrorCode EvaluateNodes(ContactModel cm, Vec Bu, NodeValues &v)
   v.lt.assign(2 * n, 0);
   v.gapres.assign(n, 0);
   v.tu.assign(2 * n, 0);
+  v.m.assign(d.polygon * n, 0);
+  v.du.assign(d.polygon * n, 0);
   v.g = bounds;
   for (size_t j = 0; j < n; j++) {
-    const PetscInt rn = d.mult[3 * j] - rstart;
+    const PetscInt rn = d.mult[d.stride * j] - rstart;
     v.ln[j]           = PetscRealPart(l[rn]);
     v.gapres[j]       = PetscRealPart(bu[rn] - (c ? c[rn] : 0.0));
+    if (d.mult[d.stride * j + 1] < 0) continue; /* frictionless */
+    if (d.polygon) {
+      for (PetscInt q = 0; q < d.polygon; q++) {
+        const PetscInt rt       = d.mult[d.stride * j + 1 + q] - rstart;
+        v.m[d.polygon * j + q]  = PetscRealPart(l[rt]);
+        v.du[d.polygon * j + q] = PetscRealPart(bu[rt]);
+      }
+      ContactPolygonTraction(d.polygon, &v.m[d.polygon * j], &v.lt[2 * j]);
+      ContactPolygonTangentialMotion(d.polygon, &v.du[d.polygon * j], &v.tu[2 * j]);
+      continue;
+    }
     for (int q = 0; q < 2; q++) {
-      if (d.mult[3 * j + 1 + q] < 0) continue;
-      const PetscInt rt = d.mult[3 * j + 1 + q] - rstart;
+      const PetscInt rt = d.mult[d.stride * j + 1 + q] - rstart;
       v.lt[2 * j + q]   = PetscRealPart(l[rt]);
       v.tu[2 * j + q]   = PetscRealPart(bu[rt]);
     }
@@ -83,14 +96,23 @@ PetscErrorCode ZonePressureMax(ContactModel cm, const NodeValues &v, std::vector
 }
 
 /* The regime from the multipliers: separated without pressure (relative to the largest pressure of the
-   node's zone), slip on the boundary of the friction disk, stick inside it. Frictionless nodes in contact
-   slide freely: slip. The margins (1e-4 of the largest pressure, 1e-3 of the slip bound) sit above the
-   solver's tolerance. */
-ContactNodeStatus Classify(PetscReal ln, PetscReal lnmax, const PetscReal lt[2], PetscReal g, PetscBool frictionless)
+   node's zone), slip on the boundary of the friction disk (or of the friction polygon of k directions, k > 0),
+   stick inside it. Frictionless nodes in contact slide freely: slip. The margins (1e-4 of the largest pressure,
+   1e-3 of the slip bound) sit above the solver's tolerance. */
+ContactNodeStatus Classify(PetscReal ln, PetscReal lnmax, const PetscReal lt[2], PetscReal g, PetscBool frictionless, PetscInt k)
 {
   if (ln <= 1e-4 * lnmax) return CONTACT_NODE_SEPARATED;
-  if (frictionless || std::hypot(lt[0], lt[1]) >= (1 - 1e-3) * g) return CONTACT_NODE_SLIP;
+  if (frictionless || (k ? ContactPolygonGauge(k, lt, g) >= 1 - 1e-3 : std::hypot(lt[0], lt[1]) >= (1 - 1e-3) * g)) return CONTACT_NODE_SLIP;
   return CONTACT_NODE_STICK;
+}
+
+/* the natural residual of the slip rule of the disk law: |l_t - P_g(l_t + k T u)|, with P_g the projection onto the
+   disk of radius g; zero exactly when |l_t| <= g, T u = 0 inside the disk and T u along l_t on its circle */
+PetscReal DiskSlipResidual(const PetscReal lt[2], const PetscReal tu[2], PetscReal g, PetscReal k)
+{
+  PetscReal y[2] = {lt[0] + k * tu[0], lt[1] + k * tu[1]}, ny = std::hypot(y[0], y[1]);
+  if (ny > g) y[0] *= g / ny, y[1] *= g / ny;
+  return std::hypot(lt[0] - y[0], lt[1] - y[1]);
 }
 
 /* The body of every global subdomain (gathered: a row of B may reach a subdomain of another rank), with the
@@ -156,6 +178,12 @@ PetscReal Relative(PetscReal r, PetscReal scale, PetscReal largest) { return r /
   A node is separated when l_n <= 1e-4 times the largest l_n of its zone; among the others, it slips when
   |l_t| >= (1 - 1e-3) g (on the boundary of its friction disk; frictionless nodes in contact always slip), and
   sticks otherwise. Whether stick nodes really do not move is what the slip_rule residual checks.
+
+  With friction polygons (-contact_friction_polygon k, `ContactProblemAddPolygonNodes()`) friction_cone and slip_rule
+  judge the law the solver solved, each tangential multiplier m_j in [-c g, c g] (c = sin(pi/(2k))) with
+  m_j = P(m_j + k_z D_j u), so that a converged polygon solve is one that solved its own problem; the disk law it
+  approximates is judged apart, in approximation (not in max, not in the verdict), and a node slips when its
+  tangential force is on the polygon's boundary.
 
   `ContactModelSolve()` computes them for its verdict; a second call with u and lambda unchanged (their
   `PetscObjectState`) returns the same values without computing them again.
@@ -283,7 +311,7 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   if (d->cp) {
     const size_t           nz = d->zones.size();
     NodeValues             v;
-    std::vector<PetscReal> lnmax, lzone(nz, 0), m(5 * nz, 0), uzone(nz, 0);
+    std::vector<PetscReal> lnmax, lzone(nz, 0), m(6 * nz, 0), uzone(nz, 0);
     PetscCall(EvaluateNodes(cm, Bu, v));
     PetscCall(ZonePressureMax(cm, v, lnmax));
     /* the force scale of a zone: its largest pressure, or (no pressure anywhere in it, e.g. a run without
@@ -305,25 +333,36 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
     for (size_t j = 0; j < v.ln.size(); j++) {
       const PetscInt  z  = d->nodes[d->local[j]].zone;
       const PetscReal ln = v.ln[j], *lt = &v.lt[2 * j], *tu = &v.tu[2 * j], g = v.g[j], k = lzone[z] / uzone[z];
-      PetscReal      *mz = &m[5 * z];
+      PetscReal      *mz = &m[6 * z];
       mz[0]              = PetscMax(mz[0], v.gapres[j] / uzone[z]);                                 /* penetration */
       mz[1]              = PetscMax(mz[1], -ln / lzone[z]);                                         /* normal sign */
       mz[2]              = PetscMax(mz[2], PetscAbsReal(ln * v.gapres[j]) / (lzone[z] * uzone[z])); /* complementarity */
-      if (d->mult[3 * j + 1] >= 0) {
+      if (d->mult[d->stride * j + 1] >= 0 && !d->polygon) {
         mz[3] = PetscMax(mz[3], (std::hypot(lt[0], lt[1]) - g) / lzone[z]); /* friction cone */
-        /* natural residual of the slip rule: l_t = P_g(l_t + k T u) */
-        PetscReal y[2] = {lt[0] + k * tu[0], lt[1] + k * tu[1]}, ny = std::hypot(y[0], y[1]);
-        if (ny > g) y[0] *= g / ny, y[1] *= g / ny;
-        mz[4] = PetscMax(mz[4], std::hypot(lt[0] - y[0], lt[1] - y[1]) / lzone[z]);
+        mz[4] = PetscMax(mz[4], DiskSlipResidual(lt, tu, g, k) / lzone[z]); /* natural residual of the slip rule: l_t = P_g(l_t + k T u) */
+      } else if (d->mult[d->stride * j + 1] >= 0) {
+        /* the polygon law the solver solved: each multiplier m_j in [-c g, c g], and m_j = P(m_j + k D_j u) (stick rows
+           do not move, a multiplier on its bound moves its row the way of its sign) */
+        const PetscReal cg = ContactPolygonBoundFactor(d->polygon) * g, *mj = &v.m[d->polygon * j], *dj = &v.du[d->polygon * j];
+        PetscReal       s2 = 0;
+        for (PetscInt q = 0; q < d->polygon; q++) {
+          const PetscReal e = mj[q] - PetscMin(PetscMax(mj[q] + k * dj[q], -cg), cg);
+          mz[3]             = PetscMax(mz[3], (PetscAbsReal(mj[q]) - cg) / lzone[z]);
+          s2 += e * e;
+        }
+        mz[4] = PetscMax(mz[4], PetscSqrtReal(s2) / lzone[z]);
+        /* the disk law the polygon approximates: cone and slip rule of the tangential force sum_j m_j d_j */
+        mz[5] = PetscMax(mz[5], PetscMax(std::hypot(lt[0], lt[1]) - g, DiskSlipResidual(lt, tu, g, k)) / lzone[z]);
       }
-      r->counts[Classify(ln, lnmax[z], lt, g, d->mult[3 * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE)]++;
+      r->counts[Classify(ln, lnmax[z], lt, g, d->mult[d->stride * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE, d->polygon)]++;
     }
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m.data(), (PetscMPIInt)m.size(), MPIU_REAL, MPIU_MAX, comm));
+    for (size_t z = 0; z < nz; z++) r->approximation = PetscMax(r->approximation, m[6 * z + 5]);
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, r->counts, 3, MPIU_INT, MPI_SUM, comm));
     PetscReal *zonal[5] = {&r->penetration, &r->normal_sign, &r->complementarity, &r->friction_cone, &r->slip_rule};
     for (int q = 0; q < 5; q++) {
       for (size_t z = 0; z < nz; z++) {
-        const PetscReal e = PetscMax(m[5 * z + q], 0.0);
+        const PetscReal e = PetscMax(m[6 * z + q], 0.0);
         if (e > *zonal[q] || r->where[CONTACT_CHECK_PENETRATION + q] < 0) {
           *zonal[q]                               = e;
           r->where[CONTACT_CHECK_PENETRATION + q] = (PetscInt)z;
@@ -397,7 +436,7 @@ PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], 
       if (traction) traction[3 * j + c] = (v.lt[2 * j] * nd.t1[c] + v.lt[2 * j + 1] * nd.t2[c]) / nd.area;
       if (slip) slip[3 * j + c] = v.tu[2 * j] * nd.t1[c] + v.tu[2 * j + 1] * nd.t2[c];
     }
-    if (status) status[j] = Classify(v.ln[j], lnmax[nd.zone], &v.lt[2 * j], v.g[j], d->mult[3 * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE);
+    if (status) status[j] = Classify(v.ln[j], lnmax[nd.zone], &v.lt[2 * j], v.g[j], d->mult[d->stride * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE, d->polygon);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -429,8 +468,10 @@ PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], 
 PetscErrorCode ContactModelGetContactForce(ContactModel cm, PetscInt zone, PetscReal force[], PetscReal *normal)
 {
   ContactModelData  *d;
-  const PetscScalar *l;
-  PetscInt           rstart;
+  Mat                B;
+  Vec                Bu, cvec;
+  const FETIRowKind *kinds;
+  NodeValues         v;
   PetscReal          sum[4] = {0, 0, 0, 0};
 
   PetscFunctionBegin;
@@ -440,21 +481,19 @@ PetscErrorCode ContactModelGetContactForce(ContactModel cm, PetscInt zone, Petsc
   PetscCheck(zone >= -1 && zone < (PetscInt)d->zones.size(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
              "ContactModelGetContactForce: zone %" PetscInt_FMT " does not exist (%zu zones)", zone, d->zones.size());
   if (d->cp) {
-    PetscCall(VecGetOwnershipRange(d->lambda, &rstart, NULL));
-    PetscCall(VecGetArrayRead(d->lambda, &l));
+    /* l_n and the tangential force in the (t1, t2) frame, also from a friction polygon's multipliers */
+    PetscCall(FETIGetConstraints(d->feti, &B, &cvec, &kinds));
+    PetscCall(VecDuplicate(d->lambda, &Bu));
+    PetscCall(MatMult(B, d->u, Bu));
+    PetscCall(EvaluateNodes(cm, Bu, v));
+    PetscCall(VecDestroy(&Bu));
     for (size_t j = 0; j < d->local.size(); j++) {
-      const ContactNodeInfo &nd      = d->nodes[d->local[j]];
-      const PetscReal       *dirs[3] = {nd.n, nd.t1, nd.t2};
+      const ContactNodeInfo &nd = d->nodes[d->local[j]];
       if (zone >= 0 && nd.zone != zone) continue;
-      for (int r = 0; r < 3; r++) {
-        if (d->mult[3 * j + r] < 0) continue;
-        const PetscReal lr = PetscRealPart(l[d->mult[3 * j + r] - rstart]);
-        if (r == 0) sum[3] += lr;
-        for (int c = 0; c < 3; c++)
-          if (!(nd.fixed & (1u << c))) sum[c] -= lr * dirs[r][c];
-      }
+      sum[3] += v.ln[j];
+      for (int c = 0; c < 3; c++)
+        if (!(nd.fixed & (1u << c))) sum[c] -= v.ln[j] * nd.n[c] + v.lt[2 * j] * nd.t1[c] + v.lt[2 * j + 1] * nd.t2[c];
     }
-    PetscCall(VecRestoreArrayRead(d->lambda, &l));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 4, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)cm)));
   if (force)

@@ -13,6 +13,7 @@
 #include <conefeti/private/contactimpl.h>
 #include <conefeti/private/reproduciblesum.h>
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 PetscLogEvent CONTACT_Solve;
@@ -86,7 +87,14 @@ PetscErrorCode LargestChange(ContactProblem cp, Vec lambda, const std::vector<Pe
   PetscCall(VecGetArrayRead(lambda, &l));
   for (size_t j = 0; j < d->normal.size(); j++) {
     m[1] = PetscMax(m[1], PetscAbsReal(PetscRealPart(l[d->normal[j] - d->rstart])));
-    if (d->law[j] != CONTACT_FRICTIONLESS) m[1] = PetscMax(m[1], PetscRealPart(PetscSqrtScalar(l[d->t1[j] - d->rstart] * l[d->t1[j] - d->rstart] + l[d->t2[j] - d->rstart] * l[d->t2[j] - d->rstart])));
+    if (d->law[j] == CONTACT_FRICTIONLESS) continue;
+    if (d->polygon) { /* the tangential force of the polygon's multipliers */
+      std::vector<PetscReal> mu(d->polygon);
+      PetscReal              lt[2];
+      for (PetscInt q = 0; q < d->polygon; q++) mu[q] = PetscRealPart(l[d->tang[j * d->polygon + q] - d->rstart]);
+      ContactPolygonTraction(d->polygon, mu.data(), lt);
+      m[1] = PetscMax(m[1], std::hypot(lt[0], lt[1]));
+    } else m[1] = PetscMax(m[1], PetscRealPart(PetscSqrtScalar(l[d->t1[j] - d->rstart] * l[d->t1[j] - d->rstart] + l[d->t2[j] - d->rstart] * l[d->t2[j] - d->rstart])));
   }
   PetscCall(VecRestoreArrayRead(lambda, &l));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m, 2, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)cp)));
@@ -110,6 +118,14 @@ PetscErrorCode FollowGrownRadii(ContactProblem cp, const std::vector<PetscReal> 
     const PetscInt  j  = d->disk_node[k];
     const PetscReal r0 = old[k], r1 = d->radius[k];
     if (d->law[j] != CONTACT_COULOMB || !(r0 > 0) || !(r1 > r0)) continue;
+    if (d->polygon) { /* a polygon's multipliers on their old bound c r0 move to the new one c r1 */
+      const PetscReal c = ContactPolygonBoundFactor(d->polygon);
+      for (PetscInt q = 0; q < d->polygon; q++) {
+        PetscScalar &m = l[d->tang[j * d->polygon + q] - d->rstart];
+        if (PetscAbsScalar(m) >= c * r0 * (1 - 1e-10)) m = PetscRealPart(m) > 0 ? c * r1 : -c * r1;
+      }
+      continue;
+    }
     PetscScalar    &a = l[d->t1[j] - d->rstart], &b = l[d->t2[j] - d->rstart];
     const PetscReal t = PetscSqrtReal(PetscRealPart(a * a + b * b));
     if (t >= r0 * (1 - 1e-10)) { /* on the old circle (up to the projection's rounding) */
@@ -182,6 +198,30 @@ static PetscErrorCode CheckSolverTypes(Tao tao, PetscInt nblocks)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* friction polygons: the bounds -c g <= m_j <= c g of every tangential multiplier for the current slip bounds g */
+PetscErrorCode SetPolygonBounds(ContactProblem cp, SeparableSet set)
+{
+  ContactProblemData *d = Data(cp);
+  const PetscReal     c = ContactPolygonBoundFactor(d->polygon);
+  PetscScalar        *lb, *ub;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArray(d->lb, &lb));
+  PetscCall(VecGetArray(d->ub, &ub));
+  for (size_t k = 0; k < d->disk_node.size(); k++) {
+    const PetscInt j = d->disk_node[k];
+    for (PetscInt q = 0; q < d->polygon; q++) {
+      const PetscInt i = d->tang[j * d->polygon + q] - d->rstart;
+      lb[i]            = -c * d->radius[k];
+      ub[i]            = c * d->radius[k];
+    }
+  }
+  PetscCall(VecRestoreArray(d->lb, &lb));
+  PetscCall(VecRestoreArray(d->ub, &ub));
+  PetscCall(SeparableSetSetBounds(set, d->lb, d->ub));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode BuildSet(ContactProblem cp)
 {
   ContactProblemData   *d = Data(cp);
@@ -197,17 +237,22 @@ PetscErrorCode BuildSet(ContactProblem cp)
   PetscCall(VecGetArray(d->lb, &lb));
   for (PetscInt n : d->normal) lb[n - d->rstart] = 0.0;
   PetscCall(VecRestoreArray(d->lb, &lb));
-  PetscCall(SeparableSetSetBounds(d->set, d->lb, NULL));
+  if (d->polygon) {
+    PetscCall(VecDuplicate(d->h, &d->ub));
+    PetscCall(VecSet(d->ub, PETSC_INFINITY));
+  }
+  PetscCall(SeparableSetSetBounds(d->set, d->lb, d->ub));
   d->disk_node.clear();
   for (size_t j = 0; j < d->normal.size(); j++) {
     if (d->law[j] == CONTACT_FRICTIONLESS) continue;
-    PetscCallCXX(idx.insert(idx.end(), {d->t1[j], d->t2[j]}));
+    if (!d->polygon) PetscCallCXX(idx.insert(idx.end(), {d->t1[j], d->t2[j]}));
     PetscCallCXX(d->disk_node.push_back((PetscInt)j));
   }
   PetscCallCXX(d->radius.assign(d->disk_node.size(), 0.0));
   for (size_t k = 0; k < d->disk_node.size(); k++)
     if (d->law[d->disk_node[k]] == CONTACT_TRESCA) d->radius[k] = d->coef[d->disk_node[k]];
-  PetscCall(SeparableSetAddDisks(d->set, (PetscInt)d->radius.size(), idx.data(), NULL, d->radius.data()));
+  if (d->polygon) PetscCall(SetPolygonBounds(cp, d->set));
+  else PetscCall(SeparableSetAddDisks(d->set, (PetscInt)d->radius.size(), idx.data(), NULL, d->radius.data()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -262,8 +307,10 @@ PetscErrorCode ValidateNodes(ContactProblem cp)
 
   PetscFunctionBegin;
   for (size_t j = 0; j < d->normal.size(); j++) {
-    PetscInt ids[3] = {d->normal[j], d->t1[j], d->t2[j]};
-    for (int q = 0; q < (d->law[j] == CONTACT_FRICTIONLESS ? 1 : 3); q++) {
+    std::vector<PetscInt> ids = {d->normal[j]};
+    if (d->law[j] != CONTACT_FRICTIONLESS && d->polygon) PetscCallCXX(ids.insert(ids.end(), d->tang.begin() + j * d->polygon, d->tang.begin() + (j + 1) * d->polygon));
+    else if (d->law[j] != CONTACT_FRICTIONLESS) PetscCallCXX(ids.insert(ids.end(), {d->t1[j], d->t2[j]}));
+    for (size_t q = 0; q < ids.size(); q++) {
       const PetscInt i = ids[q] - d->rstart;
       PetscCheck(i >= 0 && i < d->nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
                  "ContactProblem: contact node %zu uses multiplier %" PetscInt_FMT ", not owned by this rank (range [%" PetscInt_FMT ", %" PetscInt_FMT "))", j, ids[q], d->rstart,
@@ -289,7 +336,8 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
   if (change) PetscCall(RelativeChange(PetscObjectComm((PetscObject)cp), target, d->radius, change));
   d->radius = target;
   PetscCall(FrictionSet(cp, &set));
-  PetscCall(SeparableSetSetDiskRadii(set, d->radius.data()));
+  if (d->polygon) PetscCall(SetPolygonBounds(cp, set));
+  else PetscCall(SeparableSetSetDiskRadii(set, d->radius.data()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -403,6 +451,19 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
   d->has_coulomb = flags[2] ? PETSC_TRUE : PETSC_FALSE;
   d->pipeline    = d->has_coulomb ? CONTACT_PIPELINE_COULOMB : (d->has_tresca ? CONTACT_PIPELINE_TRESCA : (d->has_normal ? CONTACT_PIPELINE_FRICTIONLESS : CONTACT_PIPELINE_LINEAR));
 
+  {
+    PetscInt k = d->polygon;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &k, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)cp)));
+    PetscCheck(d->polygon == k || d->normal.size() == 0 || std::count(d->law.begin(), d->law.end(), CONTACT_FRICTIONLESS) == (std::ptrdiff_t)d->law.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+               "ContactProblem: the ranks' friction nodes differ: polygons of %" PetscInt_FMT " directions here, %" PetscInt_FMT " elsewhere", d->polygon, k);
+    if (!d->polygon && k) { /* only frictionless nodes here: their tangential slots, for the code that walks the polygons */
+      d->polygon = k;
+      PetscCallCXX(d->tang.assign(d->normal.size() * k, -1));
+    }
+  }
+  /* merged's tangential block gets a copy of the set that the pre-solve hook changes in place: disk radii only */
+  PetscCheck(!(d->polygon && d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED), PetscObjectComm((PetscObject)cp), PETSC_ERR_SUP,
+             "-contact_friction_polygon %" PetscInt_FMT ": friction polygons run with -contact_coulomb_algorithm monolithic or msa, not merged", d->polygon);
   PetscCall(BuildSet(cp));
   PetscCall(TaoCreate(PetscObjectComm((PetscObject)cp), &d->tao));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cp, &prefix));

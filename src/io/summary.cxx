@@ -81,8 +81,11 @@ PetscErrorCode ContactSceneGetPipelineDescription(ContactScene scene, ContactPip
     Tao            tao, sub = NULL, sub0 = NULL, sub1 = NULL;
     /* the inner solvers get their types at the first solve: until then, the ones smalxe picks for the
        blocks' sets (mprgp for bounds, mpgp for disks), unless options chose others */
-    TaoType type = NULL, stype = pipe == CONTACT_PIPELINE_FRICTIONLESS ? TAOMPRGP : TAOMPGP, s0 = TAOMPRGP, s1 = TAOMPGP;
+    TaoType  type = NULL, stype = pipe == CONTACT_PIPELINE_FRICTIONLESS ? TAOMPRGP : TAOMPGP, s0 = TAOMPRGP, s1 = TAOMPGP;
+    PetscInt polygon;
     PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
+    PetscCall(ContactProblemGetFrictionPolygon(cp, &polygon, NULL));
+    if (polygon) stype = TAOMPRGP; /* friction polygons: bounds only */
     PetscCall(ContactProblemGetTao(cp, &tao));
     PetscCall(TaoGetType(tao, &type));
     if (pipe == CONTACT_PIPELINE_COULOMB && alg == CONTACT_COULOMB_MERGED) {
@@ -98,7 +101,9 @@ PetscErrorCode ContactSceneGetPipelineDescription(ContactScene scene, ContactPip
     case CONTACT_PIPELINE_FRICTIONLESS:
       PetscCall(PetscSNPrintf(buf, sizeof(buf), "frictionless: %s + %s on the normal multipliers (no tangential multipliers)", type ? type : "?", stype ? stype : "?"));
       break;
-    case CONTACT_PIPELINE_TRESCA: PetscCall(PetscSNPrintf(buf, sizeof(buf), "tresca: one %s + %s solve (disks of the given slip bounds)", type ? type : "?", stype ? stype : "?")); break;
+    case CONTACT_PIPELINE_TRESCA:
+      PetscCall(PetscSNPrintf(buf, sizeof(buf), "tresca: one %s + %s solve (%s of the given slip bounds)", type ? type : "?", stype ? stype : "?", polygon ? "polygons" : "disks"));
+      break;
     case CONTACT_PIPELINE_COULOMB:
       if (alg == CONTACT_COULOMB_MSA)
         PetscCall(
@@ -107,10 +112,15 @@ PetscErrorCode ContactSceneGetPipelineDescription(ContactScene scene, ContactPip
         PetscCall(PetscSNPrintf(buf, sizeof(buf), "coulomb, Algorithm 2 (merged): one %s loop, each step a block Gauss-Seidel sweep: %s on normal and gluing multipliers, %s on disks of radius F l_n",
                                 type ? type : "?", s0 ? s0 : "?", s1 ? s1 : "?"));
       else
-        PetscCall(
-            PetscSNPrintf(buf, sizeof(buf), "coulomb, monolithic: one %s loop, one %s over all multipliers, disk radii F l_n updated before each inner solve", type ? type : "?", stype ? stype : "?"));
+        PetscCall(PetscSNPrintf(buf, sizeof(buf), "coulomb, monolithic: one %s loop, one %s over all multipliers, %s F l_n updated before each inner solve", type ? type : "?", stype ? stype : "?",
+                                polygon ? "slip bounds" : "disk radii"));
       break;
     default: PetscCall(PetscSNPrintf(buf, sizeof(buf), "%s", ContactPipelines[pipe])); break;
+    }
+    if (polygon && pipe != CONTACT_PIPELINE_FRICTIONLESS) {
+      size_t used = strlen(buf);
+      PetscCall(
+          PetscSNPrintf(buf + used, sizeof(buf) - used, "; each friction disk replaced by an inscribed %" PetscInt_FMT "-gon (%" PetscInt_FMT " bounded multipliers per node)", 2 * polygon, polygon));
     }
   }
   if (pipeline) *pipeline = pipe;
@@ -202,6 +212,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
     PetscCall(ContactProblemGetTao(cp, &tao));
     PetscCall(TaoQPGetNormEstimate(tao, &s->norm_F));
     PetscCall(TaoGetTolerances(tao, NULL, NULL, &s->rtol));
+    PetscCall(ContactProblemGetFrictionPolygon(cp, &s->friction_polygon, NULL));
   }
   PetscCall(ContactModelGetUnmatchedNodes(impl.cm, &s->unmatched_nodes));
   s->max_nu = -1;
@@ -276,6 +287,11 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
     if (s->acceptance > 0) line += " (acceptance " + E(s->acceptance) + ")";
     PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", line.c_str()));
     if (s->pipeline == CONTACT_PIPELINE_COULOMB) PetscCall(PetscViewerASCIIPrintf(viewer, "Coulomb fixed point: |g - F l_n| / |F l_n| = %s\n", E(s->fixed_point).c_str()));
+    if (s->friction_polygon && (s->pipeline == CONTACT_PIPELINE_TRESCA || s->pipeline == CONTACT_PIPELINE_COULOMB))
+      PetscCall(PetscViewerASCIIPrintf(viewer,
+                                       "friction polygon (-contact_friction_polygon %" PetscInt_FMT "): friction cone and slip rule above judge the polygon; against the friction disk it "
+                                       "approximates, the solution's friction residual is %s (the approximation's own error, not in the verdict)\n",
+                                       s->friction_polygon, E(r.approximation).c_str()));
   }
   if (s->pipeline != CONTACT_PIPELINE_LINEAR)
     PetscCall(PetscViewerASCIIPrintf(viewer, "contact force on the bodies: (%.6e, %.6e, %.6e); sum of the normal forces %.6e\n", (double)s->contact_force[0], (double)s->contact_force[1],
@@ -431,6 +447,7 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Str(out, "failed_check", s->failed_check[0] ? s->failed_check : NULL);
   Int(out, "refinements", s->refinements);
   Str(out, "kplus", s->kplus_explicit ? "explicit" : (s->kplus_fallback ? "implicit (memory)" : "implicit"));
+  Int(out, "friction_polygon", s->friction_polygon);
   Real(out, "fixed_point", s->fixed_point);
   Real(out, "feasibility", s->feasibility);
   Str(out, "fingerprint", s->fingerprint);
@@ -444,6 +461,7 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Real(out, "friction_cone", r.friction_cone);
   Real(out, "slip_rule", r.slip_rule);
   Real(out, "max", r.max);
+  Real(out, "approximation", r.approximation);
   out += "}}";
   PetscCheck(out.size() < len, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "ContactSceneSummaryToJSON: the line needs %d characters, the buffer has %d", (int)out.size() + 1, (int)len);
   PetscCall(PetscStrncpy(json, out.c_str(), len));

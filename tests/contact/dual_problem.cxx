@@ -3,7 +3,8 @@
    F = Q D Q' (3 multipliers per contact node: normal, tangent 1, tangent 2), h random, optional
    equality G l = e with orthonormal rows (given in projector form, as FETI does). Checks:
    - the pipeline follows the content: frictionless -> no disks and no mpgp products;
-   - frictionless and Tresca solutions equal direct mprgp / mpgp (TAO) solutions of the same QP;
+   - frictionless and Tresca solutions equal direct mprgp / mpgp (TAO) solutions of the same QP, and so do
+     Tresca solutions with friction squares (ContactProblemAddPolygonNodes(), k = 2) those of the box;
    - Coulomb: msa, merged and monolithic reach the same multipliers, which satisfy the Coulomb
      conditions checked independently: |l_t,k| <= F l_n,k and the projected gradient of the Tresca
      problem with g = F l_n (radii from the solution itself) is small.
@@ -71,17 +72,21 @@ static PetscErrorCode CreateDual(PetscInt nodes, PetscReal cond, PetscInt m, Dua
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode SolveContact(Dual *D, ContactLaw law, PetscReal coef, const char *algorithm, Vec lambda, ContactStatistics *st, Vec w = NULL)
+static PetscErrorCode SolveContact(Dual *D, ContactLaw law, PetscReal coef, const char *algorithm, Vec lambda, ContactStatistics *st, Vec w = NULL, PetscBool square = PETSC_FALSE)
 {
   ContactProblem         cp;
   std::vector<PetscReal> c(D->normal.size(), coef);
+  std::vector<PetscInt>  tang;
 
   PetscFunctionBeginUser;
   PetscCall(ContactProblemCreate(PETSC_COMM_WORLD, &cp));
   PetscCall(ContactProblemSetOperator(cp, D->F, D->h));
   if (D->G) PetscCall(ContactProblemSetEquality(cp, D->G, D->e));
   else if (D->Q) PetscCall(ContactProblemSetProjector(cp, D->Q, D->lt));
-  PetscCall(ContactProblemAddNodes(cp, law, (PetscInt)D->normal.size(), D->normal.data(), D->t1.data(), D->t2.data(), c.data()));
+  if (square) { /* friction polygon of 2 directions: the two tangential multipliers, each bounded by sin(pi/4) g */
+    for (size_t k = 0; k < D->t1.size(); k++) tang.insert(tang.end(), {D->t1[k], D->t2[k]});
+    PetscCall(ContactProblemAddPolygonNodes(cp, law, (PetscInt)D->normal.size(), 2, D->normal.data(), tang.data(), c.data()));
+  } else PetscCall(ContactProblemAddNodes(cp, law, (PetscInt)D->normal.size(), D->normal.data(), D->t1.data(), D->t2.data(), c.data()));
   if (algorithm) PetscCall(PetscOptionsSetValue(NULL, "-contact_coulomb_algorithm", algorithm));
   PetscCall(ContactProblemSetFromOptions(cp));
   PetscCall(VecSet(lambda, 0.0));
@@ -98,10 +103,10 @@ static PetscErrorCode SolveContact(Dual *D, ContactLaw law, PetscReal coef, cons
 }
 
 /* Reference: the same QP solved directly by TAO smalxe (or mpgp/mprgp without equality) over a set built here. */
-static PetscErrorCode SolveReference(Dual *D, KnownQP *qp, PetscBool disks, PetscReal radius, Vec x)
+static PetscErrorCode SolveReference(Dual *D, KnownQP *qp, PetscBool disks, PetscReal radius, Vec x, PetscReal box = 0)
 {
   SeparableSet          set;
-  Vec                   lb;
+  Vec                   lb, ub = NULL;
   Tao                   tao;
   PetscInt              n, N;
   std::vector<PetscInt> idx;
@@ -114,9 +119,20 @@ static PetscErrorCode SolveReference(Dual *D, KnownQP *qp, PetscBool disks, Pets
   PetscCall(VecDuplicate(D->h, &lb));
   PetscCall(VecSet(lb, PETSC_NINFINITY));
   for (PetscInt i : D->normal) PetscCall(VecSetValue(lb, i, 0.0, INSERT_VALUES));
+  if (box > 0) { /* -box <= l_t1, l_t2 <= box */
+    PetscCall(VecDuplicate(D->h, &ub));
+    PetscCall(VecSet(ub, PETSC_INFINITY));
+    for (size_t k = 0; k < D->t1.size(); k++)
+      for (PetscInt i : {D->t1[k], D->t2[k]}) {
+        PetscCall(VecSetValue(lb, i, -box, INSERT_VALUES));
+        PetscCall(VecSetValue(ub, i, box, INSERT_VALUES));
+      }
+    PetscCall(VecAssemblyBegin(ub));
+    PetscCall(VecAssemblyEnd(ub));
+  }
   PetscCall(VecAssemblyBegin(lb));
   PetscCall(VecAssemblyEnd(lb));
-  PetscCall(SeparableSetSetBounds(set, lb, NULL));
+  PetscCall(SeparableSetSetBounds(set, lb, ub));
   if (disks) {
     for (size_t k = 0; k < D->t1.size(); k++) {
       idx.insert(idx.end(), {D->t1[k], D->t2[k]});
@@ -137,6 +153,7 @@ static PetscErrorCode SolveReference(Dual *D, KnownQP *qp, PetscBool disks, Pets
   PetscCall(TaoSolve(tao));
   PetscCall(TaoDestroy(&tao));
   PetscCall(VecDestroy(&lb));
+  PetscCall(VecDestroy(&ub));
   PetscCall(SeparableSetDestroy(&set));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -271,6 +288,16 @@ int main(int argc, char **argv)
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  Tresca general (G, e) vs projector form: %.2e\n", (double)diff));
     PetscCheck(diff <= 1e-5, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "Tresca solution with G, e differs from the projector form by %g", (double)diff);
   }
+
+  /* Tresca with friction squares (ContactProblemAddPolygonNodes(), k = 2): bounds only (mprgp), and the box
+     |l_t1|, |l_t2| <= sin(pi/4) 0.2 solved directly; the solve's own KKT check judges the box */
+  PetscCall(SolveContact(&D, CONTACT_TRESCA, 0.2, NULL, l, &st, NULL, PETSC_TRUE));
+  PetscCheck(st.pipeline == CONTACT_PIPELINE_TRESCA && st.products_qpq == 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "Tresca squares ran %s with %" PetscInt_FMT " mpgp products",
+             ContactPipelines[st.pipeline], st.products_qpq);
+  PetscCall(SolveReference(&D, &qp, PETSC_FALSE, 0, ref, 0.2 * PetscSinReal(PETSC_PI / 4)));
+  PetscCall(RelDiff(ref, l, &diff));
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  Tresca squares vs direct box solve: %.2e\n", (double)diff));
+  PetscCheck(diff <= 1e-5, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "Tresca solution with friction squares differs from the direct box solve by %g", (double)diff);
 
   /* Coulomb: three algorithms, one solution */
   PetscCall(VecDuplicate(D.h, &w));

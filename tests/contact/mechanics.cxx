@@ -18,6 +18,11 @@
                            (multipliers and displacements agree to 1e-5 relative)
    pipeline                prints the pipeline and the counts (frictionless: no tangential rows, no
                            mpgp products; no zone: the linear FETI solve)
+   polygon                 the brick with -law tresca|coulomb, its friction disks replaced by polygons of k = 2
+                           and 4 directions (-contact_friction_polygon): each solve converges, has k tangential
+                           rows per contact node and only mprgp products, its tangential multipliers lie in their
+                           bounds sin(pi/(2k)) g and its tangential forces in the disk (the polygon is inscribed),
+                           and the displacements come closer to the disk solution's as k grows
 
    Every case prints RESULT lines with counts and rounded norms (compared across rank counts). */
 #include <conefeti.h>
@@ -411,6 +416,96 @@ static PetscErrorCode CasePipeline(PetscInt k, const char *law)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* the disk solution, then k = 2 and 4 */
+static PetscErrorCode CasePolygon(PetscInt k, ContactLaw law)
+{
+  Vec       u0 = NULL;
+  PetscReal err[2];
+
+  PetscFunctionBeginUser;
+  for (PetscInt p : {0, 2, 4}) {
+    Scene              s;
+    ContactStatistics  st;
+    ContactResiduals   r;
+    ContactProblem     cp;
+    Vec                l, u;
+    char               name[32];
+    PetscInt           n, kk, rows[4] = {0, 0, 0, 0}, m, nfriction = 0;
+    const PetscInt    *normal, *tang;
+    const ContactLaw  *laws;
+    const PetscScalar *la;
+    FETI               feti;
+    Mat                B;
+    Vec                c;
+    const FETIRowKind *kinds;
+    PetscReal          lnmax = 0, worst[2] = {0, 0}; /* largest excess over the box, over the disk */
+
+    PetscCall(PetscOptionsSetValue(NULL, "-contact_friction_polygon", std::to_string(p).c_str()));
+    PetscCall(CreateBrick(k, law, law == CONTACT_TRESCA ? 4e6 : 0.3, PETSC_TRUE, &s));
+    PetscCall(SolveScene(&s, &st, PETSC_TRUE));
+    PetscCall(PetscSNPrintf(name, sizeof(name), "%s_polygon%" PetscInt_FMT, ContactLaws[law], p));
+    PetscCall(PrintResult(name, &s, &st));
+    PetscCall(ContactModelGetSolution(s.cm, &l, &u));
+    PetscCall(ContactModelComputeResiduals(s.cm, &r));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  largest residual %.1e (%s); against the disk law %.1e; nodes %" PetscInt_FMT " separated, %" PetscInt_FMT " stick, %" PetscInt_FMT " slip\n",
+                          (double)r.max, ContactChecks[r.worst], (double)r.approximation, r.counts[0], r.counts[1], r.counts[2]));
+    PetscCheck(r.max <= 1e-6, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "a mechanical residual is %g > 1e-6", (double)r.max);
+    if (!p) {
+      PetscCall(VecDuplicate(u, &u0));
+      PetscCall(VecCopy(u, u0));
+      PetscCall(DestroyScene(&s));
+      continue;
+    }
+    /* k tangential rows per normal row, only bound-constrained (mprgp) products */
+    PetscCall(ContactModelGetFETI(s.cm, &feti));
+    PetscCall(FETIGetConstraints(feti, &B, &c, &kinds));
+    PetscCall(MatGetLocalSize(B, &m, NULL));
+    for (PetscInt i = 0; i < m; i++) rows[kinds[i]]++;
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, rows, 4, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
+    PetscCheck(rows[3] == p * rows[2] && st.products_qpq == 0 && st.products_qpp > 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB,
+               "polygon %" PetscInt_FMT ": %" PetscInt_FMT " tangential rows for %" PetscInt_FMT " normal rows, %" PetscInt_FMT " mpgp products (want k per normal row, none)", p, rows[3], rows[2],
+               st.products_qpq);
+    /* the multipliers: |m_j| <= sin(pi/2k) g, and the force sum_j m_j d_j inside the disk of radius g */
+    PetscCall(ContactModelGetContactProblem(s.cm, &cp));
+    PetscCall(ContactProblemGetNodes(cp, &n, &normal, NULL, NULL, &laws, NULL));
+    PetscCall(ContactProblemGetFrictionPolygon(cp, &kk, &tang));
+    PetscCheck(kk == p, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "the contact problem has polygons of %" PetscInt_FMT " directions, not %" PetscInt_FMT, kk, p);
+    std::vector<PetscReal> g(n);
+    PetscCall(ContactProblemGetSlipBounds(cp, l, g.data()));
+    PetscCall(VecGetArrayRead(l, &la));
+    PetscInt rstart;
+    PetscCall(VecGetOwnershipRange(l, &rstart, NULL));
+    for (PetscInt j = 0; j < n; j++) {
+      PetscReal t[2] = {0, 0};
+      lnmax          = PetscMax(lnmax, PetscRealPart(la[normal[j] - rstart]));
+      if (laws[j] == CONTACT_FRICTIONLESS) continue;
+      for (PetscInt q = 0; q < p; q++) {
+        const PetscReal mq = PetscRealPart(la[tang[j * p + q] - rstart]), a = PETSC_PI * q / p;
+        worst[0] = PetscMax(worst[0], PetscAbsReal(mq) - PetscSinReal(PETSC_PI / (2 * p)) * g[j]);
+        t[0] += mq * PetscCosReal(a);
+        t[1] += mq * PetscSinReal(a);
+      }
+      worst[1] = PetscMax(worst[1], PetscSqrtReal(t[0] * t[0] + t[1] * t[1]) - g[j]);
+      nfriction++;
+    }
+    PetscCall(VecRestoreArrayRead(l, &la));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &lnmax, 1, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, worst, 2, MPIU_REAL, MPIU_MAX, PETSC_COMM_WORLD));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nfriction, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
+    PetscCall(RelDiff(u0, u, &err[p / 2 - 1]));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD,
+                          "  polygon %" PetscInt_FMT ": %" PetscInt_FMT
+                          " friction nodes, largest excess over the bounds %.1e and over the disk %.1e of the largest pressure; |u - u_disk| / |u_disk| = %.3e\n",
+                          p, nfriction, (double)(worst[0] / lnmax), (double)(worst[1] / lnmax), (double)err[p / 2 - 1]));
+    PetscCheck(nfriction > 0 && worst[0] <= 1e-6 * lnmax && worst[1] <= 1e-6 * lnmax, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "polygon %" PetscInt_FMT ": tangential multipliers outside the polygon", p);
+    PetscCall(DestroyScene(&s));
+  }
+  PetscCall(PetscPrintf(PETSC_COMM_WORLD, "  error against the disks: k = 2 %.3e, k = 4 %.3e (asserted: k = 4 closer)\n", (double)err[0], (double)err[1]));
+  PetscCheck(err[1] < err[0] && err[0] > 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "the octagon's solution is not closer to the disks' than the square's");
+  PetscCall(VecDestroy(&u0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   char     c[64] = "pipeline", law[32] = "frictionless";
@@ -430,6 +525,7 @@ int main(int argc, char **argv)
   else if (s == "residuals") PetscCall(CaseResiduals(k, !strcmp(law, "tresca") ? CONTACT_TRESCA : CONTACT_COULOMB));
   else if (s == "algorithms") PetscCall(CaseAlgorithms(k));
   else if (s == "pipeline") PetscCall(CasePipeline(k, law));
+  else if (s == "polygon") PetscCall(CasePolygon(k, !strcmp(law, "tresca") ? CONTACT_TRESCA : CONTACT_COULOMB));
   else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "unknown -case %s", c);
   PetscCall(PetscFinalize());
   return 0;

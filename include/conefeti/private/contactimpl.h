@@ -24,12 +24,19 @@ struct ContactProblemData {
   std::vector<ContactLaw> law;
   std::vector<PetscReal>  coef; /* Tresca: slip bound; Coulomb: friction coefficient; frictionless: unused */
 
+  /* friction polygon (ContactProblemAddPolygonNodes()): `polygon` tangential multipliers per friction node, along
+     directions spread evenly over [0, pi), each bounded by sin(pi/(2 polygon)) g (a regular 2*polygon-gon inscribed
+     in the disk of radius g); their t1 = t2 = -1. 0: friction disks */
+  PetscInt              polygon = 0;
+  std::vector<PetscInt> tang; /* `polygon` global indices per node (-1 for frictionless nodes); empty with disks */
+
   /* derived at setup */
   PetscInt                rstart = 0, nlocal = 0;
   SeparableSet            set = nullptr;
   Vec                     lb  = nullptr;
-  std::vector<PetscInt>   disk_node; /* node of each local disk (friction nodes, in order) */
-  std::vector<PetscReal>  radius;    /* current radii, one per local disk */
+  Vec                     ub  = nullptr; /* friction polygon: upper bounds (the lower ones are in lb) */
+  std::vector<PetscInt>   disk_node;     /* node of each local disk or polygon (friction nodes, in order) */
+  std::vector<PetscReal>  radius;        /* current slip bounds g, one per local disk or polygon */
   ContactPipeline         pipeline    = CONTACT_PIPELINE_LINEAR;
   ContactCoulombAlgorithm algorithm   = CONTACT_COULOMB_MONOLITHIC;
   PetscBool               has_coulomb = PETSC_FALSE, has_tresca = PETSC_FALSE, has_normal = PETSC_FALSE;
@@ -58,6 +65,14 @@ struct _p_ContactProblem {
 };
 
 PETSC_INTERN PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem, Vec, PetscReal *);
+
+/* The friction polygon of k directions (contactpolygon.cxx): direction j is (cos, sin)(j pi / k) in the node's
+   (t1, t2) frame, each multiplier is bounded by ContactPolygonBoundFactor(k) g. */
+PETSC_INTERN PetscReal ContactPolygonBoundFactor(PetscInt);
+PETSC_INTERN void      ContactPolygonDirection(PetscInt, PetscInt, PetscReal[2]);
+PETSC_INTERN void      ContactPolygonTraction(PetscInt, const PetscReal[], PetscReal[2]);
+PETSC_INTERN void      ContactPolygonTangentialMotion(PetscInt, const PetscReal[], PetscReal[2]);
+PETSC_INTERN PetscReal ContactPolygonGauge(PetscInt, const PetscReal[2], PetscReal);
 
 /* A contact row of B that can hold bodies (contactrigidmotions.cxx): the displacement component along dir
    at node `node` of `body`, minus the one at `other_node` of `other_body` (-1: a rigid foundation).

@@ -35,8 +35,10 @@ struct ContactModelData {
   PetscInt  refine_max        = 3;  /* tighter solves, warm started, when the solver's own test passed but the residuals did not */
 
   /* contact nodes whose multipliers this rank owns, in the contact problem's order (law by law) */
-  std::vector<PetscInt>  local; /* indices into nodes */
-  std::vector<PetscInt>  mult;  /* 3 per local node: normal, t1, t2 multiplier indices (-1 when frictionless) */
+  std::vector<PetscInt>  local;       /* indices into nodes */
+  PetscInt               polygon = 0; /* -contact_friction_polygon: k tangential rows per friction node (0: t1, t2 and a disk) */
+  PetscInt               stride  = 3; /* entries of mult per local node: 1 + 2 (disks) or 1 + polygon */
+  std::vector<PetscInt>  mult;        /* stride per local node: normal, then the tangential multiplier indices (-1 when frictionless) */
   std::vector<PetscInt>  lbody, lnode;
   std::vector<PetscReal> lcoords, larea;
   PetscBool              setup = PETSC_FALSE, solved = PETSC_FALSE;
