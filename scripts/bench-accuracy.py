@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """What accuracy costs: the seed paper's brick with Coulomb friction solved to a range of tolerances.
 
-For each friction coefficient and mesh size, runs the brick tutorial (build/tutorials/contact/brick) with
+For each friction coefficient and mesh size, runs the conefeti program on petsc-options/brick.opts with
 -contact_rtol from loose to tight and prints, per tolerance: outer iterations, F products (n_A), setup and
-solve time, the mechanical residuals (docs/contact.md, "Judging a solution") that brick computes from u and
+solve time, the mechanical residuals (docs/contact.md, "Judging a solution") of its JSON line, computed from u and
 lambda (not from the solver), and the separated/stick/slip node counts. Iter, n_A and the residuals are
 machine independent; times are this machine's.
 
@@ -13,32 +13,15 @@ converges, the largest mechanical residual is at most 10 * rtol, and it falls as
 usage: scripts/bench-accuracy.py [--sizes 8,12] [--frictions 0.1,0.3] [--rtols 1e-2,...,1e-8]
                                  [--algorithm monolithic] [--extra "-option value ..."] [--build build] [--hugepages 1] [--check]
 """
-import argparse, os, re, subprocess, sys
+import argparse, sys
 
 import hugepages
-
-RESIDUALS = ["equilibrium", "gluing", "penetration", "sign", "complementarity", "cone", "slip"]
-
-
-def run(build, k, F, algorithm, rtol, extra, env):
-    exe = os.path.join(build, "tutorials", "contact", "brick")
-    cmd = [exe, "-k", str(k), "-friction", str(F), "-contact_coulomb_algorithm", algorithm, "-contact_rtol", str(rtol)] + extra
-    out = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    text = out.stdout + out.stderr
-    m = re.search(r"^n (\d+) m (\d+) Iter (\d+) n_A (\d+) .* setup ([\d.]+) s solve ([\d.]+) s", text, re.M)
-    nodes = re.search(r"nodes: (\d+) separated, (\d+) stick, (\d+) slip", text)
-    res = re.search(r"^residuals: (.*)$", text, re.M)
-    if out.returncode not in (0, 2) or not m or not nodes or not res:  # 2: ran, did not converge (--check says so)
-        sys.exit("bench-accuracy.py: brick failed (%s):\n%s" % (" ".join(cmd), text[-2000:]))
-    values = dict(re.findall(r"(\w+) ([0-9.e+-]+)", res.group(1)))
-    return dict(n=int(m.group(1)), iter=int(m.group(3)), nA=int(m.group(4)), setup=float(m.group(5)), solve=float(m.group(6)),
-                nodes=tuple(int(x) for x in nodes.groups()), res=[float(values[r]) for r in RESIDUALS],
-                converged=out.returncode == 0 and re.search(r"^pipeline \w+; converged\b", text, re.M) is not None)
+from seedpaper import RESIDUALS, run
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--sizes", default="8,12", help="brick -k values (8: n = 5832, 12: n = 18252)")
+    ap.add_argument("--sizes", default="8,12", help="-scene_refine values (8: n = 5832, 12: n = 18252)")
     ap.add_argument("--frictions", default="0.1,0.3")
     ap.add_argument("--rtols", default="1e-2,1e-3,1e-4,1e-5,1e-6,1e-7,1e-8")
     ap.add_argument("--algorithm", default="monolithic")
@@ -52,10 +35,10 @@ def main():
     failures = []
     print("# what accuracy costs: brick with Coulomb friction, algorithm %s, this machine (1 core, %s)" % (a.algorithm, hugepages.describe(a.hugepages)))
     print("# command: %s" % " ".join(sys.argv))
-    print("# residuals: relative, computed by brick from u and lambda (docs/contact.md, Judging a solution); max = the largest of them")
+    print("# residuals: relative, computed by conefeti from u and lambda (docs/contact.md, Judging a solution); max = the largest of them")
     for F in [float(x) for x in a.frictions.split(",")]:
         for k in [int(x) for x in a.sizes.split(",")]:
-            rows = [(rtol, run(a.build, k, F, a.algorithm, rtol, a.extra.split(), env)) for rtol in rtols]
+            rows = [(rtol, run(a.build, k, F, rtol, a.extra.split(), env, a.algorithm)) for rtol in rtols]
             print()
             print("F = %g, n = %d" % (F, rows[0][1]["n"]))
             print("| -contact_rtol | Iter | n_A | n_A / loosest | setup + solve [s] | max residual | " + " | ".join(RESIDUALS) + " | separated/stick/slip |")

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """The seed paper's Tables 1 and 2 side by side with ours: the brick with Coulomb friction.
 
-Runs the brick tutorial (build/tutorials/contact/brick) for the paper's mesh sizes and both friction
+Runs the conefeti program on petsc-options/brick.opts (-scene_refine k) for the paper's mesh sizes and both friction
 coefficients and prints, per size: n, m, Iter, n_A (= QPP + QPQ + other) and the solve time, next to
 the paper's Iter and n_A. Iter and n_A are machine independent; times are this machine's.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""QP benchmark of issue 3: Hessian products and time of conefeti's mprgp/mpgp against TAO's own
+"""QP benchmark: Hessian products and time of conefeti's mprgp/mpgp against TAO's own
 solvers, every solver run to the same projected-gradient tolerance measured by the benchmark
 programs themselves (tutorials/qp/obstacle.cxx, tutorials/qp/disks.cxx; see their headers).
 
@@ -144,7 +144,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     t_start = time.time()
     with open(os.path.join(args.out, "results.jsonl"), "w") as log:
-        print("QP benchmark (issue 3): target |gP| <= %g |b|, measured by the programs; %s, %d cores, %s" % (args.rtol, platform.node(), os.cpu_count(), time.strftime("%Y-%m-%d %H:%M")))
+        print("QP benchmark: target |gP| <= %g |b|, measured by the programs; %s, %d cores, %s" % (args.rtol, platform.node(), os.cpu_count(), time.strftime("%Y-%m-%d %H:%M")))
         print("Load average at start: %.2f %.2f %.2f" % os.getloadavg())
         for pname in args.problems.split(","):
             prog, base0, solvers, sz = PROBLEMS[pname]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# QP benchmark of issue 3 (docs/qp-benchmark.md): builds the tutorials and runs scripts/bench-qp.py
+# QP benchmark (docs/qp-benchmark.md): builds the tutorials and runs scripts/bench-qp.py
 # with numpy-free system Python. Arguments go to bench-qp.py (--quick, --problems, --sizes, --rtol, --out).
 set -euo pipefail
 cd "$(dirname "$0")/.."

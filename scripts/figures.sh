@@ -4,7 +4,7 @@
 #   scripts/figures.sh [--clean] [--quick] [--only name,name,...]
 #
 # --clean   remove the build directory first ($BUILD_DIR, default build) and build from scratch
-# --quick   skip the long ones (the ablation tables, feti, qp)
+# --quick   skip the long ones (table3, the ablation tables, feti, qp)
 # --only    run only the named parts (below)
 #
 # The parts, what each writes and how long it takes. "measured": on the project's test machine (2 cores)
@@ -17,6 +17,8 @@
 #                 (scripts/work-precision.py: brick, two bodies, 1e-1 to 1e-10)       12.5 min measured
 #   solutions     docs/figures/solution-brick.png, solution-twobodies.png (build/conefeti -output,
 #                 scripts/render-solution.py)                                         0.5 min measured
+#   table3        docs/table3.md: the seed paper's Table 3, disks against friction polygons k = 2, 4
+#                 (scripts/bench-table3.py)                                             8 min measured
 #   ablations     docs/brick-ablations.md: every table (scripts/bench-brick.py --extra ...,
 #                 scripts/goals-brick.py); the prose beside them was written for the numbers at the
 #                 commits the page names, so read the diff                              ~10 min page
@@ -24,7 +26,7 @@
 #                 says; copied into that page by hand: its tables are interleaved with text) 15 min page
 #   qp            build/figures/qp-benchmark.md (scripts/bench-qp.sh; likewise by hand)       11 min page
 #
-# Everything: about 50 minutes, plus the build (3-6 min from clean); --quick: about 15 minutes.
+# Everything: about 60 minutes, plus the build (3-6 min from clean); --quick: about 15 minutes.
 # Tables go into their pages between a marker `<!-- generated: NAME -->` and the end of the fenced block
 # after it (scripts/docs-block.py), with a first line "# made at commit <hash> on <machine>, <date>".
 # Needs python3-matplotlib (scripts/setup.sh).
@@ -44,7 +46,7 @@ while [ $# -gt 0 ]; do
 done
 want() {
   if [ -n "$only" ]; then [[ ",$only," == *",$1,"* ]]; return; fi
-  if [ $quick -eq 1 ]; then case "$1" in ablations|feti|qp) return 1 ;; esac; fi
+  if [ $quick -eq 1 ]; then case "$1" in table3|ablations|feti|qp) return 1 ;; esac; fi
   return 0
 }
 
@@ -115,6 +117,11 @@ if want ablations; then
   b --algorithms monolithic,msa,merged --extra "-contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_subsolver_tao_mpgp_expansion_projcg 1 -contact_tao_smalxe_block0_tao_mprgp_expansion_projcg 1 -contact_tao_smalxe_block1_tao_mpgp_expansion_projcg 1" | block $page projcg
   b --algorithms monolithic --extra "-feti_kplus_explicit 0" | block $page kplus-implicit
   b --algorithms monolithic --hugepages 0 | block $page small-pages
+fi
+
+if want table3; then
+  say "table3 (docs/table3.md)"
+  scripts/bench-table3.py --build "$build" --markdown docs/table3.md
 fi
 
 if want feti; then

@@ -1,6 +1,11 @@
-"""The seed paper's brick for the brick scripts (bench-brick.py, goals-brick.py): its Tables 1 and 2, the
-benchmark's goals, and one run of the brick tutorial with its printed counts."""
-import os, re, subprocess, sys
+"""The seed paper's brick for the brick scripts (bench-brick.py, goals-brick.py, bench-accuracy.py): its
+Tables 1 and 2, the benchmark's goals, and one run of the conefeti program on petsc-options/brick.opts,
+read from its JSON line."""
+import json, os, subprocess, sys
+
+BRICK = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "petsc-options", "brick.opts")
+# the mechanical residuals of the JSON line, in the order of the tables
+RESIDUALS = ["equilibrium", "gluing", "penetration", "normal_sign", "complementarity", "friction_cone", "slip_rule"]
 
 PAPER = {  # n: (m, {F: (Iter, n_A, time in s)})
     900: (180, {0.1: (5, 102, 1), 0.3: (7, 140, 2)}),
@@ -21,18 +26,22 @@ def brick_n(k):
 
 
 def run(build, k, F, rtol, extra, env, algorithm=None):
-    """Runs build/tutorials/contact/brick and returns its counts, times, node statuses and residuals; exits
-    with the output when the run failed (exit status 2, ran but did not converge, is a result)."""
-    exe = os.path.join(build, "tutorials", "contact", "brick")
-    cmd = [exe, "-k", str(k), "-friction", str(F)] + (["-contact_coulomb_algorithm", algorithm] if algorithm else []) + ["-contact_rtol", str(rtol)] + extra
+    """Runs the conefeti program on petsc-options/brick.opts (the one definition of the brick) with
+    -scene_refine k and friction F, and returns the counts, times, node states and mechanical residuals of
+    its JSON line (docs/output.md); exits with the output when the run failed (exit status 2, ran but
+    did not converge, is a result)."""
+    cmd = [os.path.join(build, "conefeti"), "-options_file", BRICK, "-scene_refine", str(k), "-scene_zone0_friction", str(F),
+           "-summary_table", "0", "-options_left", "0"] + (["-contact_coulomb_algorithm", algorithm] if algorithm else []) + ["-contact_rtol", str(rtol)] + extra
     out = subprocess.run(cmd, capture_output=True, text=True, env=env)
-    text = out.stdout + out.stderr
-    m = re.search(r"^n (\d+) m (\d+) Iter (\d+) n_A (\d+) \(QPP (\d+) \+ QPQ (\d+) \+ other (\d+)\) estimate (\d+) setup ([\d.]+) s solve ([\d.]+) s", text, re.M)
-    nodes = re.search(r"nodes: (\d+) separated, (\d+) stick, (\d+) slip", text)
-    res = re.search(r"residuals: (.*)", text)
-    conv = out.returncode == 0 and re.search(r"^pipeline \w+; converged\b", text, re.M) is not None
-    if not m or out.returncode not in (0, 2):
-        sys.exit("brick failed (%s):\n%s" % (" ".join(cmd), text[-2000:]))
-    v = [int(x) for x in m.groups()[:8]] + [float(m.group(9)), float(m.group(10))]
-    return dict(n=v[0], m=v[1], iter=v[2], nA=v[3], qpp=v[4], qpq=v[5], other=v[6], est=v[7], setup=v[8], solve=v[9],
-                nodes=tuple(int(x) for x in nodes.groups()) if nodes else (0, 0, 0), converged=conv, residuals=res.group(1) if res else "")
+    line = next((l for l in out.stdout.splitlines() if l.startswith('{"conefeti":')), None)
+    if out.returncode not in (0, 2) or line is None:
+        sys.exit("brick failed (%s):\n%s" % (" ".join(cmd), (out.stdout + out.stderr)[-2000:]))
+    j = json.loads(line)
+    if "n" not in j:
+        sys.exit("brick did not run a solve (%s):\n%s" % (" ".join(cmd), line))
+    res = j.get("residuals") or {}
+    # n_A as the brick tables print it: every F product of the solve, QPP + QPQ + other (the JSON's n_A
+    # leaves out the few products outside the inner solvers)
+    return dict(n=j["n"], m=j["m"], iter=j["iter"], nA=j["n_A"] + j["n_A_other"], qpp=j["n_A_qpp"], qpq=j["n_A_qpq"], other=j["n_A_other"], est=j["n_A_estimate"],
+                setup=j["time_setup"], solve=j["time_solve"], nodes=(j["separated"], j["stick"], j["slip"]), converged=out.returncode == 0 and j["converged"],
+                res=[float("nan") if res.get(r) is None else res[r] for r in RESIDUALS])

@@ -19,6 +19,10 @@ $ CONTACT_FRICTIONLESS - normal multiplier only; no tangential multipliers exist
 $ CONTACT_TRESCA       - given slip bound g_k (a force, in multiplier units)
 $ CONTACT_COULOMB      - friction coefficient F_k: slip bound F_k l_n,k
 
+  References:
++ * - R. Kucera, A new algorithm for solving 3D contact problems with Coulomb friction (the seed paper of conefeti: the dual formulation with Tresca and Coulomb friction)
+- * - J. Haslinger, Approximation of the Signorini problem with friction, obeying Coulomb law, Math. Methods Appl. Sci. 5, 422-437 (1983)
+
   Level: beginner
 
 .seealso: `ContactProblemAddNodes()`
@@ -38,6 +42,10 @@ $ CONTACT_PIPELINE_FRICTIONLESS - normal multipliers >= 0: smalxe + mprgp
 $ CONTACT_PIPELINE_TRESCA       - given slip bounds: one smalxe + mpgp solve
 $ CONTACT_PIPELINE_COULOMB      - the friction loop (`ContactCoulombAlgorithm`)
 
+  References:
++ * - Z. Dostal, Optimal Quadratic Programming Algorithms, with Applications to Variational Inequalities, Springer (2009) (smalxe + mprgp)
+- * - R. Kucera, A new algorithm for solving 3D contact problems with Coulomb friction (the seed paper of conefeti: Tresca by smalxe + mpgp)
+
   Level: beginner
 E*/
 typedef enum {
@@ -56,6 +64,11 @@ $ CONTACT_COULOMB_MERGED     - Algorithm 2 (the seed paper's): one augmented Lag
 $                              Gauss-Seidel sweep (normal and gluing multipliers by mprgp, tangential by mpgp on
 $                              disks of radius F l_n taken from the new normal multipliers)
 $ CONTACT_COULOMB_MONOLITHIC - one loop, one mpgp over all multipliers, radii F l_n updated before every inner solve
+
+  References:
++ * - R. Kucera, A new algorithm for solving 3D contact problems with Coulomb friction (the seed paper of conefeti: Algorithms 1 and 2)
+- * - J. Haslinger, R. Kucera, Z. Dostal, An algorithm for the numerical realization of 3D contact problems with Coulomb friction, J. Comput. Appl. Math. 164-165, 387-408 (2004) (the method of
+successive approximations)
 
   Level: beginner
 E*/

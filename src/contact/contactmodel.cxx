@@ -583,7 +583,7 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
     else {
       /* start from the particular solution: G l = e holds from the first iterate (the inner solver
          projects it onto the set). (Starting from one carried by the gluing and Dirichlet rows alone, i.e.
-         without contact forces, cost the brick 25-35% more products.) */
+         without contact forces, costs the brick more products.) */
       Vec lt;
       PetscCall(FETIGetParticularSolution(d.feti, &lt));
       PetscCall(VecCopy(lt, d.lambda));

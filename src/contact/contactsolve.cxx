@@ -482,8 +482,8 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
       PetscCall(TaoSMALXESetConsistencyCheck(d->tao, Consistent, cp));
       /* the radii move before every inner solve, so the map from multiplier to residual changes with
          each outer iteration and older Anderson history describes a different map: mix only the last
-         update (depth 1). On the brick at -contact_rtol 1e-6 this needs 15% fewer products than
-         depth 3 at F = 0.3 and as many at F = 0.1 (docs/brick-benchmark.md) */
+         update (depth 1), which costs the brick fewer products than a deeper history
+         (docs/brick-benchmark.md, 'Anderson acceleration of the multiplier update') */
       PetscCall(TaoSMALXESetAnderson(d->tao, 1, 3));
     }
   }

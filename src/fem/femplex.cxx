@@ -278,7 +278,8 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
     }
     PetscCall(DMPlexComputeCellGeometryAffineFEM(dm, c, v0, J, NULL, &detJ));
     if (detJ < 0) {
-      body.error = Format("%s is inverted (negative volume %g): its vertices are listed in the wrong order in the mesh", which.c_str(), (double)(-std::fabs(det) / 6));
+      body.error = Format("%s is inverted (negative volume %g in DMPlex's orientation convention, which is the reverse of Gmsh's and Exodus's): its vertices are listed in the wrong order in the mesh",
+                          which.c_str(), (double)(-std::fabs(det) / 6));
       PetscFunctionReturn(PETSC_SUCCESS);
     }
     if (det < 0) std::swap(id[1], id[2]);
@@ -387,7 +388,7 @@ PetscErrorCode BcastString(MPI_Comm comm, std::string &s)
   cells must all be on rank 0: either a sequential `DM` on rank 0 (the other ranks pass NULL or their own,
   ignored, copy), or a `DM` on the model's communicator that has not been distributed (`DMPlexDistribute()`);
   the model decomposes the body itself (METIS, -fem_subdomains). Rank 0 holds the `DM` and the converted
-  arrays; `FEMAddMesh()` broadcasts a copy (coordinates and connectivity, about 40 bytes per tetrahedron) to
+  arrays; `FEMAddMesh()` broadcasts a copy (coordinates and connectivity) to
   every rank.
 
   Cells keep DMPlex's orientation convention: a cell that PETSc's geometry finds inverted (|J| < 0, for a Gmsh

@@ -31,22 +31,23 @@ PetscErrorCode FEMCheckMesh(MPI_Comm comm, PetscInt body, const FEMBody &b)
 
   PetscFunctionBegin;
   for (PetscInt i = 0; i < 3 * b.nnodes; i++)
-    PetscCheck(std::isfinite(b.coords[i]), comm, PETSC_ERR_ARG_WRONG, "FEMAddMesh(): body %" PetscInt_FMT ": coordinate %" PetscInt_FMT " of node %" PetscInt_FMT " is %g, not a finite number",
-               body, i % 3, i / 3, (double)b.coords[i]);
+    PetscCheck(std::isfinite(b.coords[i]), comm, PETSC_ERR_ARG_WRONG, "FEMAddMesh(): body %" PetscInt_FMT ": coordinate %" PetscInt_FMT " of node %" PetscInt_FMT " is %g, not a finite number", body,
+               i % 3, i / 3, (double)b.coords[i]);
   for (PetscInt e = 0; e < b.nelements; e++) {
     PetscInt  v[4];
     PetscReal det, longest;
     FEMElementNodes(b, e, v);
     for (PetscInt a = 0; a < 4; a++) {
-      PetscCheck(v[a] >= 0 && v[a] < b.nnodes, comm, PETSC_ERR_ARG_OUTOFRANGE, "FEMAddMesh(): body %" PetscInt_FMT ": tetrahedron %" PetscInt_FMT " has node %" PetscInt_FMT ", outside 0..%" PetscInt_FMT,
-                 body, e, v[a], b.nnodes - 1);
+      PetscCheck(v[a] >= 0 && v[a] < b.nnodes, comm, PETSC_ERR_ARG_OUTOFRANGE,
+                 "FEMAddMesh(): body %" PetscInt_FMT ": tetrahedron %" PetscInt_FMT " has node %" PetscInt_FMT ", outside 0..%" PetscInt_FMT, body, e, v[a], b.nnodes - 1);
       used[v[a]] = 1;
     }
     TetEdgesAndVolume(b.coords.data(), v, &det, &longest);
     /* 6 |volume| against the cube of the longest edge: 1 for a right-angled corner, 0.7 for a regular
        tetrahedron, below 1e-10 only for a sliver no mesher produces on purpose */
     PetscCheck(PetscAbsReal(det) > 1e-10 * longest * longest * longest, comm, PETSC_ERR_ARG_WRONG,
-               "FEMAddMesh(): body %" PetscInt_FMT ": tetrahedron %" PetscInt_FMT " (nodes %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT ") is degenerate (volume %g, longest edge %g)",
+               "FEMAddMesh(): body %" PetscInt_FMT ": tetrahedron %" PetscInt_FMT " (nodes %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT
+               ") is degenerate (volume %g, longest edge %g)",
                body, e, v[0], v[1], v[2], v[3], (double)(det / 6), (double)longest);
     PetscCheck(det > 0, comm, PETSC_ERR_ARG_WRONG,
                "FEMAddMesh(): body %" PetscInt_FMT ": tetrahedron %" PetscInt_FMT " (nodes %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT
@@ -83,7 +84,7 @@ PetscErrorCode FEMBuildBoundary(FEMBody &b)
     PetscInt v[4];
     FEMElementNodes(b, e, v);
     for (PetscInt k = 0; k < 4; k++) {
-      Face &f = faces[4 * (size_t)e + k];
+      Face    &f = faces[4 * (size_t)e + k];
       PetscInt m = 0;
       for (PetscInt a = 0; a < 4; a++)
         if (a != k) f.key[m++] = v[a];
@@ -211,12 +212,14 @@ PetscErrorCode FEMBuildTags(PetscInt body, FEMBody &b)
   PetscCallCXX(b.dirichletmask.assign(b.nnodes, 0));
   for (const FEMDirichletSpec &ds : b.dirichlet) {
     auto it = b.tags.find(ds.name);
-    PetscCheck(it != b.tags.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FEMSetDirichlet(): body %" PetscInt_FMT " has no boundary tag \"%s\" (it has: %s)", body, ds.name.c_str(), TagList(b).c_str());
+    PetscCheck(it != b.tags.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FEMSetDirichlet(): body %" PetscInt_FMT " has no boundary tag \"%s\" (it has: %s)", body, ds.name.c_str(),
+               TagList(b).c_str());
     for (PetscInt t : it->second)
       for (PetscInt n : b.boundary[t].v) b.dirichletmask[n] |= (unsigned char)ds.components;
   }
   for (const FEMTractionSpec &ts : b.tractions)
-    PetscCheck(b.tags.count(ts.name), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FEMSetTraction(): body %" PetscInt_FMT " has no boundary tag \"%s\" (it has: %s)", body, ts.name.c_str(), TagList(b).c_str());
+    PetscCheck(b.tags.count(ts.name), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FEMSetTraction(): body %" PetscInt_FMT " has no boundary tag \"%s\" (it has: %s)", body, ts.name.c_str(),
+               TagList(b).c_str());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,4 +1,4 @@
-/* FETISetUp() and the FETI operators as MATSHELLs:
+/* The FETI operators as MATSHELLs (created by FETISetUp(), feti.cxx):
      K+  primal -> primal  block diagonal generalized inverse
      F   dual -> dual      B K+ B' (one B' product, one solve per subdomain, one B product; never formed)
      G   dual -> coarse    R'B' (a B' product, then R' subdomain by subdomain; never formed)
@@ -395,162 +395,17 @@ PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscErrorCode (*pr
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode SetUpCoarse(FETI feti)
+/* The MATSHELLs F, P, Q, PFP, K+ and G of a FETI whose layout, factors and coarse problem are set up
+   (FETISetUp()); each carries the FETI as its context. */
+PetscErrorCode FETICreateOperators_Private(FETI feti)
 {
   FETI_Impl &impl = *feti->impl;
-  PetscBool  failed;
-  Mat        GGt;
+  MPI_Comm   comm = PetscObjectComm((PetscObject)feti);
+  PetscInt   nd, mlocal;
 
   PetscFunctionBegin;
-  PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
-  PetscCall(FETICreateCoarseMatrix(feti, NULL, &GGt));
-  PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
-  PetscCall(FETICoarseSolverCreate(feti, GGt, impl.coarse, &failed));
-  PetscCall(MatDestroy(&GGt));
-  PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
-             "The coarse matrix G G' is singular: some combination of the subdomains' rigid-body modes satisfies every row of B, so nothing holds it: a body (or a part "
-             "of one) without a Dirichlet row, held only by frictionless contact rows, or touching only along a line it can turn about. A FEM model's ContactModelSetUp() "
-             "names such a motion before this point; with FETISetConstraints() directly, check that the rows hold every floating subdomain");
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/*@C
-  FETISetUp - Kernels, factorizations, the coarse problem, the operators and right-hand sides.
-
-  Collective
-
-  Input Parameter:
-. feti - the FETI problem with subdomains and constraints set
-
-  Notes:
-  Per subdomain: the kernel basis (rigid modes from coordinates, or the user's, restricted to those
-  vanishing on Dirichlet dofs kept in the primal), fixing dofs, the regularized matrix and its sparse
-  Cholesky factorization (prefix feti_sub_). Then Gt = B R, the coarse matrix G G' and its
-  factorization (prefix feti_coarse_), h = B K+ f - c, e = R' f and the particular solution
-  lambda~ = G'(G G')^-1 e. Everything is done once; products and solves allocate nothing.
-
-  Level: beginner
-
-.seealso: `FETISetFromOptions()`, `FETIGetOperators()`, `FETIGetRHS()`, `FETISolveLinear()`
-@*/
-PetscErrorCode FETISetUp(FETI feti)
-{
-  FETI_Impl  &impl = *feti->impl;
-  MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
-  PetscMPIInt size, rank;
-  PetscInt    nlocal = (PetscInt)impl.sub.size(), minlocal, ncols, nlocalcols, nd, mlocal, offset, coarseoffset;
-
-  PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
-  if (impl.setupcalled) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(MPIU_Allreduce(&nlocal, &minlocal, 1, MPIU_INT, MPI_MIN, comm));
-  PetscCheck(minlocal >= 1, comm, PETSC_ERR_ARG_WRONGSTATE, "Every rank needs at least one subdomain (FETISetSubdomains()); some rank has none: use more subdomains than the %d ranks", size);
-  PetscCheck(impl.B, comm, PETSC_ERR_ARG_WRONGSTATE, "Call FETISetConstraints() before FETISetUp()");
-  PetscCall(PetscLogEventBegin(FETI_SetUp, feti, 0, 0, 0));
-
-  /* primal layout: this rank's subdomains, contiguous */
-  impl.nlocalprimal = 0;
-  for (FETISubdomain &sd : impl.sub) {
-    sd.localoffset = impl.nlocalprimal;
-    impl.nlocalprimal += sd.n;
-  }
-  PetscCallMPI(MPI_Scan(&impl.nlocalprimal, &offset, 1, MPIU_INT, MPI_SUM, comm));
-  offset -= impl.nlocalprimal;
-  PetscCall(MPIU_Allreduce(&impl.nlocalprimal, &impl.nprimal, 1, MPIU_INT, MPI_SUM, comm));
-  for (FETISubdomain &sd : impl.sub) sd.offset = offset + sd.localoffset;
-  PetscCallMPI(MPI_Scan(&nlocal, &impl.firstsub, 1, MPIU_INT, MPI_SUM, comm));
-  impl.firstsub -= nlocal;
-  PetscCall(MPIU_Allreduce(&nlocal, &impl.nglobalsub, 1, MPIU_INT, MPI_SUM, comm));
-
-  PetscCall(MatGetSize(impl.B, &nd, &ncols));
-  PetscCall(MatGetLocalSize(impl.B, &mlocal, &nlocalcols));
-  PetscCheck(ncols == impl.nprimal, comm, PETSC_ERR_ARG_SIZ, "B has %" PetscInt_FMT " columns but the subdomains have %" PetscInt_FMT " dofs in total", ncols, impl.nprimal);
-  PetscCheck(nlocalcols == impl.nlocalprimal, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
-             "B has %" PetscInt_FMT " local columns on rank %d but the rank's subdomains have %" PetscInt_FMT " dofs; create B with MatSetSizes(B, m, %" PetscInt_FMT ", M, N)", nlocalcols, rank,
-             impl.nlocalprimal, impl.nlocalprimal);
-
-  PetscCall(MatCreateVecs(impl.B, &impl.wp1, &impl.wd1));
-  if (impl.kplusexplicit) PetscCall(FETISetUpBoundaryMask(feti)); /* the subdomain factorizations may keep a Schur complement on it */
-  /* kernels first: the coarse problem is assembled and factored before the subdomain factors exist, so
-     that the memory its assembly needs for a moment is reused by them rather than stacked on them */
-  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
-  /* before anything large: the factors and explicit blocks must fit (the blocks are dropped when only they do not) */
-  PetscCall(FETICheckMemory(feti));
-
-  /* coarse layout */
-  impl.nlocalcoarse = 0;
-  for (FETISubdomain &sd : impl.sub) {
-    sd.coarseoffset = impl.nlocalcoarse;
-    impl.nlocalcoarse += sd.nkernel;
-  }
-  PetscCallMPI(MPI_Scan(&impl.nlocalcoarse, &coarseoffset, 1, MPIU_INT, MPI_SUM, comm));
-  coarseoffset -= impl.nlocalcoarse;
-  for (FETISubdomain &sd : impl.sub) sd.coarseoffset += coarseoffset;
-  PetscCall(MPIU_Allreduce(&impl.nlocalcoarse, &impl.ncoarse, 1, MPIU_INT, MPI_SUM, comm));
-
-  PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
-  /* global load; the subdomain loads are not needed any more */
-  PetscCall(VecDuplicate(impl.wp1, &impl.f));
-  PetscCall(VecDuplicate(impl.wp1, &impl.wp2));
-  PetscCall(VecDuplicate(impl.wd1, &impl.wd2));
-  {
-    PetscScalar *fa;
-    PetscCall(VecGetArray(impl.f, &fa));
-    for (FETISubdomain &sd : impl.sub) {
-      const PetscScalar *a;
-      if (!sd.f) {
-        for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = 0;
-        continue;
-      }
-      PetscCall(VecGetArrayRead(sd.f, &a));
-      for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = a[i];
-      PetscCall(VecRestoreArrayRead(sd.f, &a));
-      for (PetscInt d : sd.dirichletdofs) fa[sd.localoffset + d] = 0; /* no work on fixed dofs */
-      PetscCall(VecDestroy(&sd.f));
-    }
-    PetscCall(VecRestoreArray(impl.f, &fa));
-  }
-  /* R: block diagonal, primal x coarse */
-  {
-    std::vector<PetscInt> nnz(impl.nlocalprimal), cols;
-    for (FETISubdomain &sd : impl.sub)
-      for (PetscInt i = 0; i < sd.n; i++) nnz[sd.localoffset + i] = sd.nkernel;
-    PetscCall(MatCreate(comm, &impl.R));
-    PetscCall(MatSetSizes(impl.R, impl.nlocalprimal, impl.nlocalcoarse, impl.nprimal, impl.ncoarse));
-    PetscCall(MatSetType(impl.R, MATAIJ));
-    PetscCall(MatSeqAIJSetPreallocation(impl.R, 0, nnz.data()));
-    PetscCall(MatMPIAIJSetPreallocation(impl.R, 0, nnz.data(), 0, NULL));
-    for (FETISubdomain &sd : impl.sub) {
-      std::vector<PetscScalar> row(sd.nkernel);
-      PetscCallCXX(cols.resize(sd.nkernel));
-      for (PetscInt j = 0; j < sd.nkernel; j++) cols[j] = sd.coarseoffset + j;
-      for (PetscInt i = 0; i < sd.n; i++) {
-        const PetscInt grow = sd.offset + i;
-        for (PetscInt j = 0; j < sd.nkernel; j++) row[j] = sd.R[(size_t)j * sd.n + i];
-        PetscCall(MatSetValues(impl.R, 1, &grow, sd.nkernel, cols.data(), row.data(), INSERT_VALUES));
-      }
-    }
-    PetscCall(MatAssemblyBegin(impl.R, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatAssemblyEnd(impl.R, MAT_FINAL_ASSEMBLY));
-    for (FETISubdomain &sd : impl.sub) PetscCallCXX(std::vector<PetscScalar>().swap(sd.R)); /* R holds the kernels now */
-  }
-  PetscCall(MatCreateVecs(impl.R, &impl.wc1, NULL));
-  PetscCall(VecDuplicate(impl.wc1, &impl.wc2));
-  PetscCall(VecDuplicate(impl.wp1, &impl.wp3));
-  PetscCall(VecDuplicate(impl.wd1, &impl.wd3));
-  PetscCall(FETIRowSumCreate(impl.B, PETSC_FALSE, impl.Bsum));
-  PetscCall(FETIRowSumCreate(impl.B, PETSC_TRUE, impl.Btsum));
-  PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
-  if (impl.ncoarse) PetscCall(SetUpCoarse(feti));
-  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpFactorization(feti, impl.sub[s], impl.firstsub + s));
-  if (impl.kplusexplicit) {
-    PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
-    PetscCall(FETISetUpExplicitKplus(feti));
-    PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
-  }
-
+  PetscCall(MatGetSize(impl.B, &nd, NULL));
+  PetscCall(MatGetLocalSize(impl.B, &mlocal, NULL));
   PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_F, "F", &impl.F));
   PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_P, "P", &impl.P));
   PetscCall(CreateShell(feti, mlocal, mlocal, MatMult_Q, "Q", &impl.Q));
@@ -561,25 +416,6 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCall(MatShellSetOperation(impl.G, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMultTranspose_G));
   PetscCall(PetscObjectComposeFunction((PetscObject)impl.G, "FETIShellGetFETI_C", ShellGetFETI));
   PetscCall(PetscObjectSetName((PetscObject)impl.G, "G"));
-  impl.setupcalled = PETSC_TRUE;
-
-  /* h = B K+ f - c, e = R' f, lambda~ = Gt (G Gt)^-1 e */
-  PetscCall(VecDuplicate(impl.wd1, &impl.h));
-  PetscCall(VecDuplicate(impl.wd1, &impl.lambdatilde));
-  PetscCall(VecDuplicate(impl.wc1, &impl.e));
-  PetscCall(VecDuplicate(impl.wc1, &impl.alpha));
-  PetscCall(VecDuplicate(impl.wd1, &impl.rhs));
-  PetscCall(VecDuplicate(impl.wd1, &impl.residual));
-  PetscCall(FETIApplyKplus(feti, impl.f, impl.wp1));
-  PetscCall(FETIRowSumApply(impl.Bsum, impl.wp1, impl.h));
-  if (impl.c) PetscCall(VecAXPY(impl.h, -1.0, impl.c));
-  PetscCall(MatMultTranspose(impl.R, impl.f, impl.e));
-  if (impl.ncoarse) {
-    PetscCall(FETIApplyCoarseInverse(feti, impl.e, impl.wc2));
-    PetscCall(FETIApplyGt(feti, impl.wc2, impl.lambdatilde));
-  } else PetscCall(VecSet(impl.lambdatilde, 0.0));
-  PetscCall(PetscLogEventEnd(FETI_SetUp, feti, 0, 0, 0));
-  PetscCall(PetscObjectViewFromOptions((PetscObject)feti, NULL, "-feti_view"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -927,6 +927,9 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 . -scene_view                                - view the scene after `ContactSceneSetUp()`
 . -scene_body<b>_lower, _upper <x,y,z>       - corners of box b (bodies are numbered 0, 1, ... without gaps)
 . -scene_body<b>_cells <nx,ny,nz>            - hexahedra along each axis (each cut into 6 tetrahedra)
+. -scene_body<b>_mesh <file>                 - or a mesh file of tetrahedra (Gmsh .msh 2.2/4.x, any DMPlexCreateFromFile() format)
+. -scene_body<b>_scale <s>, _translate <x,y,z> - mesh: coordinates x become s x + t
+. -scene_body<b>_volume <name or number>     - mesh: only the cells of this physical volume
 . -scene_body<b>_E, _nu                      - material (default -fem_E, -fem_nu, else steel)
 . -scene_body<b>_decomposition <structured,metis> - how the body is cut into subdomains
 . -scene_body<b>_subdomains <px,py,pz or n>  - subdomains (structured: per axis; metis: a count)
@@ -944,8 +947,9 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 - -scene_zone<z>_law <frictionless,tresca,coulomb> - with -scene_zone<z>_slip_bound <g> (Tresca, a stress) or -scene_zone<z>_friction <F> (Coulomb)
 
   Notes:
-  A face selector is FACE or FACE/COND[/COND...]: FACE one of x0 x1 y0 y1 z0 z1 (x = lower x, x = upper x, ...),
-  COND a condition AXIS OP VALUE (OP one of < <= > >=) on the centroids of the face's triangles; e.g. z0/x>1 is
+  A face selector is FACE or FACE/COND[/COND...]: FACE one of x0 x1 y0 y1 z0 z1 (x = lower x, x = upper x, ...;
+  on a mesh body the triangles facing mostly that way) or, on a mesh body, a physical surface of the file (its name,
+  or its number), COND a condition AXIS OP VALUE (OP one of < <= > >=) on the centroids of the face's triangles; e.g. z0/x>1 is
   the part of the bottom face beyond x = 1. Quote selectors on the command line ('z0/x>1').
 
   Dirichlet conditions enter FETI as the model's option -fem_dirichlet says (multipliers: Total FETI, the

@@ -397,6 +397,9 @@ static PetscErrorCode CasePipeline(PetscInt k, const char *law)
   const FETIRowKind *kinds;
 
   PetscFunctionBeginUser;
+  /* a misspelled law would otherwise be checked as frictionless */
+  PetscCheck(none || !strcmp(law, "coulomb") || !strcmp(law, "tresca") || !strcmp(law, "frictionless"), PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-law %s: use none, frictionless, tresca or coulomb",
+             law);
   PetscCall(CreateBrick(k, l, l == CONTACT_TRESCA ? 4e6 : 0.3, none ? PETSC_FALSE : PETSC_TRUE, &s));
   PetscCall(SolveScene(&s, &st, PETSC_TRUE));
   PetscCall(PrintResult(law, &s, &st));
@@ -412,6 +415,11 @@ static PetscErrorCode CasePipeline(PetscInt k, const char *law)
     PetscCheck(st.pipeline == CONTACT_PIPELINE_FRICTIONLESS && rows[3] == 0 && st.products_qpq == 0 && rows[2] > 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB,
                "a frictionless scene must have no tangential rows (%" PetscInt_FMT ") and spend no mpgp products (%" PetscInt_FMT ")", rows[3], st.products_qpq);
   if (l == CONTACT_COULOMB) PetscCheck(st.pipeline == CONTACT_PIPELINE_COULOMB && rows[3] == 2 * rows[2], PETSC_COMM_WORLD, PETSC_ERR_PLIB, "a Coulomb scene needs two tangential rows per normal row");
+  if (l == CONTACT_TRESCA)
+    PetscCheck(st.pipeline == CONTACT_PIPELINE_TRESCA && rows[2] > 0 && rows[3] == 2 * rows[2] && st.products_qpq > 0, PETSC_COMM_WORLD, PETSC_ERR_PLIB,
+               "a Tresca scene must run the Tresca pipeline (got %s) with two tangential rows per normal row (%" PetscInt_FMT " normal, %" PetscInt_FMT " tangential) solved by mpgp (%" PetscInt_FMT
+               " products)",
+               ContactPipelines[st.pipeline], rows[2], rows[3], st.products_qpq);
   PetscCall(DestroyScene(&s));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -199,7 +199,7 @@ int main(int argc, char **argv)
   for (PetscInt n = 0; n < N; n++)
     for (int d = 0; d < 3; d++) Y[3 * (N - 1 - n) + d] = X[3 * n + d];
   for (PetscInt e = 0; e < E; e++) {
-    const PetscInt *v = &tets[4 * (E - 1 - e)];
+    const PetscInt *v    = &tets[4 * (E - 1 - e)];
     const PetscInt  w[4] = {v[1], v[2], v[0], v[3]}; /* an even permutation keeps the orientation */
     for (int a = 0; a < 4; a++) T[4 * e + a] = N - 1 - w[a];
   }

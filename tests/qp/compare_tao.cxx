@@ -4,38 +4,14 @@
    with its own stopping rule tightened; every solution must agree with mprgp's to 1e-6 relative,
    and mprgp's with the known solution to 1e-8. Prints one line per solver with its iterations. */
 #include "knownqp.h"
-
-struct Ctx {
-  Mat A;
-  Vec b;
-};
-
-static PetscErrorCode ObjGrad(Tao, Vec x, PetscReal *f, Vec g, void *ptr)
-{
-  Ctx        *c = (Ctx *)ptr;
-  PetscScalar xg, xb;
-
-  PetscFunctionBeginUser;
-  PetscCall(MatMult(c->A, x, g));
-  PetscCall(VecDot(x, g, &xg));
-  PetscCall(VecDot(x, c->b, &xb));
-  *f = 0.5 * PetscRealPart(xg) - PetscRealPart(xb);
-  PetscCall(VecAXPY(g, -1.0, c->b));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-static PetscErrorCode Hess(Tao, Vec, Mat, Mat, void *)
-{
-  PetscFunctionBeginUser;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
+#include "quadratic.h"
 
 int main(int argc, char **argv)
 {
   KnownQP   qp;
   Vec       xref, x, e;
   PetscReal err, nref;
-  Ctx       ctx;
+  Quadratic ctx;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "mprgp agrees with bqpip, gpcg, blmvm"));
   PetscCall(ConeFETIInitializePackage());
@@ -54,8 +30,8 @@ int main(int argc, char **argv)
     PetscCall(TaoCreate(PETSC_COMM_WORLD, &tao));
     PetscCall(TaoSetType(tao, type));
     PetscCall(TaoSetSolution(tao, sol));
-    PetscCall(TaoSetObjectiveAndGradient(tao, NULL, ObjGrad, &ctx));
-    PetscCall(TaoSetHessian(tao, qp.A, qp.A, Hess, &ctx));
+    PetscCall(TaoSetObjectiveAndGradient(tao, NULL, QuadraticObjectiveGradient, &ctx));
+    PetscCall(TaoSetHessian(tao, qp.A, qp.A, QuadraticHessian, &ctx));
     PetscCall(TaoSetVariableBounds(tao, qp.lb, qp.ub));
     /* each solver's own criterion, tight enough for 1e-6 agreement; bqpip's residual (which includes
        the complementarity with the far bounds) levels off near 1e-7, blmvm's near 1e-9 */

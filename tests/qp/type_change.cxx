@@ -10,20 +10,7 @@
 #include <conefeti.h>
 #include <conefeti/compat.h>
 #include <string>
-
-static PetscErrorCode ObjectiveAndGradient(Tao, Vec x, PetscReal *f, Vec g, void *ctx)
-{
-  Vec         b = (Vec)ctx;
-  PetscScalar xb, xx;
-
-  PetscFunctionBeginUser;
-  PetscCall(VecCopy(x, g));
-  PetscCall(VecAXPY(g, -1.0, b));
-  PetscCall(VecDot(x, b, &xb));
-  PetscCall(VecDot(x, x, &xx));
-  *f = 0.5 * xx - xb;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
+#include "quadratic.h"
 
 int main(int argc, char **argv)
 {
@@ -60,12 +47,13 @@ int main(int argc, char **argv)
   }
 
   if (which == "tao") {
-    Tao tao;
+    Tao       tao;
+    Quadratic q = {A, b};
     PetscCall(TaoCreate(PETSC_COMM_SELF, &tao));
     if (first != "none") PetscCall(TaoSetType(tao, first.c_str()));
     PetscCall(TaoSetSolution(tao, x));
     PetscCall(TaoSetHessian(tao, A, A, NULL, NULL));
-    PetscCall(TaoSetObjectiveAndGradient(tao, NULL, ObjectiveAndGradient, b));
+    PetscCall(TaoSetObjectiveAndGradient(tao, NULL, QuadraticObjectiveGradient, &q));
     PetscCall(TaoQPSetConstraints(tao, set));
     PetscCall(TaoQPSetLinearTerm(tao, b));
     PetscCall(TaoSetFromOptions(tao));

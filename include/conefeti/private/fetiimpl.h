@@ -144,6 +144,8 @@ PETSC_INTERN PetscErrorCode FETIApplyG(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyGt(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETICreateGt(FETI, Mat *);
 PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscErrorCode (*)(void *), void *, PetscBool *);
+/* the MATSHELLs F, P, Q, PFP, K+ and G, at the end of FETISetUp() (fetioperators.cxx) */
+PETSC_INTERN PetscErrorCode FETICreateOperators_Private(FETI);
 
 /* feticoarse.cxx */
 PETSC_INTERN PetscErrorCode FETICoarseSolverCreate(FETI, Mat, FETICoarseSolver &, PetscBool *);

@@ -76,11 +76,21 @@ struct QPNormSettings {
   PetscReal    used   = 0;  /* the value of the last solve */
 };
 
-/* Options -<kind>_<name>_{gamma,alpha,bb,norm,norm_method,norm_margin,counters_view} (kind tao or ksp); the
-   object's options prefix (may be NULL) only for the messages: PetscOptions*() add it themselves. */
-PETSC_INTERN PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS, MPI_Comm, const char *, const char *, const char *, MPGPCore *, QPNormSettings *, PetscBool *);
-/* ||A|| for a solve: the given value, or the cached or new estimate (products added to the counters). */
+/* The options of one of the four types (TAO or KSP, mprgp or mpgp), each name spelled out so that a search
+   for an option finds where it is read; bb and arc are NULL for mprgp. The prefixes have no leading dash. */
+struct MPGPOptionNames {
+  const char *title;
+  const char *gamma, *alpha, *bb, *arc, *expansion_projcg, *norm, *norm_method, *norm_margin, *counters_view;
+  const char *pc_prefix;   /* the preconditioner in face: -<prefix>tao_mpgp_pc_type ... */
+  const char *norm_prefix; /* the norm estimate's eigensolver: -<prefix>tao_mpgp_norm_eps_... */
+};
+PETSC_INTERN const MPGPOptionNames MPGPOptionsTaoMPRGP, MPGPOptionsTaoMPGP, MPGPOptionsKSPMPRGP, MPGPOptionsKSPMPGP;
+
+/* Reads the options of `names`; the object's options prefix (may be NULL) only for the messages:
+   PetscOptions*() add it themselves. */
+PETSC_INTERN PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS, MPI_Comm, const char *, const MPGPOptionNames *, MPGPCore *, QPNormSettings *, PetscBool *);
 PETSC_INTERN PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *, PetscViewer);
-PETSC_INTERN PetscErrorCode QPNormSettingsApply(QPNormSettings *, Mat, const char *, const char *, const char *, QPCounters *);
+/* ||A|| for a solve: the given value, or the cached or new estimate (products added to the counters). */
+PETSC_INTERN PetscErrorCode QPNormSettingsApply(QPNormSettings *, Mat, const char *, const MPGPOptionNames *, QPCounters *);
 /* At the start of a solve: TAO's gatol, gttol and grtol (or with an equality catol and crtol) are finite and >= 0. */
 PETSC_INTERN PetscErrorCode TaoQPCheckTolerances_Private(Tao, PetscBool);

@@ -32,7 +32,7 @@
 /* Four double-double accumulators side by side: lane k takes the terms k, k + 4, k + 8, ... of a
    local array and the lanes are added at the end. One accumulator is a chain of dependent
    additions (about ten operations per term, one term at a time); four independent ones run as one
-   SIMD chain, about four times faster. The grouping of the terms is another one than with a single
+   SIMD chain whose latencies overlap. The grouping of the terms is another one than with a single
    accumulator, which changes the sum only far below double precision, like the split over ranks. */
 typedef double DoubleDoubleLanes __attribute__((vector_size(4 * sizeof(double))));
 /* every function taking or returning lanes is inline: no call passes them, so no ABI to warn about */

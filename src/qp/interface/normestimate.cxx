@@ -3,7 +3,7 @@
    An underestimate breaks the monotonicity the convergence proofs rely on, an overestimate only
    shortens the steps a little, so the estimate is deliberately pushed up:
    - SLEPc: Krylov-Schur (Lanczos) for the largest eigenvalue theta with a loose tolerance (1e-2
-     relative residual, 8 basis vectors: ~17 products on a 1D Laplacian of size 1e4); the
+     relative residual, 8 basis vectors: a small fraction of the products of a solve); the
      result is (theta + |A v - theta v|)(1 + margin). For symmetric A an eigenvalue lies within the
      residual norm of theta, and the Lanczos theta approaches lambda_max from below.
    - power iteration (no SLEPc): |A v| for the last normalized iterate v, times (1 + margin).

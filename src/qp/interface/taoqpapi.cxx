@@ -217,10 +217,10 @@ PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
   boundary along p (the feasible half step) and then takes a projected gradient step of fixed
   length; it adds a few constraints at a time, and its R-linear rate of convergence is proven. The
   projected full CG step is kept when q there is no higher than at the feasible half step (else the
-  fixed-length step follows, one Hessian product later); it adds many constraints at once. Measured
-  (docs/qp-benchmark.md, docs/brick-benchmark.md): fewer products on discretized PDE problems (the
-  obstacle, the journal bearing, the friction disks, the brick's dual contact problems), up to twice
-  as many on random ill-conditioned QPs; mixed on the brick's friction problems (fewer products at
+  fixed-length step follows, one Hessian product later); it adds many constraints at once. It saves
+  products on discretized PDE problems (the obstacle, the journal bearing, the friction disks, the brick's
+  dual contact problems) and costs more on random ill-conditioned QPs (docs/qp-benchmark.md,
+  docs/brick-benchmark.md); mixed on the brick's friction problems (fewer products at
   -contact_rtol 1e-3 and 1e-4, more at the other tolerances), where it stays off.
 
   Level: intermediate

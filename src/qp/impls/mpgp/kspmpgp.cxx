@@ -7,28 +7,29 @@
 
 namespace {
 
-struct KSPQP {
-  MPGPCore     core;
-  const char  *name     = nullptr;
-  SeparableSet user_set = nullptr;         /* from KSPQPSetConstraints() */
-  SeparableSet set      = nullptr;         /* in use for the current solve */
-  Vec          lb = nullptr, ub = nullptr; /* from KSPMPRGPSetBounds() */
-  Vec          dm_lb = nullptr, dm_ub = nullptr;
-  QPCounters   counters = {};
+struct KSP_MPGP {
+  MPGPCore               core;
+  const char            *name     = nullptr;
+  const MPGPOptionNames *options  = nullptr;         /* -ksp_mprgp_... or -ksp_mpgp_... */
+  SeparableSet           user_set = nullptr;         /* from KSPQPSetConstraints() */
+  SeparableSet           set      = nullptr;         /* in use for the current solve */
+  Vec                    lb = nullptr, ub = nullptr; /* from KSPMPRGPSetBounds() */
+  Vec                    dm_lb = nullptr, dm_ub = nullptr;
+  QPCounters             counters = {};
 
   QPNormSettings norm;
   PetscBool      counters_view = PETSC_FALSE;
   PetscBool      unconstrained = PETSC_TRUE;
 };
 
-KSPQP *GetQP(KSP ksp) { return static_cast<KSPQP *>(ksp->data); }
+KSP_MPGP *GetMPGP(KSP ksp) { return static_cast<KSP_MPGP *>(ksp->data); }
 
 PetscErrorCode KSPQPReport(void *ctx, PetscInt it, PetscReal, PetscReal gpnorm, PetscReal, PetscBool *stop)
 {
   KSP ksp = static_cast<KSP>(ctx);
 
   PetscFunctionBegin;
-  if (GetQP(ksp)->core.provisional) { /* only whether the test would stop here: no monitor, no history, the state as it was */
+  if (GetMPGP(ksp)->core.provisional) { /* only whether the test would stop here: no monitor, no history, the state as it was */
     const PetscInt     its    = ksp->its;
     const PetscReal    rnorm  = ksp->rnorm;
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
@@ -61,7 +62,7 @@ PetscErrorCode KSPQPPrecondition(void *ctx, Vec g, Vec z)
 
 /* The set for this solve: the user's set, the bounds of KSPMPRGPSetBounds(), the DM's variable
    bounds, or none. */
-PetscErrorCode KSPQPPrepareSet(KSP ksp, KSPQP *qp)
+PetscErrorCode KSPMPGPPrepareSet(KSP ksp, KSP_MPGP *qp)
 {
   PetscInt n, N;
 
@@ -95,16 +96,16 @@ PetscErrorCode KSPQPPrepareSet(KSP ksp, KSPQP *qp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPSetUp_QP(KSP ksp)
+PetscErrorCode KSPSetUp_MPGP(KSP ksp)
 {
   PetscFunctionBegin;
-  if (ksp->vec_sol) PetscCall(MPGPCoreSetUp(&GetQP(ksp)->core, ksp->vec_sol));
+  if (ksp->vec_sol) PetscCall(MPGPCoreSetUp(&GetMPGP(ksp)->core, ksp->vec_sol));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPSolve_QP(KSP ksp)
+PetscErrorCode KSPSolve_MPGP(KSP ksp)
 {
-  KSPQP      *qp = GetQP(ksp);
+  KSP_MPGP   *qp = GetMPGP(ksp);
   Mat         A;
   PCType      pctype;
   PetscBool   pcnone, curved;
@@ -119,7 +120,7 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   PetscCheck(ksp->abstol >= 0 && !PetscIsInfOrNanReal(ksp->abstol), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-%sksp_atol must be finite and >= 0, got %g", prefix,
              (double)ksp->abstol);
   PetscCall(PCGetOperators(ksp->pc, &A, NULL));
-  PetscCall(KSPQPPrepareSet(ksp, qp));
+  PetscCall(KSPMPGPPrepareSet(ksp, qp));
   if (qp->core.variant == MPGPVariant::MPRGP) {
     PetscCall(SeparableSetHasCurvedBlocks(qp->set, &curved));
     PetscCheck(!curved, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_WRONG, "KSP mprgp handles bounds only, but the set has disk or cone blocks; use -%sksp_type mpgp", prefix);
@@ -130,7 +131,7 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
 
   /* the fixed step length matters only when there are constraints: without them every step is CG */
   if (qp->unconstrained) qp->norm.used = qp->norm.user > 0 ? qp->norm.user : 1.0;
-  else PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, "ksp", qp->name, &qp->counters));
+  else PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, qp->options, &qp->counters));
 
   qp->core.A                = A;
   qp->core.b                = ksp->vec_rhs;
@@ -148,7 +149,7 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
        again and go on from the current iterate (once) */
     PetscCall(PetscInfo(ksp, "KSP %s: q rose with ||A|| = %g: estimating ||A|| again\n", qp->name, (double)qp->norm.used));
     PetscCall(MatQPClearNormEstimate(A));
-    PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, "ksp", qp->name, &qp->counters));
+    PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, qp->options, &qp->counters));
     qp->core.normA  = qp->norm.used;
     qp->core.resume = PETSC_TRUE; /* the convergence test keeps the tolerance it set at the first iteration 0 */
     ksp->reason     = KSP_CONVERGED_ITERATING;
@@ -157,8 +158,8 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   }
   if (qp->core.status == MPGPStatus::INDEFINITE) ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
   else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {
-    PetscCall(PetscInfo(ksp, "KSP %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL operator whose action changed needs PetscObjectStateIncrease(), or give -%sksp_%s_norm\n", qp->name,
-                        (double)qp->norm.used, prefix, qp->name));
+    PetscCall(PetscInfo(ksp, "KSP %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL operator whose action changed needs PetscObjectStateIncrease(), or give -%s%s\n", qp->name,
+                        (double)qp->norm.used, prefix, qp->options->norm + 1));
     ksp->reason = KSP_DIVERGED_BREAKDOWN;
   } else if (qp->core.status == MPGPStatus::UNBOUNDED) { /* as KSPCG on p'Ap = 0 */
     PetscCall(PetscInfo(ksp, "KSP %s: p'Ap = 0 along a descent direction no constraint stops: the problem is unbounded below (a singular operator with an inconsistent right-hand side?)\n", qp->name));
@@ -172,14 +173,14 @@ PetscErrorCode KSPSolve_QP(KSP ksp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPSetFromOptions_QP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
+PetscErrorCode KSPSetFromOptions_MPGP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  KSPQP      *qp = GetQP(ksp);
+  KSP_MPGP   *qp = GetMPGP(ksp);
   const char *prefix;
 
   PetscFunctionBegin;
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
-  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)ksp), prefix, "ksp", qp->name, &qp->core, &qp->norm, &qp->counters_view));
+  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)ksp), prefix, qp->options, &qp->core, &qp->norm, &qp->counters_view));
   {
     /* KSPSetFromOptions() gives the PC PETSc's default type (ILU, block Jacobi) before -ksp_type makes
        this KSP one of ours: that PC was not chosen, and ours is none unless chosen (-pc_type) */
@@ -195,9 +196,9 @@ PetscErrorCode KSPSetFromOptions_QP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptions
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPView_QP(KSP ksp, PetscViewer viewer)
+PetscErrorCode KSPView_MPGP(KSP ksp, PetscViewer viewer)
 {
-  KSPQP    *qp = GetQP(ksp);
+  KSP_MPGP *qp = GetMPGP(ksp);
   PetscBool iascii;
 
   PetscFunctionBegin;
@@ -213,9 +214,9 @@ PetscErrorCode KSPView_QP(KSP ksp, PetscViewer viewer)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPReset_QP(KSP ksp)
+PetscErrorCode KSPReset_MPGP(KSP ksp)
 {
-  KSPQP *qp = GetQP(ksp);
+  KSP_MPGP *qp = GetMPGP(ksp);
 
   PetscFunctionBegin;
   PetscCall(MPGPCoreReset(&qp->core));
@@ -225,12 +226,12 @@ PetscErrorCode KSPReset_QP(KSP ksp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPDestroy_QP(KSP ksp)
+PetscErrorCode KSPDestroy_MPGP(KSP ksp)
 {
-  KSPQP *qp = GetQP(ksp);
+  KSP_MPGP *qp = GetMPGP(ksp);
 
   PetscFunctionBegin;
-  PetscCall(KSPReset_QP(ksp));
+  PetscCall(KSPReset_MPGP(ksp));
   PetscCall(SeparableSetDestroy(&qp->user_set));
   PetscCall(VecDestroy(&qp->lb));
   PetscCall(VecDestroy(&qp->ub));
@@ -241,9 +242,9 @@ PetscErrorCode KSPDestroy_QP(KSP ksp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPQPSetConstraints_QP(KSP ksp, SeparableSet set)
+PetscErrorCode KSPQPSetConstraints_MPGP(KSP ksp, SeparableSet set)
 {
-  KSPQP *qp = GetQP(ksp);
+  KSP_MPGP *qp = GetMPGP(ksp);
 
   PetscFunctionBegin;
   PetscCall(PetscObjectReference((PetscObject)set));
@@ -252,16 +253,16 @@ PetscErrorCode KSPQPSetConstraints_QP(KSP ksp, SeparableSet set)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPQPGetConstraints_QP(KSP ksp, SeparableSet *set)
+PetscErrorCode KSPQPGetConstraints_MPGP(KSP ksp, SeparableSet *set)
 {
   PetscFunctionBegin;
-  *set = GetQP(ksp)->set ? GetQP(ksp)->set : GetQP(ksp)->user_set;
+  *set = GetMPGP(ksp)->set ? GetMPGP(ksp)->set : GetMPGP(ksp)->user_set;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPMPRGPSetBounds_QP(KSP ksp, Vec lb, Vec ub)
+PetscErrorCode KSPMPRGPSetBounds_MPGP(KSP ksp, Vec lb, Vec ub)
 {
-  KSPQP *qp = GetQP(ksp);
+  KSP_MPGP *qp = GetMPGP(ksp);
 
   PetscFunctionBegin;
   if (lb) PetscCall(PetscObjectReference((PetscObject)lb));
@@ -273,60 +274,61 @@ PetscErrorCode KSPMPRGPSetBounds_QP(KSP ksp, Vec lb, Vec ub)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPQPSetNormEstimate_QP(KSP ksp, PetscReal norm)
+PetscErrorCode KSPQPSetNormEstimate_MPGP(KSP ksp, PetscReal norm)
 {
   PetscFunctionBegin;
   PetscCheck(norm >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "KSPQPSetNormEstimate: ||A|| must be finite and > 0 (0 to estimate), got %g",
              (double)norm);
-  GetQP(ksp)->norm.user = norm;
+  GetMPGP(ksp)->norm.user = norm;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPQPGetCounters_QP(KSP ksp, QPCounters *c)
+PetscErrorCode KSPQPGetCounters_MPGP(KSP ksp, QPCounters *c)
 {
   PetscFunctionBegin;
-  *c = GetQP(ksp)->counters;
+  *c = GetMPGP(ksp)->counters;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPQPResetCounters_QP(KSP ksp)
+PetscErrorCode KSPQPResetCounters_MPGP(KSP ksp)
 {
   PetscFunctionBegin;
-  GetQP(ksp)->counters = QPCounters{};
+  GetMPGP(ksp)->counters = QPCounters{};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name)
+PetscErrorCode KSPCreate_MPGPCommon(KSP ksp, MPGPVariant variant, const char *name)
 {
-  KSPQP *qp;
-  PC     pc;
+  KSP_MPGP *qp;
+  PC        pc;
 
   PetscFunctionBegin;
-  PetscCallCXX(qp = new KSPQP);
+  PetscCallCXX(qp = new KSP_MPGP);
   qp->core.variant = variant;
   qp->core.bb      = PETSC_FALSE;
   qp->name         = name;
+  qp->options      = variant == MPGPVariant::MPRGP ? &MPGPOptionsKSPMPRGP : &MPGPOptionsKSPMPGP;
   ksp->data        = qp;
   PetscCall(KSPSetSupportedNorm(ksp, KSP_NORM_UNPRECONDITIONED, PC_LEFT, 3));
   /* a preconditioner (in face, with constraints) only when the user chooses one */
   PetscCall(KSPGetPC(ksp, &pc));
   if (!((PetscObject)pc)->type_name) PetscCall(PCSetType(pc, PCNONE));
 
-  ksp->ops->setup          = KSPSetUp_QP;
-  ksp->ops->solve          = KSPSolve_QP;
-  ksp->ops->setfromoptions = KSPSetFromOptions_QP;
-  ksp->ops->view           = KSPView_QP;
-  ksp->ops->reset          = KSPReset_QP;
-  ksp->ops->destroy        = KSPDestroy_QP;
+  ksp->ops->setup          = KSPSetUp_MPGP;
+  ksp->ops->solve          = KSPSolve_MPGP;
+  ksp->ops->setfromoptions = KSPSetFromOptions_MPGP;
+  ksp->ops->view           = KSPView_MPGP;
+  ksp->ops->reset          = KSPReset_MPGP;
+  ksp->ops->destroy        = KSPDestroy_MPGP;
   ksp->ops->buildsolution  = KSPBuildSolutionDefault;
   ksp->ops->buildresidual  = KSPBuildResidualDefault;
 
-  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPSetConstraints_C", KSPQPSetConstraints_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPGetConstraints_C", KSPQPGetConstraints_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPMPRGPSetBounds_C", KSPMPRGPSetBounds_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPSetNormEstimate_C", KSPQPSetNormEstimate_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPGetCounters_C", KSPQPGetCounters_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPResetCounters_C", KSPQPResetCounters_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPSetConstraints_C", KSPQPSetConstraints_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPGetConstraints_C", KSPQPGetConstraints_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPMPRGPSetBounds_C", KSPMPRGPSetBounds_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPSetNormEstimate_C", KSPQPSetNormEstimate_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPGetCounters_C", KSPQPGetCounters_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)ksp, "KSPQPResetCounters_C", KSPQPResetCounters_MPGP));
   PetscCall(KSPQPAdoptComposed_Private(ksp));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -353,6 +355,9 @@ PetscErrorCode KSPCreate_QPCommon(KSP ksp, MPGPVariant variant, const char *name
   none unless chosen; with bounds a PC M preconditions the CG steps in face, z = [M^-1]_FF g_F on the
   free entries F (see `TaoQPGetPC()`).
 
+  References:
+. * - Z. Dostal, J. Schoberl, Minimizing quadratic functions over non-negative cone with the rate of convergence and finite termination, Computational Optimization and Applications (2005)
+
   Level: beginner
 
 .seealso: `KSPMPGP`, `TAOMPRGP`, `KSPMPRGPSetBounds()`
@@ -360,7 +365,7 @@ M*/
 PETSC_INTERN PetscErrorCode KSPCreate_MPRGP(KSP ksp)
 {
   PetscFunctionBegin;
-  PetscCall(KSPCreate_QPCommon(ksp, MPGPVariant::MPRGP, KSPMPRGP));
+  PetscCall(KSPCreate_MPGPCommon(ksp, MPGPVariant::MPRGP, KSPMPRGP));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -374,6 +379,9 @@ PETSC_INTERN PetscErrorCode KSPCreate_MPRGP(KSP ksp)
   Notes:
   The set comes from `KSPQPSetConstraints()`; bounds as for `KSPMPRGP`.
 
+  References:
+. * - R. Kucera, Convergence rate of an optimization algorithm for minimizing quadratic functions with separable convex constraints, SIAM J. Optim. (2008)
+
   Level: beginner
 
 .seealso: `KSPMPRGP`, `TAOMPGP`, `KSPQPSetConstraints()`
@@ -381,6 +389,6 @@ M*/
 PETSC_INTERN PetscErrorCode KSPCreate_MPGP(KSP ksp)
 {
   PetscFunctionBegin;
-  PetscCall(KSPCreate_QPCommon(ksp, MPGPVariant::MPGP, KSPMPGP));
+  PetscCall(KSPCreate_MPGPCommon(ksp, MPGPVariant::MPGP, KSPMPGP));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

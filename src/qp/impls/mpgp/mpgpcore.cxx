@@ -9,9 +9,9 @@
      the projected full CG step P(x - a_cg p) is tried first and kept when q there is no higher than
      at the feasible half step (q's change at the half step is known from g'p and p'Ap, so the test
      is free; a rejected try costs one product). It adds many constraints at once where the
-     fixed-length step adds a few: fewer products on discretized PDE problems (obstacle 1051 -> 783),
-     more on random ill-conditioned QPs, where Dostal's proven expansion stays the default. With a
-     preconditioner the CG directions hit the boundary more often and the projected CG step matters
+     fixed-length step adds a few: it pays on discretized PDE problems and not on random
+     ill-conditioned QPs, where Dostal's proven expansion stays the default (docs/qp-benchmark.md). With
+     a preconditioner the CG directions hit the boundary more often and the projected CG step matters
      more;
    - proportioning step when not proportional: along the chopped gradient with exact line search
      (MPRGP; cut at the opposite bound of a box), or a projected gradient step (MPGP, which is what curved
@@ -19,8 +19,8 @@
    Arc steps (MPGP, -tao_mpgp_arc a, default 1; 0 turns them off): a disk block on its circle with the gradient pushing
    outward (a slipping friction node) has a free direction too, along the circle. Kucera's split puts its
    whole projected gradient into the chopped gradient, so only the fixed-length projected steps move it
-   (the brick, F = 0.3, k = 12: 52 proportioning steps in 122 iterations; with arc steps 7 in 96, expansions
-   then dominate). Here such a block counts as free along the circle (its tangential gradient is in phi,
+   (on the brick the slipping friction nodes then cost many proportioning steps; docs/brick-benchmark.md,
+   'Arc steps'). Here such a block counts as free along the circle (its tangential gradient is in phi,
    see SeparableSetSplitGradient_Private()) and CG steps move it: the direction is made tangent there, the step x - a p is retracted onto the circle by the
    projection, and its second derivative in a is p'Ap + p'Wp, W the circle's curvature 1/r times the outward
    push |g.nu| (conjugate gradients on the curved face, with the step length and conjugacy of A + W). A
@@ -31,13 +31,12 @@
    step whose upper bound on q's change is not negative is replaced by a projected gradient step, and a
    fixed-length step taken from an updated gradient is certified afterwards (or taken again from the exact
    gradient); the stopping test only ever accepts the exact gradient (a provisional test first, then one
-   product). Measured (scripts/bench-brick.py, monolithic, k = 4..12): n_A 86-102 against 103-125 at
-   F = 0.1 and 101-167 against 129-183 at F = 0.3; the disks QP of scripts/bench-qp.py (n = 224) 5161
-   products against 20006. On random disk QPs with cond 1e4 (tests/qp) it can cost ~15% more.
+   product). Arc steps save products on the brick and on the disks QP and can cost some on random
+   ill-conditioned disk QPs (docs/brick-benchmark.md, 'Arc steps'; docs/qp-benchmark.md).
    With -tao_mpgp_bb the proportioning step first tries the Barzilai-Borwein length s's/s'(As) of the last
-     step (free: As = g - g_prev for a QP) and keeps it only if q decreased. Measured: BB shortens long runs of proportioning steps
-     on random cone problems (docs/qp-benchmark.md) but costs products on the brick's friction disks,
-     so it is off by default.
+     step (free: As = g - g_prev for a QP) and keeps it only if q decreased. BB shortens long runs of
+     proportioning steps on random cone problems but costs products on the brick's friction disks
+     (docs/qp-benchmark.md), so it is off by default.
    Math: docs/algorithms.md, 'MPRGP and MPGP'. */
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/private/reproduciblesum.h>

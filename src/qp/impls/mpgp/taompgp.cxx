@@ -14,16 +14,17 @@ enum QPBlockType {
 };
 const char *const QPBlockTypes[] = {"scalar", "disk", "cone", "QPBlockType", "QP_BLOCK_", NULL};
 
-struct TaoQP {
-  MPGPCore     core;
-  const char  *name     = nullptr; /* "mprgp" or "mpgp", also the option infix */
-  SeparableSet user_set = nullptr; /* from TaoQPSetConstraints() */
-  SeparableSet set      = nullptr; /* the set in use: user_set, or built from the variable bounds */
-  Vec          b        = nullptr; /* linear term */
-  PetscBool    b_user   = PETSC_FALSE;
-  PetscReal    bnorm    = 0;
-  PetscReal    gref     = 0; /* what gttol is relative to: |b|, or |gP(x0)| when b = 0 */
-  QPCounters   counters = {};
+struct TAO_MPGP {
+  MPGPCore               core;
+  const char            *name     = nullptr; /* "mprgp" or "mpgp" */
+  const MPGPOptionNames *options  = nullptr; /* -tao_mprgp_... or -tao_mpgp_... */
+  SeparableSet           user_set = nullptr; /* from TaoQPSetConstraints() */
+  SeparableSet           set      = nullptr; /* the set in use: user_set, or built from the variable bounds */
+  Vec                    b        = nullptr; /* linear term */
+  PetscBool              b_user   = PETSC_FALSE;
+  PetscReal              bnorm    = 0;
+  PetscReal              gref     = 0; /* what gttol is relative to: |b|, or |gP(x0)| when b = 0 */
+  QPCounters             counters = {};
 
   QPNormSettings norm;
 
@@ -31,17 +32,17 @@ struct TaoQP {
   PetscReal   cone_mu       = 1.0;
   PetscBool   counters_view = PETSC_FALSE;
   Tao         tao           = nullptr;
-  PC          pc            = nullptr; /* preconditioning in face, options -tao_<name>_pc_*; PCNONE by default */
+  PC          pc            = nullptr; /* preconditioning in face, options -tao_mprgp_pc_* or -tao_mpgp_pc_*; PCNONE by default */
 };
 
-TaoQP *GetQP(Tao tao) { return static_cast<TaoQP *>(tao->data); }
+TAO_MPGP *GetMPGP(Tao tao) { return static_cast<TAO_MPGP *>(tao->data); }
 
 PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm, PetscReal step, PetscBool *stop)
 {
   Tao tao = static_cast<Tao>(ctx);
 
   PetscFunctionBegin;
-  if (GetQP(tao)->core.provisional) { /* only whether the test would stop here: no monitor, no history, the state as it was */
+  if (GetMPGP(tao)->core.provisional) { /* only whether the test would stop here: no monitor, no history, the state as it was */
     const PetscInt  niter = tao->niter;
     const PetscReal fc = tao->fc, residual = tao->residual;
     tao->niter    = it;
@@ -56,8 +57,8 @@ PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (it == 0) {
-    TaoQP *qp = GetQP(tao);
-    qp->gref  = qp->bnorm > 0 ? qp->bnorm : gpnorm;
+    TAO_MPGP *qp = GetMPGP(tao);
+    qp->gref     = qp->bnorm > 0 ? qp->bnorm : gpnorm;
   }
   tao->niter = it;
   if (PetscIsInfOrNanReal(f) || PetscIsInfOrNanReal(gpnorm)) { /* TaoMonitor() would raise an error that blames a user function */
@@ -82,21 +83,19 @@ PetscErrorCode TaoQPPrecondition(void *ctx, Vec g, Vec z)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The preconditioner, created on first use with the prefix -[tao prefix]tao_<name>_ and type none. */
-PetscErrorCode TaoQPGetPC_QP(Tao tao, PC *pc)
+/* The preconditioner, created on first use with the prefix -[tao prefix]tao_mprgp_ or tao_mpgp_ and type none. */
+PetscErrorCode TaoQPGetPC_MPGP(Tao tao, PC *pc)
 {
-  TaoQP *qp = GetQP(tao);
+  TAO_MPGP *qp = GetMPGP(tao);
 
   PetscFunctionBegin;
   if (!qp->pc) {
     const char *tprefix;
-    char        prefix[64];
     PetscCall(PCCreate(PetscObjectComm((PetscObject)tao), &qp->pc));
     PetscCall(PetscObjectIncrementTabLevel((PetscObject)qp->pc, (PetscObject)tao, 1));
     PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
-    PetscCall(PetscSNPrintf(prefix, sizeof(prefix), "tao_%s_", qp->name));
     PetscCall(PCSetOptionsPrefix(qp->pc, tprefix));
-    PetscCall(PCAppendOptionsPrefix(qp->pc, prefix));
+    PetscCall(PCAppendOptionsPrefix(qp->pc, qp->options->pc_prefix));
     PetscCall(PCSetType(qp->pc, PCNONE));
   }
   *pc = qp->pc;
@@ -108,7 +107,7 @@ PetscErrorCode TaoQPGetPC_QP(Tao tao, PC *pc)
    scaling of A and b; when b = 0 (the bounds alone make the problem) relative to |gP(x0)|. */
 PetscErrorCode TaoQPConvergenceTest(Tao tao, void *)
 {
-  TaoQP    *qp = GetQP(tao);
+  TAO_MPGP *qp = GetMPGP(tao);
   PetscReal g  = tao->residual;
 
   PetscFunctionBegin;
@@ -123,7 +122,7 @@ PetscErrorCode TaoQPConvergenceTest(Tao tao, void *)
 
 /* For programs that only know TaoSetVariableBounds(): consecutive pairs become disks inscribed in
    their box, consecutive triples become cones with a common coefficient. */
-PetscErrorCode BuildBlocksFromBounds(Tao tao, TaoQP *qp)
+PetscErrorCode BuildBlocksFromBounds(Tao tao, TAO_MPGP *qp)
 {
   PetscInt               n, rstart, bs = qp->block_type == QP_BLOCK_DISK ? 2 : 3;
   const PetscScalar     *l = NULL, *u = NULL;
@@ -137,20 +136,19 @@ PetscErrorCode BuildBlocksFromBounds(Tao tao, TaoQP *qp)
   PetscCall(VecGetLocalSize(tao->solution, &n));
   PetscCall(VecGetOwnershipRange(tao->solution, &rstart, NULL));
   PetscCheck(n % bs == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
-             "-%stao_%s_block_type %s: the local length %" PetscInt_FMT " is not a multiple of the block length %" PetscInt_FMT " (a block never straddles MPI ranks)", prefix, qp->name,
+             "-%stao_mpgp_block_type %s: the local length %" PetscInt_FMT " is not a multiple of the block length %" PetscInt_FMT " (a block never straddles MPI ranks)", prefix,
              QPBlockTypes[qp->block_type], n, bs);
   if (qp->block_type == QP_BLOCK_DISK) {
-    PetscCheck(tao->XL && tao->XU, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "-%stao_%s_block_type disk needs variable bounds: each pair's box [l,u]^2 gives the inscribed disk",
-               prefix, qp->name);
+    PetscCheck(tao->XL && tao->XU, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONGSTATE, "-%stao_mpgp_block_type disk needs variable bounds: each pair's box [l,u]^2 gives the inscribed disk",
+               prefix);
     PetscCall(VecGetArrayRead(tao->XL, &l));
     PetscCall(VecGetArrayRead(tao->XU, &u));
     for (PetscInt k = 0; k < n; k += 2) {
       const PetscReal w0 = PetscRealPart(u[k] - l[k]), w1 = PetscRealPart(u[k + 1] - l[k + 1]);
-      PetscCheck(PetscIsNormalReal(w0) || w0 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_%s_block_type disk: entry %" PetscInt_FMT " needs finite bounds l <= u", prefix, qp->name,
-                 rstart + k);
+      PetscCheck(PetscIsNormalReal(w0) || w0 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_mpgp_block_type disk: entry %" PetscInt_FMT " needs finite bounds l <= u", prefix, rstart + k);
       PetscCheck(w0 >= 0 && PetscAbsReal(w0 - w1) <= 1e-12 * PetscMax(PetscAbsReal(w0), PetscAbsReal(w1)), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
-                 "-%stao_%s_block_type disk: the box of entries %" PetscInt_FMT ",%" PetscInt_FMT " is not a square with l <= u (widths %g, %g)", prefix, qp->name, rstart + k, rstart + k + 1,
-                 (double)w0, (double)w1);
+                 "-%stao_mpgp_block_type disk: the box of entries %" PetscInt_FMT ",%" PetscInt_FMT " is not a square with l <= u (widths %g, %g)", prefix, rstart + k, rstart + k + 1, (double)w0,
+                 (double)w1);
       PetscCallCXX(idx.insert(idx.end(), {rstart + k, rstart + k + 1}));
       PetscCallCXX(center.insert(center.end(), {PetscRealPart(l[k] + u[k]) / 2, PetscRealPart(l[k + 1] + u[k + 1]) / 2}));
       PetscCallCXX(radius.push_back(w0 / 2));
@@ -168,7 +166,7 @@ PetscErrorCode BuildBlocksFromBounds(Tao tao, TaoQP *qp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoSetUp_QP(Tao tao)
+PetscErrorCode TaoSetUp_MPGP(Tao tao)
 {
   PetscFunctionBegin;
   if (!tao->gradient) PetscCall(VecDuplicate(tao->solution, &tao->gradient));
@@ -177,7 +175,7 @@ PetscErrorCode TaoSetUp_QP(Tao tao)
 }
 
 /* The set in use for this solve: the user's, or one built from the current variable bounds. */
-PetscErrorCode TaoQPPrepareSet(Tao tao, TaoQP *qp)
+PetscErrorCode TaoMPGPPrepareSet(Tao tao, TAO_MPGP *qp)
 {
   PetscInt n, N;
 
@@ -203,9 +201,9 @@ PetscErrorCode TaoQPPrepareSet(Tao tao, TaoQP *qp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoSolve_QP(Tao tao)
+PetscErrorCode TaoSolve_MPGP(Tao tao)
 {
-  TaoQP      *qp = GetQP(tao);
+  TAO_MPGP   *qp = GetMPGP(tao);
   Mat         A;
   PetscInt    m, n, N;
   PetscBool   curved;
@@ -215,7 +213,7 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   PetscCall(TaoGetOptionsPrefix(tao, &prefix));
   if (!prefix) prefix = "";
   PetscCall(TaoQPCheckTolerances_Private(tao, PETSC_FALSE));
-  PetscCall(TaoQPPrepareSet(tao, qp));
+  PetscCall(TaoMPGPPrepareSet(tao, qp));
   if (qp->core.variant == MPGPVariant::MPRGP) {
     PetscCall(SeparableSetHasCurvedBlocks(qp->set, &curved));
     PetscCheck(!curved, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "TAO mprgp handles bounds only, but the set has disk or cone blocks; use -%stao_type mpgp", prefix);
@@ -243,7 +241,7 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   qp->bnorm = PetscSqrtReal(qp->bnorm);
 
   /* the norm estimate for the fixed step length */
-  PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, "tao", qp->name, &qp->counters));
+  PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, qp->options, &qp->counters));
 
   qp->core.A          = A;
   qp->core.b          = qp->b;
@@ -269,7 +267,7 @@ PetscErrorCode TaoSolve_QP(Tao tao)
        again and go on from the current iterate (once) */
     PetscCall(PetscInfo(tao, "TAO %s: q rose with ||A|| = %g: estimating ||A|| again\n", qp->name, (double)qp->norm.used));
     PetscCall(MatQPClearNormEstimate(A));
-    PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, "tao", qp->name, &qp->counters));
+    PetscCall(QPNormSettingsApply(&qp->norm, A, prefix, qp->options, &qp->counters));
     qp->core.normA  = qp->norm.used;
     qp->core.resume = PETSC_TRUE; /* the stopping reference (gref) stays that of the first start */
     tao->reason     = TAO_CONTINUE_ITERATING;
@@ -284,8 +282,8 @@ PetscErrorCode TaoSolve_QP(Tao tao)
     PetscCall(PetscInfo(tao, "TAO %s: p'Ap = 0 along a descent direction no constraint stops: q is unbounded below\n", qp->name));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {
-    PetscCall(PetscInfo(tao, "TAO %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL Hessian whose action changed needs PetscObjectStateIncrease(), or give -%stao_%s_norm\n", qp->name,
-                        (double)qp->norm.used, prefix, qp->name));
+    PetscCall(PetscInfo(tao, "TAO %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL Hessian whose action changed needs PetscObjectStateIncrease(), or give -%s%s\n", qp->name,
+                        (double)qp->norm.used, prefix, qp->options->norm + 1));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
   if (qp->counters_view) {
@@ -296,19 +294,18 @@ PetscErrorCode TaoSolve_QP(Tao tao)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
+PetscErrorCode TaoSetFromOptions_MPGP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  TaoQP      *qp = GetQP(tao);
-  char        opt[64], title[64];
+  TAO_MPGP   *qp = GetMPGP(tao);
   const char *prefix;
 
   PetscFunctionBegin;
   PetscCall(TaoGetOptionsPrefix(tao, &prefix));
   if (!prefix) prefix = "";
-  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), prefix, "tao", qp->name, &qp->core, &qp->norm, &qp->counters_view));
+  PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), prefix, qp->options, &qp->core, &qp->norm, &qp->counters_view));
   {
     PC pc;
-    PetscCall(TaoQPGetPC_QP(tao, &pc));
+    PetscCall(TaoQPGetPC_MPGP(tao, &pc));
     PetscCall(PCSetFromOptions(pc));
   }
   if (qp->core.variant == MPGPVariant::MPRGP) { /* bounds only: no block description to choose, so none in -help */
@@ -319,24 +316,21 @@ PetscErrorCode TaoSetFromOptions_QP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptions
                prefix, QPBlockTypes[type], prefix);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(PetscSNPrintf(title, sizeof(title), "%s: block description from the variable bounds", qp->name));
-  PetscOptionsHeadBegin(PetscOptionsObject, title);
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_block_type", qp->name));
-  PetscCall(PetscOptionsEnum(opt, "Without TaoQPSetConstraints(): scalar (bounds), disk (pairs in their bound boxes) or cone (triples)", "TaoQPSetConstraints", QPBlockTypes, (PetscEnum)qp->block_type,
-                             (PetscEnum *)&qp->block_type, NULL));
-  PetscCall(PetscSNPrintf(opt, sizeof(opt), "-tao_%s_cone_mu", qp->name));
-  PetscCall(PetscOptionsReal(opt, "Cone coefficient for -tao_mpgp_block_type cone", "TaoQPSetConstraints", qp->cone_mu, &qp->cone_mu, NULL));
+  PetscOptionsHeadBegin(PetscOptionsObject, "mpgp: block description from the variable bounds");
+  PetscCall(PetscOptionsEnum("-tao_mpgp_block_type", "Without TaoQPSetConstraints(): scalar (bounds), disk (pairs in their bound boxes) or cone (triples)", "TaoQPSetConstraints", QPBlockTypes,
+                             (PetscEnum)qp->block_type, (PetscEnum *)&qp->block_type, NULL));
+  PetscCall(PetscOptionsReal("-tao_mpgp_cone_mu", "Cone coefficient for -tao_mpgp_block_type cone", "TaoQPSetConstraints", qp->cone_mu, &qp->cone_mu, NULL));
   PetscOptionsHeadEnd();
   PetscCheck(qp->block_type != QP_BLOCK_CONE || (qp->cone_mu >= 0 && !PetscIsInfOrNanReal(qp->cone_mu)), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
-             "-%stao_%s_cone_mu must be finite and >= 0, got %g", prefix, qp->name, (double)qp->cone_mu);
+             "-%stao_mpgp_cone_mu must be finite and >= 0, got %g", prefix, (double)qp->cone_mu);
   if (qp->block_type != QP_BLOCK_SCALAR && qp->core.variant == MPGPVariant::MPRGP)
     SETERRQ(PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "-%stao_mprgp_block_type %s: mprgp handles bounds only; use -%stao_type mpgp", prefix, QPBlockTypes[qp->block_type], prefix);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoView_QP(Tao tao, PetscViewer viewer)
+PetscErrorCode TaoView_MPGP(Tao tao, PetscViewer viewer)
 {
-  TaoQP    *qp = GetQP(tao);
+  TAO_MPGP *qp = GetMPGP(tao);
   PetscBool iascii;
 
   PetscFunctionBegin;
@@ -362,9 +356,9 @@ PetscErrorCode TaoView_QP(Tao tao, PetscViewer viewer)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoDestroy_QP(Tao tao)
+PetscErrorCode TaoDestroy_MPGP(Tao tao)
 {
-  TaoQP *qp = GetQP(tao);
+  TAO_MPGP *qp = GetMPGP(tao);
 
   PetscFunctionBegin;
   PetscCall(MPGPCoreReset(&qp->core));
@@ -380,9 +374,9 @@ PetscErrorCode TaoDestroy_QP(Tao tao)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoQPSetConstraints_QP(Tao tao, SeparableSet set)
+PetscErrorCode TaoQPSetConstraints_MPGP(Tao tao, SeparableSet set)
 {
-  TaoQP *qp = GetQP(tao);
+  TAO_MPGP *qp = GetMPGP(tao);
 
   PetscFunctionBegin;
   PetscCall(PetscObjectReference((PetscObject)set));
@@ -391,16 +385,16 @@ PetscErrorCode TaoQPSetConstraints_QP(Tao tao, SeparableSet set)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoQPGetConstraints_QP(Tao tao, SeparableSet *set)
+PetscErrorCode TaoQPGetConstraints_MPGP(Tao tao, SeparableSet *set)
 {
   PetscFunctionBegin;
-  *set = GetQP(tao)->set ? GetQP(tao)->set : GetQP(tao)->user_set;
+  *set = GetMPGP(tao)->set ? GetMPGP(tao)->set : GetMPGP(tao)->user_set;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoQPSetLinearTerm_QP(Tao tao, Vec b)
+PetscErrorCode TaoQPSetLinearTerm_MPGP(Tao tao, Vec b)
 {
-  TaoQP *qp = GetQP(tao);
+  TAO_MPGP *qp = GetMPGP(tao);
 
   PetscFunctionBegin;
   PetscCall(PetscObjectReference((PetscObject)b));
@@ -410,60 +404,61 @@ PetscErrorCode TaoQPSetLinearTerm_QP(Tao tao, Vec b)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoQPSetNormEstimate_QP(Tao tao, PetscReal norm)
+PetscErrorCode TaoQPSetNormEstimate_MPGP(Tao tao, PetscReal norm)
 {
   PetscFunctionBegin;
   PetscCheck(norm >= 0 && !PetscIsInfOrNanReal(norm), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "TaoQPSetNormEstimate: ||A|| must be finite and > 0 (0 to estimate), got %g",
              (double)norm);
-  GetQP(tao)->norm.user = norm;
+  GetMPGP(tao)->norm.user = norm;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoQPGetNormEstimate_QP(Tao tao, PetscReal *norm)
+PetscErrorCode TaoQPGetNormEstimate_MPGP(Tao tao, PetscReal *norm)
 {
   PetscFunctionBegin;
-  *norm = GetQP(tao)->norm.used;
+  *norm = GetMPGP(tao)->norm.used;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoQPSetExpansionProjCG_QP(Tao tao, PetscBool flg)
+PetscErrorCode TaoQPSetExpansionProjCG_MPGP(Tao tao, PetscBool flg)
 {
   PetscFunctionBegin;
-  GetQP(tao)->core.projcg = flg;
+  GetMPGP(tao)->core.projcg = flg;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoQPGetCounters_QP(Tao tao, QPCounters *c)
+PetscErrorCode TaoQPGetCounters_MPGP(Tao tao, QPCounters *c)
 {
   PetscFunctionBegin;
-  *c = GetQP(tao)->counters;
+  *c = GetMPGP(tao)->counters;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoQPResetCounters_QP(Tao tao)
+PetscErrorCode TaoQPResetCounters_MPGP(Tao tao)
 {
   PetscFunctionBegin;
-  GetQP(tao)->counters = QPCounters{};
+  GetMPGP(tao)->counters = QPCounters{};
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name)
+PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *name)
 {
-  TaoQP *qp;
+  TAO_MPGP *qp;
 
   PetscFunctionBegin;
-  PetscCallCXX(qp = new TaoQP);
+  PetscCallCXX(qp = new TAO_MPGP);
   qp->core.variant = variant;
   qp->core.bb      = PETSC_FALSE;
   qp->name         = name;
+  qp->options      = variant == MPGPVariant::MPRGP ? &MPGPOptionsTaoMPRGP : &MPGPOptionsTaoMPGP;
   qp->tao          = tao;
   tao->data        = qp;
 
-  tao->ops->setup          = TaoSetUp_QP;
-  tao->ops->solve          = TaoSolve_QP;
-  tao->ops->setfromoptions = TaoSetFromOptions_QP;
-  tao->ops->view           = TaoView_QP;
-  tao->ops->destroy        = TaoDestroy_QP;
+  tao->ops->setup          = TaoSetUp_MPGP;
+  tao->ops->solve          = TaoSolve_MPGP;
+  tao->ops->setfromoptions = TaoSetFromOptions_MPGP;
+  tao->ops->view           = TaoView_MPGP;
+  tao->ops->destroy        = TaoDestroy_MPGP;
   if (tao->ops->convergencetest == TaoDefaultConvergenceTest) tao->ops->convergencetest = TaoQPConvergenceTest;
 
   /* tolerances relative to |b| (see TaoQPConvergenceTest); no absolute floor by default, so that
@@ -473,15 +468,15 @@ PetscErrorCode TaoCreate_QPCommon(Tao tao, MPGPVariant variant, const char *name
   if (!tao->gttol_changed) tao->gttol = 1e-8;
   if (!tao->max_it_changed) tao->max_it = 10000;
 
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetConstraints_C", TaoQPSetConstraints_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetConstraints_C", TaoQPGetConstraints_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetLinearTerm_C", TaoQPSetLinearTerm_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetNormEstimate_C", TaoQPSetNormEstimate_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetNormEstimate_C", TaoQPGetNormEstimate_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetCounters_C", TaoQPGetCounters_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPResetCounters_C", TaoQPResetCounters_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetPC_C", TaoQPGetPC_QP));
-  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetExpansionProjCG_C", TaoQPSetExpansionProjCG_QP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetConstraints_C", TaoQPSetConstraints_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetConstraints_C", TaoQPGetConstraints_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetLinearTerm_C", TaoQPSetLinearTerm_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetNormEstimate_C", TaoQPSetNormEstimate_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetNormEstimate_C", TaoQPGetNormEstimate_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetCounters_C", TaoQPGetCounters_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPResetCounters_C", TaoQPResetCounters_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetPC_C", TaoQPGetPC_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetExpansionProjCG_C", TaoQPSetExpansionProjCG_MPGP));
   PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -526,7 +521,7 @@ M*/
 PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 {
   PetscFunctionBegin;
-  PetscCall(TaoCreate_QPCommon(tao, MPGPVariant::MPRGP, TAOMPRGP));
+  PetscCall(TaoCreate_MPGPCommon(tao, MPGPVariant::MPRGP, TAOMPRGP));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -564,6 +559,6 @@ M*/
 PETSC_INTERN PetscErrorCode TaoCreate_MPGP(Tao tao)
 {
   PetscFunctionBegin;
-  PetscCall(TaoCreate_QPCommon(tao, MPGPVariant::MPGP, TAOMPGP));
+  PetscCall(TaoCreate_MPGPCommon(tao, MPGPVariant::MPGP, TAOMPGP));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

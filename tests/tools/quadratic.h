@@ -1,7 +1,8 @@
-/* The quadratic q(x) = 1/2 x'Ax - b'x as TAO callbacks, shared by the unmodified host programs
-   (plain_tao.c, obstacle_tao.c, equality_tao.c); they include only PETSc, not conefeti. */
-#ifndef CONEFETI_TESTS_HOST_QUADRATIC_H
-#define CONEFETI_TESTS_HOST_QUADRATIC_H
+/* The quadratic q(x) = 1/2 x'Ax - b'x as TAO callbacks, shared by the test programs (tests/host's
+   unmodified PETSc programs, which include only PETSc, and tests/qp); tests/CMakeLists.txt puts this
+   folder on every test's include path. */
+#ifndef CONEFETI_TESTS_TOOLS_QUADRATIC_H
+#define CONEFETI_TESTS_TOOLS_QUADRATIC_H
 #include <petsctao.h>
 
 typedef struct {
@@ -10,7 +11,7 @@ typedef struct {
 } Quadratic;
 
 /* f = 1/2 x'Ax - b'x, g = Ax - b */
-static PetscErrorCode QuadraticObjectiveGradient(Tao tao, Vec x, PetscReal *f, Vec g, void *ctx)
+static inline PetscErrorCode QuadraticObjectiveGradient(Tao tao, Vec x, PetscReal *f, Vec g, void *ctx)
 {
   Quadratic  *q = (Quadratic *)ctx;
   PetscScalar xg, xb;
@@ -26,7 +27,7 @@ static PetscErrorCode QuadraticObjectiveGradient(Tao tao, Vec x, PetscReal *f, V
 }
 
 /* the Hessian is the constant A, set once with TaoSetHessian() */
-static PetscErrorCode QuadraticHessian(Tao tao, Vec x, Mat H, Mat Hpre, void *ctx)
+static inline PetscErrorCode QuadraticHessian(Tao tao, Vec x, Mat H, Mat Hpre, void *ctx)
 {
   (void)tao;
   (void)x;

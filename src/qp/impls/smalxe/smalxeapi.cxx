@@ -330,10 +330,9 @@ PetscErrorCode TaoSMALXEGetStagnated(Tao tao, PetscBool *flag)
   mixing costs outer iterations instead of saving them, hence no acceleration there by default. When
   something else changes the map between outer iterations (the friction radii of the monolithic
   algorithm of `ContactProblemSolve()`), older history describes a different map and depth 1 is the
-  better choice; the contact solver sets it there. On the brick (docs/brick-benchmark.md) the
-  acceleration takes the monolithic Coulomb solve at F = 0.1 from 7-8 outer iterations to 6 and up to
-  half the products, and MSA's products down by 10-20%; frictionless and Tresca solves, which converge
-  in 4-5 outer iterations, barely change.
+  better choice; the contact solver sets it there. On the brick the acceleration saves outer iterations
+  and products of the Coulomb solves and barely changes the frictionless and Tresca solves, which need
+  few outer iterations anyway (docs/brick-benchmark.md, 'Anderson acceleration of the multiplier update').
 
   Level: advanced
 
@@ -375,8 +374,8 @@ PetscErrorCode TaoSMALXESetAnderson(Tao tao, PetscInt depth, PetscInt start)
   It is used with one inner solver of type `TAOMPRGP` or `TAOMPGP` whose PC is `PCNONE` (the default); a
   PC chosen for the inner solver (its -tao_mpgp_pc_type) is kept. Gauss-Seidel blocks
   (`TaoSMALXESetBlocks()`) and the penalty form (general C) have no such preconditioner.
-  Measured with `scripts/bench-brick.py` (docs/brick-benchmark.md): 10-20% fewer products with A on the
-  Coulomb, Tresca and frictionless bricks.
+  It saves products with A on the Coulomb, Tresca and frictionless bricks (docs/brick-benchmark.md, 'The
+  penalty preconditioner').
 
   Level: advanced
 
