@@ -165,7 +165,7 @@ PETSC_EXTERN PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem, Vec
 /*E
   ContactZoneType - Where a contact zone's nodes may touch.
 
-$ CONTACT_ZONE_FOUNDATION - a rigid plane
+$ CONTACT_ZONE_FOUNDATION - a rigid obstacle: a plane, a sphere or a cylinder (`ContactObstacleShape`)
 $ CONTACT_ZONE_BODIES     - another body, node to node on conforming meshes
 
   Level: beginner
@@ -176,34 +176,69 @@ typedef enum {
 } ContactZoneType;
 PETSC_EXTERN const char *const ContactZoneTypes[];
 
+/*E
+  ContactObstacleShape - The shape of a foundation zone's rigid obstacle; the body lies outside it.
+
+$ CONTACT_OBSTACLE_PLANE    - the half-space below a plane (`ContactZone` point, normal); the default of a zero-initialized zone
+$ CONTACT_OBSTACLE_SPHERE   - a ball (center, radius)
+$ CONTACT_OBSTACLE_CYLINDER - an infinite circular cylinder (center: a point of its axis, axis, radius)
+
+  Notes:
+  The gap and the contact normal of a node x come from the closest point chi(x) of the obstacle's surface
+  (`ContactZoneComputeGap()`): n = (chi(x) - x)/|chi(x) - x| points into the obstacle and the gap is
+  (chi(x) - x).n, the distance to the surface, negative when x lies inside the obstacle (an initial overlap,
+  e.g. an indentation depth); n is then still minus the obstacle's outward normal at chi(x).
+
+  Level: beginner
+
+.seealso: `ContactZone`, `ContactZoneComputeGap()`
+E*/
+typedef enum {
+  CONTACT_OBSTACLE_PLANE,
+  CONTACT_OBSTACLE_SPHERE,
+  CONTACT_OBSTACLE_CYLINDER
+} ContactObstacleShape;
+PETSC_EXTERN const char *const ContactObstacleShapes[];
+
 /*S
-  ContactZone - A contact zone: the tagged face of a body that may touch a rigid plane or another
+  ContactZone - A contact zone: the tagged face of a body that may touch a rigid obstacle or another
   body's tagged face, and the law on it.
 
   Fields:
 + type       - foundation or bodies
-. body, face - the body and the tag of the face that may touch (nodes with a Dirichlet component are left out)
+. body, face - the body and the tag of the face that may touch (a node with a Dirichlet component is left out,
+               except a frictionless node whose contact normal has a nonzero component that is not fixed: its row
+               then acts on the free components only, e.g. on a symmetry plane)
 . other_body, other_face - bodies: the other body and its face (its nodes must coincide with the first face's)
-. point, normal - foundation: a point of the plane and its unit normal pointing toward the body;
-                  the gap of a node x is (x - point).normal
+. point, normal - foundation, plane: a point of the plane and its normal pointing toward the body;
+                  the gap of a node x is (x - point).normal/|normal|
 . law        - frictionless, Tresca or Coulomb
-- coef       - Tresca: slip bound as a stress (force per area, turned into nodal forces with the nodal
+. coef       - Tresca: slip bound as a stress (force per area, turned into nodal forces with the nodal
                areas); Coulomb: the friction coefficient F
+. shape      - foundation: the obstacle's shape (plane when zero-initialized)
+. center     - sphere: its center; cylinder: a point of its axis
+. axis       - cylinder: the axis direction (any length but zero)
+- radius     - sphere, cylinder: the radius (> 0)
 
   Level: beginner
 
-.seealso: `ContactModelAddZone()`
+.seealso: `ContactModelAddZone()`, `ContactObstacleShape`, `ContactZoneComputeGap()`
 S*/
 typedef struct {
-  ContactZoneType type;
-  PetscInt        body;
-  char            face[64];
-  PetscInt        other_body;
-  char            other_face[64];
-  PetscReal       point[3], normal[3];
-  ContactLaw      law;
-  PetscReal       coef;
+  ContactZoneType      type;
+  PetscInt             body;
+  char                 face[64];
+  PetscInt             other_body;
+  char                 other_face[64];
+  PetscReal            point[3], normal[3];
+  ContactLaw           law;
+  PetscReal            coef;
+  ContactObstacleShape shape;
+  PetscReal            center[3], axis[3], radius;
 } ContactZone;
+
+PETSC_EXTERN PetscErrorCode ContactZoneCheckObstacle(const ContactZone *);
+PETSC_EXTERN PetscErrorCode ContactZoneComputeGap(const ContactZone *, const PetscReal[], PetscReal[], PetscReal *, PetscReal[]);
 
 /*E
   ContactNodeStatus - State of a contact node in a solution.
@@ -312,3 +347,5 @@ PETSC_EXTERN PetscErrorCode ContactModelComputeResiduals(ContactModel, ContactRe
 PETSC_EXTERN PetscErrorCode ContactModelGetNodes(ContactModel, PetscInt *, const PetscInt **, const PetscInt **, const PetscReal **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel, PetscInt *);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodeStates(ContactModel, PetscReal[], PetscReal[], PetscReal[], ContactNodeStatus[]);
+PETSC_EXTERN PetscErrorCode ContactModelGetNodeGeometry(ContactModel, PetscReal[], PetscReal[]);
+PETSC_EXTERN PetscErrorCode ContactModelGetContactForce(ContactModel, PetscInt, PetscReal[], PetscReal *);

@@ -60,6 +60,8 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . kplus_fallback - whether those blocks were asked for but dropped because they would not fit in memory (`FETIGetKplusExplicit()`)
 . unmatched_nodes - nodes of node-to-node zones' first faces without a partner (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
+. contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
+. normal_force  - the sum of the normal contact forces l_n over all contact nodes
 . residuals     - the mechanical residuals (each relative) and the node counts
 . fingerprint   - `ConeFETIVecFingerprint()` of the multipliers: the same on any number of ranks (on one machine)
 . finite        - whether every residual is a finite number
@@ -84,6 +86,7 @@ typedef struct {
   PetscBool               kplus_explicit, kplus_fallback;
   PetscInt                unmatched_nodes;
   PetscReal               max_nu;
+  PetscReal               contact_force[3], normal_force;
   PetscInt                friction_polygon;
   ContactResiduals        residuals;
   char                    fingerprint[17];

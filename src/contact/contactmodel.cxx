@@ -2,7 +2,7 @@
    recovery -> mechanical residuals and node states.
 
    Rows per contact node k (outward unit normal n of the first body, tangents t1, t2):
-     N  u = n.(u_A - u_B) <= d_k   (foundation: u_B = 0, n = -plane normal, d_k = (x - point).plane normal)
+     N  u = n.(u_A - u_B) <= d_k   (foundation: u_B = 0, n and d_k from the obstacle's closest point, contactobstacle.cxx)
      T1 u = t1.(u_A - u_B),  T2 u = t2.(u_A - u_B)   (only for Tresca and Coulomb nodes)
    or, with -contact_friction_polygon k, the k rows D_j u = d_j.(u_A - u_B), d_j = cos(j pi/k) t1 + sin(j pi/k) t2
    (contactpolygon.cxx)
@@ -53,8 +53,10 @@ void Tangents(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3])
   t2[2] = n[0] * t1[1] - n[1] * t1[0];
 }
 
-/* Dirichlet nodes are left out of contact: a row on a fixed dof would be a zero row of B. */
-PetscErrorCode DirichletNodes(FEM fem, std::set<PetscInt> &fixed)
+/* The Dirichlet components of every node (global node -> mask of fixed components). A node fixed in all the
+   components its contact row would act on is left out of contact (its row would be a zero row of B); see
+   CollectZoneNodes(). */
+PetscErrorCode DirichletNodes(FEM fem, std::map<PetscInt, unsigned> &fixed)
 {
   IS              is, all;
   PetscInt        n;
@@ -65,14 +67,14 @@ PetscErrorCode DirichletNodes(FEM fem, std::set<PetscInt> &fixed)
   PetscCall(ISAllGather(is, &all));
   PetscCall(ISGetLocalSize(all, &n));
   PetscCall(ISGetIndices(all, &idx));
-  for (PetscInt i = 0; i < n; i++) PetscCallCXX(fixed.insert(idx[i] / 3));
+  for (PetscInt i = 0; i < n; i++) PetscCallCXX(fixed[idx[i] / 3] |= 1u << (idx[i] % 3));
   PetscCall(ISRestoreIndices(all, &idx));
   PetscCall(ISDestroy(&all));
   PetscCall(ISDestroy(&is));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::set<PetscInt> &fixed)
+PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<PetscInt, unsigned> &fixed)
 {
   ContactModelData                                               &d    = *cm->data;
   const ContactZone                                              &zone = d.zones[z];
@@ -104,7 +106,6 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::set<Pets
     info.zone = z;
     info.body = zone.body;
     info.node = nodes[i];
-    if (fixed.count(offset + nodes[i])) continue;
     for (int c = 0; c < 3; c++) info.x[c] = X[3 * nodes[i] + c];
     info.area = areas[i];
     /* only the effects the scene calls for: friction with coefficient (or slip bound) 0 is no friction, so such
@@ -112,10 +113,7 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::set<Pets
     info.law  = zone.coef == 0 ? CONTACT_FRICTIONLESS : zone.law;
     info.coef = info.law == CONTACT_TRESCA ? zone.coef * areas[i] : zone.coef;
     if (zone.type == CONTACT_ZONE_FOUNDATION) {
-      PetscReal nu[3] = {zone.normal[0], zone.normal[1], zone.normal[2]};
-      Normalize(nu);
-      for (int c = 0; c < 3; c++) info.n[c] = -nu[c];
-      info.gap = (info.x[0] - zone.point[0]) * nu[0] + (info.x[1] - zone.point[1]) * nu[1] + (info.x[2] - zone.point[2]) * nu[2];
+      PetscCall(ContactObstacleNodeGeometry_Private(cm, z, info));
     } else {
       auto it = other.find(key(info.x));
       if (it == other.end()) { /* a node of the first face without a partner on the second is not in contact */
@@ -128,6 +126,22 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::set<Pets
       for (int c = 0; c < 3; c++) info.n[c] = normals[3 * i + c];
       Normalize(info.n);
       info.gap = 0; /* conforming meshes: coinciding nodes */
+    }
+    /* A node with a Dirichlet component: u is zero there, so a frictionless row may drop that component's term
+       and still say N u <= d (a node on a symmetry plane of a quarter model, where the obstacle's normal lies in
+       the plane, keeps its contact). It is left out when every component its row acts on is fixed, when it has
+       friction (a tangent along a fixed direction would be a zero row), and on node-to-node zones. */
+    {
+      auto      f    = fixed.find(offset + nodes[i]);
+      PetscBool keep = PETSC_TRUE;
+      if (f != fixed.end()) {
+        keep = PETSC_FALSE;
+        if (info.law == CONTACT_FRICTIONLESS && zone.type == CONTACT_ZONE_FOUNDATION)
+          for (int c = 0; c < 3; c++)
+            if (!(f->second & (1u << c)) && info.n[c] != 0) keep = PETSC_TRUE;
+        info.fixed = f->second;
+      }
+      if (!keep) continue;
     }
     Tangents(info.n, info.t1, info.t2);
     PetscCallCXX(d.nodes.push_back(info));
@@ -169,6 +183,7 @@ PetscErrorCode CreateFETIWithContactRows(ContactModel cm)
     for (int r = 0; r < nrows; r++) {
       kinds.push_back(r == 0 ? FETI_ROW_CONTACT_NORMAL : FETI_ROW_CONTACT_TANGENTIAL);
       for (int c = 0; c < 3; c++) {
+        if (k.fixed & (1u << c)) continue; /* u_c = 0 at the node: the term carries nothing (CollectZoneNodes()) */
         body.push_back(k.body);
         node.push_back(k.node);
         comp.push_back(c);
@@ -341,9 +356,7 @@ PetscErrorCode ContactModelAddZone(ContactModel cm, const ContactZone *zone)
   if (zone->type == CONTACT_ZONE_BODIES)
     PetscCheck(zone->other_body >= 0 && zone->other_body < nbodies && zone->other_body != zone->body, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
                "contact zone: the other body %" PetscInt_FMT " must exist and differ from body %" PetscInt_FMT, zone->other_body, zone->body);
-  else
-    PetscCheck(zone->normal[0] != 0 || zone->normal[1] != 0 || zone->normal[2] != 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG,
-               "contact zone: the foundation plane needs a nonzero normal");
+  else PetscCall(ContactZoneCheckObstacle(zone));
   PetscCheck(zone->coef >= 0 && !PetscIsInfOrNanReal(zone->coef), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE, "contact zone: invalid %s %g (must be finite and >= 0)",
              zone->law == CONTACT_TRESCA ? "slip bound" : "friction coefficient", (double)zone->coef);
   PetscCallCXX(cm->data->zones.push_back(*zone));
@@ -404,8 +417,8 @@ PetscErrorCode ContactModelSetFromOptions(ContactModel cm)
 @*/
 PetscErrorCode ContactModelSetUp(ContactModel cm)
 {
-  ContactModelData  *d;
-  std::set<PetscInt> fixed;
+  ContactModelData            *d;
+  std::map<PetscInt, unsigned> fixed;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
@@ -442,7 +455,11 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
     for (const ContactNodeInfo &k : d->nodes) {
       const auto dirs  = RowDirections(*d, k);
       const int  nrows = !(k.coef > 0) ? 1 : (int)dirs.size(); /* tangential rows with a zero bound carry no force */
-      for (int r = 0; r < nrows; r++) PetscCallCXX(holding.push_back({k.zone, k.body, k.node, k.other_body, k.other_node, {dirs[r][0], dirs[r][1], dirs[r][2]}}));
+      for (int r = 0; r < nrows; r++) {
+        PetscReal dir[3];
+        for (int c = 0; c < 3; c++) dir[c] = (k.fixed & (1u << c)) ? 0 : dirs[r][c]; /* the row as appended */
+        PetscCallCXX(holding.push_back({k.zone, k.body, k.node, k.other_body, k.other_node, {dir[0], dir[1], dir[2]}}));
+      }
     }
     PetscCall(ContactCheckRigidMotions_Private(cm, d->fem, d->zones, holding));
   }
@@ -892,6 +909,41 @@ PetscErrorCode ContactModelGetNodes(ContactModel cm, PetscInt *n, const PetscInt
 }
 
 /*@C
+  ContactModelGetNodeGeometry - The contact normal and the initial gap of this rank's contact nodes (order of
+  `ContactModelGetNodes()`).
+
+  Not Collective
+
+  Input Parameter:
+. cm - the model (set up)
+
+  Output Parameters (either may be NULL):
++ normal - 3 per node: the unit normal n of the node's rows, the first body's outward direction (foundation zones:
+           into the obstacle, `ContactZoneComputeGap()`)
+- gap    - per node: the initial gap d of its row N u <= d (negative: an initial overlap)
+
+  Level: intermediate
+
+.seealso: `ContactModelGetNodes()`, `ContactZoneComputeGap()`
+@*/
+PetscErrorCode ContactModelGetNodeGeometry(ContactModel cm, PetscReal normal[], PetscReal gap[])
+{
+  ContactModelData *d;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  d = cm->data;
+  PetscCheck(d->setup, PetscObjectComm((PetscObject)cm), PETSC_ERR_ORDER, "Call ContactModelSetUp() first");
+  for (size_t j = 0; j < d->local.size(); j++) {
+    const ContactNodeInfo &nd = d->nodes[d->local[j]];
+    if (gap) gap[j] = nd.gap;
+    if (normal)
+      for (int c = 0; c < 3; c++) normal[3 * j + c] = nd.n[c];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   ContactModelView - Describe the model: zones, contact nodes per law, the pipeline, FETI and the contact solver.
 
   Collective
@@ -923,7 +975,14 @@ PetscErrorCode ContactModelView(ContactModel cm, PetscViewer viewer)
                                    counts[0], counts[1], counts[2], ContactPipelines[d->pipeline]));
   for (size_t z = 0; z < d->zones.size(); z++) {
     const ContactZone &zn = d->zones[z];
-    if (zn.type == CONTACT_ZONE_FOUNDATION)
+    if (zn.type == CONTACT_ZONE_FOUNDATION && zn.shape == CONTACT_OBSTACLE_SPHERE)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "zone %zu: body %" PetscInt_FMT " face %s on a rigid sphere with center (%g, %g, %g) and radius %g, %s %g\n", z, zn.body, zn.face, (double)zn.center[0],
+                                       (double)zn.center[1], (double)zn.center[2], (double)zn.radius, ContactLaws[zn.law], (double)zn.coef));
+    else if (zn.type == CONTACT_ZONE_FOUNDATION && zn.shape == CONTACT_OBSTACLE_CYLINDER)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "zone %zu: body %" PetscInt_FMT " face %s on a rigid cylinder with axis through (%g, %g, %g) along (%g, %g, %g) and radius %g, %s %g\n", z, zn.body,
+                                       zn.face, (double)zn.center[0], (double)zn.center[1], (double)zn.center[2], (double)zn.axis[0], (double)zn.axis[1], (double)zn.axis[2], (double)zn.radius,
+                                       ContactLaws[zn.law], (double)zn.coef));
+    else if (zn.type == CONTACT_ZONE_FOUNDATION)
       PetscCall(PetscViewerASCIIPrintf(viewer, "zone %zu: body %" PetscInt_FMT " face %s on a rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s %g\n", z, zn.body, zn.face,
                                        (double)zn.point[0], (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], ContactLaws[zn.law],
                                        (double)zn.coef));

@@ -441,6 +441,67 @@ PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/*@C
+  ContactModelGetContactForce - The resultant of the contact forces on the first bodies of a zone (or of all
+  zones), from the multipliers: the sum over its contact nodes of -(l_n n + l_t1 t1 + l_t2 t2) (the force the
+  obstacle or the other body exerts, as it enters the equilibrium K u = f - B'l), and the sum of l_n.
+
+  Collective
+
+  Input Parameters:
++ cm   - the model (solved)
+- zone - the zone, or -1 for all zones together
+
+  Output Parameters:
++ force  - the resultant force vector (3 entries), or NULL
+- normal - the sum of the normal multipliers l_n (the magnitude of the normal forces), or NULL
+
+  Notes:
+  For a rigid punch or indenter pressed along one direction, the total force P is the component of force
+  along that direction (the normals of a curved obstacle tilt, so the sum of l_n is slightly larger).
+  Components of a node fixed by a Dirichlet condition do not enter its rows (`ContactZone`) and not the sum.
+
+  Level: intermediate
+
+.seealso: `ContactModelGetNodeStates()`, `ContactModelGetNodeGeometry()`
+@*/
+PetscErrorCode ContactModelGetContactForce(ContactModel cm, PetscInt zone, PetscReal force[], PetscReal *normal)
+{
+  ContactModelData  *d;
+  Mat                B;
+  Vec                Bu, cvec;
+  const FETIRowKind *kinds;
+  NodeValues         v;
+  PetscReal          sum[4] = {0, 0, 0, 0};
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  d = cm->data;
+  PetscCheck(d->solved, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONGSTATE, "ContactModel: solve first");
+  PetscCheck(zone >= -1 && zone < (PetscInt)d->zones.size(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
+             "ContactModelGetContactForce: zone %" PetscInt_FMT " does not exist (%zu zones)", zone, d->zones.size());
+  if (d->cp) {
+    /* l_n and the tangential force in the (t1, t2) frame, also from a friction polygon's multipliers */
+    PetscCall(FETIGetConstraints(d->feti, &B, &cvec, &kinds));
+    PetscCall(VecDuplicate(d->lambda, &Bu));
+    PetscCall(MatMult(B, d->u, Bu));
+    PetscCall(EvaluateNodes(cm, Bu, v));
+    PetscCall(VecDestroy(&Bu));
+    for (size_t j = 0; j < d->local.size(); j++) {
+      const ContactNodeInfo &nd = d->nodes[d->local[j]];
+      if (zone >= 0 && nd.zone != zone) continue;
+      sum[3] += v.ln[j];
+      for (int c = 0; c < 3; c++)
+        if (!(nd.fixed & (1u << c))) sum[c] -= v.ln[j] * nd.n[c] + v.lt[2 * j] * nd.t1[c] + v.lt[2 * j + 1] * nd.t2[c];
+    }
+  }
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 4, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)cm)));
+  if (force)
+    for (int c = 0; c < 3; c++) force[c] = sum[c];
+  if (normal) *normal = sum[3];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* what a failed check means, for the sentence that says why a solve did not converge */
 PetscErrorCode ContactResidualsDescribe_Private(const ContactResiduals *r, ContactCheck c, char buf[], size_t len)
 {

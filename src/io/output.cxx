@@ -191,7 +191,7 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
   PetscInt               nc = 0, cfirst = 0;
   const PetscInt        *cbody = NULL, *cnode = NULL;
   const PetscReal       *ccoords = NULL, *carea = NULL;
-  std::vector<PetscReal> pressure, traction, slip;
+  std::vector<PetscReal> pressure, traction, slip, cnormal, cgap;
   std::vector<PetscInt>  status, cconn;
   ContactProblem         cp;
   PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
@@ -203,6 +203,9 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
     slip.resize(3 * nc);
     st.resize(nc);
     PetscCall(ContactModelGetNodeStates(impl.cm, pressure.data(), traction.data(), slip.data(), st.data()));
+    cnormal.resize(3 * nc);
+    cgap.resize(nc);
+    PetscCall(ContactModelGetNodeGeometry(impl.cm, cnormal.data(), cgap.data()));
     status.resize(nc);
     for (PetscInt i = 0; i < nc; i++) status[i] = (PetscInt)st[i];
   }
@@ -269,6 +272,8 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
     PetscCall(ViewInt(v, comm, "body", 1, cb));
     PetscCall(ViewInt(v, comm, "node", 1, cn));
     PetscCall(ViewReal(v, comm, "area", 1, area));
+    PetscCall(ViewReal(v, comm, "normal", 3, cnormal));
+    PetscCall(ViewReal(v, comm, "gap", 1, cgap));
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
   PetscCall(PetscViewerDestroy(&closer.v));
@@ -347,6 +352,8 @@ std::string XDMF(const char *h5raw, const char *scene, const Layout &L)
     x += Attribute("tangential_displacement", "Vector", "Node", Item(h5, "/contact/tangential_displacement", L.ncontact, 3, PETSC_FALSE));
     x += Attribute("status", "Scalar", "Node", Item(h5, "/contact/status", L.ncontact, 1, PETSC_TRUE));
     x += Attribute("area", "Scalar", "Node", Item(h5, "/contact/area", L.ncontact, 1, PETSC_FALSE));
+    x += Attribute("normal", "Vector", "Node", Item(h5, "/contact/normal", L.ncontact, 3, PETSC_FALSE));
+    x += Attribute("gap", "Scalar", "Node", Item(h5, "/contact/gap", L.ncontact, 1, PETSC_FALSE));
     x += Attribute("body", "Scalar", "Node", Item(h5, "/contact/body", L.ncontact, 1, PETSC_TRUE));
     x += "    </Grid>\n";
   }
@@ -433,7 +440,7 @@ PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::st
 
 /* the bytes of the datasets (docs/output.md), a lower bound of the HDF5 file's size: 6 reals per node;
    6 integers and 1 real per tetrahedron; 11 reals and 4 integers per contact node */
-double DataBytes(const Layout &L) { return 8.0 * (6.0 * L.nnodes + L.nelements + 11.0 * L.ncontact) + (double)sizeof(PetscInt) * (6.0 * L.nelements + 4.0 * L.ncontact); }
+double DataBytes(const Layout &L) { return 8.0 * (6.0 * L.nnodes + L.nelements + 15.0 * L.ncontact) + (double)sizeof(PetscInt) * (6.0 * L.nelements + 4.0 * L.ncontact); }
 
 /* 85.3 GB, 20.5 kB: a size for a message */
 std::string Bytes(double b)

@@ -428,7 +428,7 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   const std::string s    = Format("-scene_zone%d_", (int)z);
   const MPI_Comm    comm = r.comm;
   ContactZone      &zone = spec.zone;
-  PetscBool         set, setface, setpoint, setnormal, setother, setotherface, setlaw, setF, setg;
+  PetscBool         set, setface, setpoint, setnormal, setother, setotherface, setlaw, setF, setg, setshape, setcenter, setaxis, setradius;
   std::string       face, other;
   PetscReal         F = 0, g = 0;
 
@@ -437,11 +437,16 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   zone.type      = CONTACT_ZONE_FOUNDATION;
   zone.normal[2] = 1;
   zone.law       = CONTACT_FRICTIONLESS;
-  PetscCall(r.Enum(s + "type", "Where the zone touches: foundation (a rigid plane) or bodies (another body, node to node)", ContactZoneTypes, (PetscEnum *)&zone.type, &set));
+  PetscCall(r.Enum(s + "type", "Where the zone touches: foundation (a rigid obstacle) or bodies (another body, node to node)", ContactZoneTypes, (PetscEnum *)&zone.type, &set));
   PetscCall(r.Int(s + "body", "The body whose face may touch", "a body index", &zone.body, &set));
   PetscCall(r.String(s + "face", "The face (or part) that may touch: FACE[/COND...], e.g. z0/x>1", "a face selector", face, &setface));
   PetscCall(r.Reals(s + "point", "Foundation: a point of the rigid plane", "3 numbers x,y,z", 3, 3, zone.point, NULL, &setpoint));
   PetscCall(r.Reals(s + "normal", "Foundation: the plane's normal, pointing toward the body (the gap of x is (x - point).normal)", "3 numbers nx,ny,nz", 3, 3, zone.normal, NULL, &setnormal));
+  PetscCall(r.Enum(s + "shape", "Foundation: the rigid obstacle, plane (_point, _normal), sphere (_center, _radius) or cylinder (_center, _axis, _radius); the body lies outside it",
+                   ContactObstacleShapes, (PetscEnum *)&zone.shape, &setshape));
+  PetscCall(r.Reals(s + "center", "Foundation, sphere: its center; cylinder: a point of its axis", "3 numbers x,y,z", 3, 3, zone.center, NULL, &setcenter));
+  PetscCall(r.Reals(s + "axis", "Foundation, cylinder: the axis direction", "3 numbers ax,ay,az", 3, 3, zone.axis, NULL, &setaxis));
+  PetscCall(r.Real(s + "radius", "Foundation, sphere or cylinder: the radius > 0", "a radius > 0", &zone.radius, &setradius));
   PetscCall(r.Int(s + "other_body", "Bodies: the other body", "a body index", &zone.other_body, &setother));
   PetscCall(r.String(s + "other_face", "Bodies: the other body's face (its nodes must coincide with the first face's)", "a face selector", other, &setotherface));
   PetscCall(r.Enum(s + "law", "Contact law: frictionless, tresca (given slip bound) or coulomb (friction coefficient)", ContactLaws, (PetscEnum *)&zone.law, &setlaw));
@@ -456,10 +461,38 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   if (zone.type == CONTACT_ZONE_FOUNDATION) {
     PetscCheck(!setother && !setotherface, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is a foundation zone: %s and %s belong to -scene_zone%d_type bodies", (int)z, r.Full(s + "other_body").c_str(),
                r.Full(s + "other_face").c_str(), (int)z);
-    PetscCheck(setnormal, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d needs %s nx,ny,nz (the plane's normal, pointing toward the body)", (int)z, r.Full(s + "normal").c_str());
-    const PetscReal len = std::max({std::fabs(zone.normal[0]), std::fabs(zone.normal[1]), std::fabs(zone.normal[2])}); /* only nonzero matters: no squares to overflow */
-    PetscCheck(len > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the normal must be nonzero", r.Full(s + "normal").c_str());
+    const char *shape = ContactObstacleShapes[zone.shape];
+    if (zone.shape == CONTACT_OBSTACLE_PLANE) {
+      PetscCheck(!setcenter && !setaxis && !setradius, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d is a plane: %s belongs to %s sphere or cylinder", (int)z,
+                 r.Full(s + (setcenter ? "center"
+                             : setaxis ? "axis"
+                                       : "radius"))
+                     .c_str(),
+                 r.Full(s + "shape").c_str());
+      PetscCheck(setnormal, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d needs %s nx,ny,nz (the plane's normal, pointing toward the body)", (int)z, r.Full(s + "normal").c_str());
+      const PetscReal len = std::max({std::fabs(zone.normal[0]), std::fabs(zone.normal[1]), std::fabs(zone.normal[2])}); /* only nonzero matters: no squares to overflow */
+      PetscCheck(len > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the normal must be nonzero", r.Full(s + "normal").c_str());
+    } else {
+      PetscCheck(!setpoint && !setnormal, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d is a %s: %s belongs to %s plane", (int)z, shape, r.Full(s + (setpoint ? "point" : "normal")).c_str(),
+                 r.Full(s + "shape").c_str());
+      PetscCheck(setcenter, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d is a %s: it needs %s x,y,z (%s)", (int)z, shape, r.Full(s + "center").c_str(),
+                 zone.shape == CONTACT_OBSTACLE_SPHERE ? "the sphere's center" : "a point of the cylinder's axis");
+      PetscCheck(setradius, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d is a %s: it needs %s R (> 0)", (int)z, shape, r.Full(s + "radius").c_str());
+      PetscCheck(zone.radius > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: the %s's radius must be > 0", r.Full(s + "radius").c_str(), (double)zone.radius, shape);
+      if (zone.shape == CONTACT_OBSTACLE_SPHERE) PetscCheck(!setaxis, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d is a sphere: %s belongs to cylinders", (int)z, r.Full(s + "axis").c_str());
+      else {
+        PetscCheck(setaxis, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d is a cylinder: it needs %s ax,ay,az (the axis direction)", (int)z, r.Full(s + "axis").c_str());
+        const PetscReal len = std::max({std::fabs(zone.axis[0]), std::fabs(zone.axis[1]), std::fabs(zone.axis[2])});
+        PetscCheck(len > 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s: the cylinder's axis must be nonzero", r.Full(s + "axis").c_str());
+      }
+    }
   } else {
+    PetscCheck(!setshape && !setcenter && !setaxis && !setradius, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is between bodies: %s belongs to foundation zones", (int)z,
+               r.Full(s + (setshape    ? "shape"
+                           : setcenter ? "center"
+                           : setaxis   ? "axis"
+                                       : "radius"))
+                   .c_str());
     PetscCheck(!setpoint && !setnormal, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is between bodies: %s and %s belong to foundation zones (the normal is the first face's)", (int)z,
                r.Full(s + "point").c_str(), r.Full(s + "normal").c_str());
     PetscCheck(setother && setotherface, comm, PETSC_ERR_ARG_WRONG, "contact zone %d between bodies needs %s and %s", (int)z, r.Full(s + "other_body").c_str(), r.Full(s + "other_face").c_str());
@@ -904,9 +937,12 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 . -scene_body<b>_traction_<face> <tx,ty,tz>  - traction on a whole face x0 x1 y0 y1 z0 z1
 . -scene_body<b>_traction<k>_face <sel>      - traction k on part of a face, with -scene_body<b>_traction<k>_value <tx,ty,tz>
 . -scene_body<b>_force <fx,fy,fz>            - volume force density (none when not given)
-. -scene_zone<z>_type <foundation,bodies>    - contact zone z: a rigid plane or another body
+. -scene_zone<z>_type <foundation,bodies>    - contact zone z: a rigid obstacle or another body
 . -scene_zone<z>_body, _face <b>, <sel>      - the body and face (part) that may touch
-. -scene_zone<z>_point, _normal <x,y,z>      - foundation: the plane (normal toward the body)
+. -scene_zone<z>_shape <plane,sphere,cylinder> - foundation: the obstacle's shape (the body lies outside it)
+. -scene_zone<z>_point, _normal <x,y,z>      - foundation, plane: the plane (normal toward the body)
+. -scene_zone<z>_center <x,y,z>, _radius <R> - foundation, sphere: center and radius; cylinder: a point of the axis and radius
+. -scene_zone<z>_axis <ax,ay,az>             - foundation, cylinder: the axis direction
 . -scene_zone<z>_other_body, _other_face     - bodies: the other body and its face
 - -scene_zone<z>_law <frictionless,tresca,coulomb> - with -scene_zone<z>_slip_bound <g> (Tresca, a stress) or -scene_zone<z>_friction <F> (Coulomb)
 
@@ -1232,7 +1268,13 @@ PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
   for (size_t z = 0; z < impl.zones.size(); z++) {
     const ContactZone &zn  = impl.zones[z].zone;
     const std::string  law = zn.law == CONTACT_FRICTIONLESS ? std::string("frictionless") : Format("%s %s %g", ContactLaws[zn.law], zn.law == CONTACT_TRESCA ? "slip bound" : "F", (double)zn.coef);
-    if (zn.type == CONTACT_ZONE_FOUNDATION)
+    if (zn.type == CONTACT_ZONE_FOUNDATION && zn.shape == CONTACT_OBSTACLE_SPHERE)
+      text += Format("  zone %d: body %d face %s on the rigid sphere with center (%g, %g, %g) and radius %g, %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (double)zn.center[0],
+                     (double)zn.center[1], (double)zn.center[2], (double)zn.radius, law.c_str());
+    else if (zn.type == CONTACT_ZONE_FOUNDATION && zn.shape == CONTACT_OBSTACLE_CYLINDER)
+      text += Format("  zone %d: body %d face %s on the rigid cylinder with axis through (%g, %g, %g) along (%g, %g, %g) and radius %g, %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(),
+                     (double)zn.center[0], (double)zn.center[1], (double)zn.center[2], (double)zn.axis[0], (double)zn.axis[1], (double)zn.axis[2], (double)zn.radius, law.c_str());
+    else if (zn.type == CONTACT_ZONE_FOUNDATION)
       text += Format("  zone %d: body %d face %s on the rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (double)zn.point[0],
                      (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], law.c_str());
     else

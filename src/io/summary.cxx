@@ -217,6 +217,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   PetscCall(ContactModelGetUnmatchedNodes(impl.cm, &s->unmatched_nodes));
   s->max_nu = -1;
   for (const SceneBody &b : impl.bodies) s->max_nu = PetscMax(s->max_nu, b.nu);
+  if (cp) PetscCall(ContactModelGetContactForce(impl.cm, -1, s->contact_force, &s->normal_force));
   /* the mechanical residuals, from u and lambda */
   PetscCall(ContactModelComputeResiduals(impl.cm, &s->residuals));
   s->contact_nodes = s->residuals.counts[0] + s->residuals.counts[1] + s->residuals.counts[2];
@@ -292,6 +293,9 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                        "approximates, the solution's friction residual is %s (the approximation's own error, not in the verdict)\n",
                                        s->friction_polygon, E(r.approximation).c_str()));
   }
+  if (s->pipeline != CONTACT_PIPELINE_LINEAR)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "contact force on the bodies: (%.6e, %.6e, %.6e); sum of the normal forces %.6e\n", (double)s->contact_force[0], (double)s->contact_force[1],
+                                     (double)s->contact_force[2], (double)s->normal_force));
   if (s->unmatched_nodes)
     PetscCall(PetscViewerASCIIPrintf(
         viewer, "note: %" PetscInt_FMT " nodes of node-to-node zone faces have no node of the other face at the same position and are not in contact (meshes that do not conform?)\n",
@@ -429,6 +433,16 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Int(out, "separated", r.counts[0]);
   Int(out, "stick", r.counts[1]);
   Int(out, "slip", r.counts[2]);
+  Key(out, "contact_force");
+  out += "[";
+  for (int c = 0; c < 3; c++) {
+    char buf[64];
+    if (c) out += ",";
+    snprintf(buf, sizeof(buf), "%.6e", (double)s->contact_force[c]);
+    out += std::isfinite((double)s->contact_force[c]) ? buf : "null";
+  }
+  out += "]";
+  Real(out, "normal_force", s->normal_force);
   Real(out, "acceptance", s->acceptance);
   Str(out, "failed_check", s->failed_check[0] ? s->failed_check : NULL);
   Int(out, "refinements", s->refinements);

@@ -130,6 +130,14 @@ def main(argv):
             if st is not None:
                 counts = [int(np.sum(st == k)) for k in range(3)]
                 check(counts == [js["separated"], js["stick"], js["slip"]], "status counts %s in the file, summary %s" % (counts, [js["separated"], js["stick"], js["slip"]]))
+            # the nodal forces of the file (pressure times area) add up to the summary's sum of the normal forces,
+            # and each node's normal is a unit vector
+            pr, ar, nr = data.get("/contact/pressure"), data.get("/contact/area"), data.get("/contact/normal")
+            if pr is not None and ar is not None and "normal_force" in js:
+                total = float(np.sum(pr * ar))
+                check(abs(total - js["normal_force"]) <= 1e-5 * max(abs(js["normal_force"]), 1e-300), "sum of pressure x area %.9g, summary normal_force %.9g" % (total, js["normal_force"]))
+            if nr is not None:
+                check(np.allclose(np.linalg.norm(nr, axis=1), 1.0, atol=1e-12), "contact normals are not unit vectors")
         else:
             check("contact" not in grids, "a contact grid although the summary has no contact node")
     print("grids: " + ", ".join("%s (%d nodes, %d elements)" % (k, v[0], v[1]) for k, v in sizes.items()))

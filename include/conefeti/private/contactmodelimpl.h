@@ -11,6 +11,7 @@ struct ContactNodeInfo {
   ContactLaw law;
   PetscReal  coef; /* Tresca: bound as a nodal force; Coulomb: F */
   PetscInt   first_row;
+  unsigned   fixed = 0; /* the first body's Dirichlet components at the node (frictionless nodes only): left out of its row */
 };
 
 struct ContactModelData {
@@ -51,6 +52,9 @@ struct _p_ContactModel {
   PETSCHEADER(struct _ContactModelOps);
   ContactModelData *data;
 };
+
+/* a foundation zone's node: its gap and normal from the obstacle (contactobstacle.cxx) */
+PETSC_INTERN PetscErrorCode ContactObstacleNodeGeometry_Private(ContactModel, PetscInt, ContactNodeInfo &);
 
 /* "<check> of body b is <value> (<what it means>)" for the check c of r */
 PETSC_INTERN PetscErrorCode ContactResidualsDescribe_Private(const ContactResiduals *, ContactCheck, char[], size_t);
