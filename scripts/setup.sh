@@ -13,6 +13,7 @@ packages=(
   openmpi-bin                           # mpiexec for the parallel tests
   clang-format                          # style check (a test)
   python3 python3-numpy python3-h5py    # result checks and benchmark tables
+  python3-matplotlib                    # the figures of docs/ (scripts/bench-peers.py)
 )
 
 missing=()
