@@ -46,6 +46,7 @@ PEERS = [
     ("VI ssls, CG + ML", VI("vinewtonssls") + ML),
     ("GPCG, CG + ML", TAO("gpcg") + ML),
     ("BQPIP, CG + ML", TAO("bqpip") + ML),
+    ("BQPIP, CG + ML, bounds +-1 m", TAO("bqpip") + ML + ["-peers_free_bound", "1"]),
     ("BNLS, CG + ML", TAO("bnls") + ["-tao_bnk_ksp_type", "cg", "-tao_bnk_pc_type", "ml"]),
     ("BLMVM (no linear solver)", TAO("blmvm")),
 ]

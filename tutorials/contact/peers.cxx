@@ -15,6 +15,7 @@
      peers -options_file petsc-options/brick-frictionless.opts -peers_solver snes -snes_type vinewtonrsls -ksp_type cg -pc_type gamg
      peers -options_file petsc-options/brick-frictionless.opts -peers_solver conefeti -contact_rtol 1e-10 -peers_save ref.bin
      peers -options_file petsc-options/brick-frictionless.opts -peers_solver tao -tao_type gpcg -peers_reference ref.bin
+     peers -options_file petsc-options/brick-frictionless.opts -peers_solver tao -tao_type bqpip -peers_free_bound 1   (finite bounds)
      peers -options_file petsc-options/brick-frictionless.opts -help      (every option, the solvers' too)
 
    The accuracy measure, computed from the global displacement u alone (for conefeti: its primal solution,
@@ -47,12 +48,13 @@ const char *const PeersSolvers[] = {"conefeti", "snes", "tao"};
 
 /* the bound-constrained primal problem of a scene */
 struct Primal {
-  Mat      K    = nullptr;
-  Vec      f    = nullptr;
-  Vec      lb   = nullptr, ub = nullptr; /* the bounds: +-infinity except at the contact dofs */
-  Vec      sign = nullptr;               /* +1 or -1 at a contact node's bounded dof (u_n = sign u), 0 elsewhere */
-  Vec      gap  = nullptr;               /* the gap at the bounded dofs */
-  PetscInt n = 0, ncontact = 0;          /* unknowns without Dirichlet dofs (the driver's n), contact nodes */
+  Mat       K  = nullptr;
+  Vec       f  = nullptr;
+  Vec       lb = nullptr, ub = nullptr; /* the bounds: +-infinity except at the contact dofs */
+  Vec       sign = nullptr;             /* +1 or -1 at a contact node's bounded dof (u_n = sign u), 0 elsewhere */
+  Vec       gap  = nullptr;             /* the gap at the bounded dofs */
+  PetscInt  n = 0, ncontact = 0;        /* unknowns without Dirichlet dofs (the driver's n), contact nodes */
+  PetscReal free_bound = 0;             /* the bound of the unbounded dofs: 0 for +-PETSC_INFINITY, else +-free_bound */
 };
 
 /* the accuracy measure of a displacement */
@@ -110,21 +112,22 @@ PetscErrorCode BuildBounds(ContactScene scene, Primal &p)
     const PetscInt    *cols;
     const PetscScalar *vals;
     PetscReal          dir[3] = {0, 0, 0}, norm;
-    PetscInt           axis = 0;
+    PetscInt           axis   = 0;
 
-    PetscCheck(row >= rstart && row < rend && kinds[row - rstart] == FETI_ROW_CONTACT_NORMAL, PETSC_COMM_SELF, PETSC_ERR_PLIB, "peers: multiplier %" PetscInt_FMT " is not a local normal contact row", row);
+    PetscCheck(row >= rstart && row < rend && kinds[row - rstart] == FETI_ROW_CONTACT_NORMAL, PETSC_COMM_SELF, PETSC_ERR_PLIB, "peers: multiplier %" PetscInt_FMT " is not a local normal contact row",
+               row);
     PetscCall(MatGetRow(B, row, &ncols, &cols, &vals));
     for (PetscInt k = 0; k < ncols; k++) dir[cols[k] % 3] += PetscRealPart(vals[k]); /* 3 dofs per node in every subdomain */
     PetscCall(MatRestoreRow(B, row, &ncols, &cols, &vals));
     norm = PetscSqrtReal(dir[0] * dir[0] + dir[1] * dir[1] + dir[2] * dir[2]);
-    PetscCheck(norm > 0, PETSC_COMM_SELF, PETSC_ERR_SUP, "peers: the contact row of node %" PetscInt_FMT " of body %" PetscInt_FMT " couples two bodies; the peers solve contact with a rigid plane only",
-               node[j], body[j]);
+    PetscCheck(norm > 0, PETSC_COMM_SELF, PETSC_ERR_SUP,
+               "peers: the contact row of node %" PetscInt_FMT " of body %" PetscInt_FMT " couples two bodies; the peers solve contact with a rigid plane only", node[j], body[j]);
     for (PetscInt a = 1; a < 3; a++)
       if (PetscAbsReal(dir[a]) > PetscAbsReal(dir[axis])) axis = a;
     for (PetscInt a = 0; a < 3; a++)
       PetscCheck(a == axis || PetscAbsReal(dir[a]) <= 1e-12 * norm, PETSC_COMM_SELF, PETSC_ERR_SUP,
-                 "peers: the plane's normal (%g, %g, %g) at node %" PetscInt_FMT " of body %" PetscInt_FMT " is not a coordinate axis; a simple bound needs -scene_zone<z>_normal along x, y or z", (double)(-dir[0] / norm),
-                 (double)(-dir[1] / norm), (double)(-dir[2] / norm), node[j], body[j]);
+                 "peers: the plane's normal (%g, %g, %g) at node %" PetscInt_FMT " of body %" PetscInt_FMT " is not a coordinate axis; a simple bound needs -scene_zone<z>_normal along x, y or z",
+                 (double)(-dir[0] / norm), (double)(-dir[1] / norm), (double)(-dir[2] / norm), node[j], body[j]);
     PetscCall(FEMGetBodyNodeOffset(fem, body[j], &offset));
     const PetscInt dof = 3 * (offset + node[j]) + axis;
     /* the row is -nu': u_n = nu . u = -sign(dir) u_axis */
@@ -149,8 +152,8 @@ PetscErrorCode BuildBounds(ContactScene scene, Primal &p)
     PetscCall(VecGetArray(p.lb, &l));
     PetscCall(VecGetArray(p.ub, &u));
     for (PetscInt i = 0; i < nl; i++) {
-      l[i] = PetscRealPart(s[i]) > 0 ? -g[i] : PETSC_NINFINITY;
-      u[i] = PetscRealPart(s[i]) < 0 ? g[i] : PETSC_INFINITY;
+      l[i] = PetscRealPart(s[i]) > 0 ? -g[i] : (p.free_bound > 0 ? -p.free_bound : PETSC_NINFINITY);
+      u[i] = PetscRealPart(s[i]) < 0 ? g[i] : (p.free_bound > 0 ? p.free_bound : PETSC_INFINITY);
     }
     PetscCall(VecRestoreArray(p.ub, &u));
     PetscCall(VecRestoreArray(p.lb, &l));
@@ -293,7 +296,7 @@ PetscErrorCode TaoHessianConstant(Tao, Vec, Mat, Mat, void *)
 /* what one solve did */
 struct Run {
   std::string    name, ksp = "-", pc = "-", reason;
-  PetscBool      converged = PETSC_FALSE;
+  PetscBool      converged  = PETSC_FALSE;
   PetscInt       iterations = 0, linear_iterations = -1, products = -1;
   PetscLogDouble setup = 0, solve = 0;
 };
@@ -447,8 +450,8 @@ PetscErrorCode Main(int *status)
   Measures            m;
   Run                 run;
   Vec                 u, uref = nullptr;
-  PetscInt            solver = PEERS_TAO;
-  PetscReal           acceptance = 1e-5;
+  PetscInt            solver                        = PEERS_TAO;
+  PetscReal           acceptance                    = 1e-5;
   char                reference[PETSC_MAX_PATH_LEN] = "", save[PETSC_MAX_PATH_LEN] = "";
   PetscBool           hasref = PETSC_FALSE, hassave = PETSC_FALSE, help, hasbody;
   PetscLogStage       stage;
@@ -460,12 +463,17 @@ PetscErrorCode Main(int *status)
   *status = 0;
   PetscCall(ConeFETIInitializePackage());
   PetscOptionsBegin(comm, NULL, "peers: the frictionless primal problem by SNES VI or TAO, or by conefeti", "peers");
-  PetscCall(PetscOptionsEList("-peers_solver", "Who solves: conefeti (FETI, ContactSceneSolve()), snes (-snes_type vinewtonrsls|vinewtonssls) or tao (-tao_type tron|gpcg|bqpip|blmvm|bnls)", "peers", PeersSolvers, 3,
-                              PeersSolvers[solver], &solver, NULL));
-  PetscCall(PetscOptionsString("-peers_reference", "PETSc binary file with the reference displacement (written by -peers_save); prints its relative error", "peers", reference, reference, sizeof(reference), &hasref));
+  PetscCall(PetscOptionsEList("-peers_solver", "Who solves: conefeti (FETI, ContactSceneSolve()), snes (-snes_type vinewtonrsls|vinewtonssls) or tao (-tao_type tron|gpcg|bqpip|blmvm|bnls)", "peers",
+                              PeersSolvers, 3, PeersSolvers[solver], &solver, NULL));
+  PetscCall(PetscOptionsString("-peers_reference", "PETSc binary file with the reference displacement (written by -peers_save); prints its relative error", "peers", reference, reference,
+                               sizeof(reference), &hasref));
   PetscCall(PetscOptionsString("-peers_save", "Write the displacement to this PETSc binary file (global layout of FEMAssembleGlobal())", "peers", save, save, sizeof(save), &hassave));
   PetscCall(PetscOptionsReal("-peers_acceptance", "A solve is right only when its largest mechanical residual is at most this", "peers", acceptance, &acceptance, NULL));
+  PetscCall(PetscOptionsReal("-peers_free_bound", "Bounds -b <= u_i <= b on the dofs without a contact bound (0: PETSC_NINFINITY, PETSC_INFINITY, TAO's documented 'no bound', which BQPIP mishandles)",
+                             "peers", p.free_bound, &p.free_bound, NULL));
   PetscOptionsEnd();
+  PetscCheck(p.free_bound >= 0 && !PetscIsInfOrNanReal(p.free_bound), comm, PETSC_ERR_ARG_OUTOFRANGE, "-peers_free_bound must be 0 (no bound) or a positive displacement, got %g",
+             (double)p.free_bound);
   PetscCheck(!hasref || reference[0], comm, PETSC_ERR_ARG_WRONG, "-peers_reference needs a file name");
   PetscCheck(!hassave || save[0], comm, PETSC_ERR_ARG_WRONG, "-peers_save needs a file name");
   PetscCheck(acceptance > 0 && !PetscIsInfOrNanReal(acceptance), comm, PETSC_ERR_ARG_OUTOFRANGE, "-peers_acceptance must be a positive number, got %g", (double)acceptance);
@@ -531,10 +539,10 @@ PetscErrorCode Main(int *status)
 
   const PetscBool right = (PetscBool)(m.max <= acceptance && !PetscIsInfOrNanReal(m.max));
   PetscCall(ContactSceneGetName(scene, &name));
-  PetscCall(PetscPrintf(comm, "peers: %s (ksp %s, pc %s) on %s: n = %" PetscInt_FMT ", %" PetscInt_FMT " contact nodes, %" PetscInt_FMT " pressed\n", run.name.c_str(), run.ksp.c_str(), run.pc.c_str(), name, p.n,
-                        p.ncontact, m.pressed));
-  PetscCall(PetscPrintf(comm, "  solver: %s after %" PetscInt_FMT " iterations (%" PetscInt_FMT " linear, %" PetscInt_FMT " %s); setup %.3f s, solve %.3f s\n", run.reason.c_str(), run.iterations, run.linear_iterations,
-                        run.products, solver == PEERS_CONEFETI ? "F products" : "MatMult", run.setup, run.solve));
+  PetscCall(PetscPrintf(comm, "peers: %s (ksp %s, pc %s) on %s: n = %" PetscInt_FMT ", %" PetscInt_FMT " contact nodes, %" PetscInt_FMT " pressed\n", run.name.c_str(), run.ksp.c_str(), run.pc.c_str(),
+                        name, p.n, p.ncontact, m.pressed));
+  PetscCall(PetscPrintf(comm, "  solver: %s after %" PetscInt_FMT " iterations (%" PetscInt_FMT " linear, %" PetscInt_FMT " %s); setup %.3f s, solve %.3f s\n", run.reason.c_str(), run.iterations,
+                        run.linear_iterations, run.products, solver == PEERS_CONEFETI ? "F products" : "MatMult", run.setup, run.solve));
   PetscCall(PetscPrintf(comm, "  mechanics: penetration %.1e, normal sign %.1e, complementarity %.1e, equilibrium %.1e; largest %.1e %s %.0e: %s\n", (double)m.penetration, (double)m.normal_sign,
                         (double)m.complementarity, (double)m.equilibrium, (double)m.max, right ? "<=" : ">", (double)acceptance, right ? "right" : "WRONG"));
   if (uref) PetscCall(PetscPrintf(comm, "  error against %s: |u - u_ref|/|u_ref| = %.2e\n", reference, (double)m.error_u));
@@ -544,9 +552,9 @@ PetscErrorCode Main(int *status)
                             "{\"peers\":{\"solver\":%s,\"ksp\":%s,\"pc\":%s,\"n\":%" PetscInt_FMT ",\"contact_nodes\":%" PetscInt_FMT ",\"pressed\":%" PetscInt_FMT ",\"iterations\":%" PetscInt_FMT
                             ",\"linear_iterations\":%" PetscInt_FMT ",\"products\":%" PetscInt_FMT ",\"time_setup\":%.6g,\"time_solve\":%.6g,\"solver_converged\":%s,\"reason\":%s,"
                             "\"penetration\":%.6e,\"normal_sign\":%.6e,\"complementarity\":%.6e,\"equilibrium\":%.6e,\"residual_max\":%.6e,\"acceptance\":%.6e,\"right\":%s,\"error_u\":%.6e}}",
-                            Quote(run.name).c_str(), Quote(run.ksp).c_str(), Quote(run.pc).c_str(), p.n, p.ncontact, m.pressed, run.iterations, run.linear_iterations, run.products, run.setup, run.solve,
-                            run.converged ? "true" : "false", Quote(run.reason).c_str(), (double)m.penetration, (double)m.normal_sign, (double)m.complementarity, (double)m.equilibrium, (double)m.max,
-                            (double)acceptance, right ? "true" : "false", (double)m.error_u));
+                            Quote(run.name).c_str(), Quote(run.ksp).c_str(), Quote(run.pc).c_str(), p.n, p.ncontact, m.pressed, run.iterations, run.linear_iterations, run.products, run.setup,
+                            run.solve, run.converged ? "true" : "false", Quote(run.reason).c_str(), (double)m.penetration, (double)m.normal_sign, (double)m.complementarity, (double)m.equilibrium,
+                            (double)m.max, (double)acceptance, right ? "true" : "false", (double)m.error_u));
     PetscCall(PetscPrintf(comm, "%s\n", line));
   }
   *status = run.converged && right ? 0 : 2;
