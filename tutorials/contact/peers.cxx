@@ -36,6 +36,7 @@
 #include <petscsnes.h>
 #include <petsctao.h>
 #include <string>
+#include <sys/resource.h>
 
 namespace {
 
@@ -298,8 +299,17 @@ struct Run {
   std::string    name, ksp = "-", pc = "-", reason;
   PetscBool      converged  = PETSC_FALSE;
   PetscInt       iterations = 0, linear_iterations = -1, products = -1;
-  PetscLogDouble setup = 0, solve = 0;
+  PetscLogDouble setup = 0, solve = 0;         /* wall-clock seconds */
+  PetscLogDouble cpu_setup = 0, cpu_solve = 0; /* CPU seconds of the process (the largest over the ranks): less sensitive to a shared machine's load */
 };
+
+/* user + system CPU seconds of this process so far */
+PetscLogDouble CPUSeconds()
+{
+  struct rusage ru;
+  if (getrusage(RUSAGE_SELF, &ru)) return 0;
+  return (PetscLogDouble)ru.ru_utime.tv_sec + 1e-6 * (PetscLogDouble)ru.ru_utime.tv_usec + (PetscLogDouble)ru.ru_stime.tv_sec + 1e-6 * (PetscLogDouble)ru.ru_stime.tv_usec;
+}
 
 /* MatMult calls of every matrix during the solve stage: the products with K, and on the multigrid's coarser levels */
 PetscErrorCode CountProducts(PetscLogStage stage, PetscInt *count)
@@ -352,9 +362,11 @@ PetscErrorCode SolveSNES(Primal &p, Vec u, PetscLogStage stage, Run &run)
   PetscCheck(std::string(type).rfind("vi", 0) == 0, PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-snes_type %s: the bounds need a variational-inequality SNES (vinewtonrsls or vinewtonssls)", type);
   PetscCall(VecSet(u, 0.0)); /* feasible: every gap is >= 0 */
   PetscCall(PetscLogStagePush(stage));
+  run.cpu_solve = CPUSeconds();
   PetscCall(PetscTime(&t0));
   PetscCall(SNESSolve(snes, NULL, u));
   PetscCall(PetscTime(&t1));
+  run.cpu_solve = CPUSeconds() - run.cpu_solve;
   PetscCall(PetscLogStagePop());
   run.solve = t1 - t0;
   PetscCall(SNESGetConvergedReason(snes, &reason));
@@ -388,9 +400,11 @@ PetscErrorCode SolveTao(Primal &p, Vec u, PetscLogStage stage, Run &run)
   PetscCall(TaoGetType(tao, &type));
   PetscCall(VecSet(u, 0.0));
   PetscCall(PetscLogStagePush(stage));
+  run.cpu_solve = CPUSeconds();
   PetscCall(PetscTime(&t0));
   PetscCall(TaoSolve(tao));
   PetscCall(PetscTime(&t1));
+  run.cpu_solve = CPUSeconds() - run.cpu_solve;
   PetscCall(PetscLogStagePop());
   run.solve = t1 - t0;
   PetscCall(TaoGetConvergedReason(tao, &reason));
@@ -412,7 +426,9 @@ PetscErrorCode SolveConeFETI(ContactScene scene, Vec u, Run &run, ContactSceneSu
   Vec          uprimal;
 
   PetscFunctionBegin;
+  run.cpu_solve = CPUSeconds();
   PetscCall(ContactSceneSolve(scene));
+  run.cpu_solve = CPUSeconds() - run.cpu_solve;
   PetscCall(ContactSceneGetSummary(scene, &s));
   PetscCall(ContactSceneGetFEM(scene, &fem));
   PetscCall(ContactSceneGetContactModel(scene, &cm));
@@ -455,7 +471,7 @@ PetscErrorCode Main(int *status)
   char                reference[PETSC_MAX_PATH_LEN] = "", save[PETSC_MAX_PATH_LEN] = "";
   PetscBool           hasref = PETSC_FALSE, hassave = PETSC_FALSE, help, hasbody;
   PetscLogStage       stage;
-  PetscLogDouble      t0, t1;
+  PetscLogDouble      t0, t1, cpu;
   const char         *name;
   MPI_Comm            comm = PETSC_COMM_WORLD;
 
@@ -486,12 +502,16 @@ PetscErrorCode Main(int *status)
     PetscCall(ContactSceneDestroy(&scene));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  cpu = CPUSeconds();
   PetscCall(ContactSceneSetUp(scene)); /* the FEM, and the contact nodes with their normals and gaps */
+  if (solver == PEERS_CONEFETI) run.cpu_setup = CPUSeconds() - cpu;
 
   /* setup of a peer: the assembled K and f, the bounds, the near-null space (its PC is set up inside the solve) */
+  cpu = CPUSeconds();
   PetscCall(PetscTime(&t0));
   PetscCall(BuildBounds(scene, p));
   PetscCall(PetscTime(&t1));
+  if (solver != PEERS_CONEFETI) run.cpu_setup = CPUSeconds() - cpu;
   PetscCall(VecDuplicate(p.f, &u));
   if (hasref) {
     PetscViewer viewer;
@@ -530,6 +550,8 @@ PetscErrorCode Main(int *status)
     PetscCall(CountProducts(stage, &run.products));
   }
   PetscCall(Measure(p, u, uref, m));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &run.cpu_setup, 1, MPI_DOUBLE, MPI_MAX, comm));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &run.cpu_solve, 1, MPI_DOUBLE, MPI_MAX, comm));
   if (hassave) {
     PetscViewer viewer;
     PetscCall(PetscViewerBinaryOpen(comm, save, FILE_MODE_WRITE, &viewer));
@@ -541,8 +563,9 @@ PetscErrorCode Main(int *status)
   PetscCall(ContactSceneGetName(scene, &name));
   PetscCall(PetscPrintf(comm, "peers: %s (ksp %s, pc %s) on %s: n = %" PetscInt_FMT ", %" PetscInt_FMT " contact nodes, %" PetscInt_FMT " pressed\n", run.name.c_str(), run.ksp.c_str(), run.pc.c_str(),
                         name, p.n, p.ncontact, m.pressed));
-  PetscCall(PetscPrintf(comm, "  solver: %s after %" PetscInt_FMT " iterations (%" PetscInt_FMT " linear, %" PetscInt_FMT " %s); setup %.3f s, solve %.3f s\n", run.reason.c_str(), run.iterations,
-                        run.linear_iterations, run.products, solver == PEERS_CONEFETI ? "F products" : "MatMult", run.setup, run.solve));
+  PetscCall(PetscPrintf(comm, "  solver: %s after %" PetscInt_FMT " iterations (%" PetscInt_FMT " linear, %" PetscInt_FMT " %s); setup %.3f s, solve %.3f s (CPU %.3f s + %.3f s)\n",
+                        run.reason.c_str(), run.iterations, run.linear_iterations, run.products, solver == PEERS_CONEFETI ? "F products" : "MatMult", run.setup, run.solve, run.cpu_setup,
+                        run.cpu_solve));
   PetscCall(PetscPrintf(comm, "  mechanics: penetration %.1e, normal sign %.1e, complementarity %.1e, equilibrium %.1e; largest %.1e %s %.0e: %s\n", (double)m.penetration, (double)m.normal_sign,
                         (double)m.complementarity, (double)m.equilibrium, (double)m.max, right ? "<=" : ">", (double)acceptance, right ? "right" : "WRONG"));
   if (uref) PetscCall(PetscPrintf(comm, "  error against %s: |u - u_ref|/|u_ref| = %.2e\n", reference, (double)m.error_u));
@@ -550,11 +573,12 @@ PetscErrorCode Main(int *status)
     char line[2048];
     PetscCall(PetscSNPrintf(line, sizeof(line),
                             "{\"peers\":{\"solver\":%s,\"ksp\":%s,\"pc\":%s,\"n\":%" PetscInt_FMT ",\"contact_nodes\":%" PetscInt_FMT ",\"pressed\":%" PetscInt_FMT ",\"iterations\":%" PetscInt_FMT
-                            ",\"linear_iterations\":%" PetscInt_FMT ",\"products\":%" PetscInt_FMT ",\"time_setup\":%.6g,\"time_solve\":%.6g,\"solver_converged\":%s,\"reason\":%s,"
+                            ",\"linear_iterations\":%" PetscInt_FMT ",\"products\":%" PetscInt_FMT
+                            ",\"time_setup\":%.6g,\"time_solve\":%.6g,\"cpu_setup\":%.6g,\"cpu_solve\":%.6g,\"solver_converged\":%s,\"reason\":%s,"
                             "\"penetration\":%.6e,\"normal_sign\":%.6e,\"complementarity\":%.6e,\"equilibrium\":%.6e,\"residual_max\":%.6e,\"acceptance\":%.6e,\"right\":%s,\"error_u\":%.6e}}",
                             Quote(run.name).c_str(), Quote(run.ksp).c_str(), Quote(run.pc).c_str(), p.n, p.ncontact, m.pressed, run.iterations, run.linear_iterations, run.products, run.setup,
-                            run.solve, run.converged ? "true" : "false", Quote(run.reason).c_str(), (double)m.penetration, (double)m.normal_sign, (double)m.complementarity, (double)m.equilibrium,
-                            (double)m.max, (double)acceptance, right ? "true" : "false", (double)m.error_u));
+                            run.solve, run.cpu_setup, run.cpu_solve, run.converged ? "true" : "false", Quote(run.reason).c_str(), (double)m.penetration, (double)m.normal_sign,
+                            (double)m.complementarity, (double)m.equilibrium, (double)m.max, (double)acceptance, right ? "true" : "false", (double)m.error_u));
     PetscCall(PetscPrintf(comm, "%s\n", line));
   }
   *status = run.converged && right ? 0 : 2;
