@@ -76,7 +76,7 @@ def error_message(text):
     m = re.search(r"\[0\]PETSC ERROR: (?!-+)(?!See )(.*\S)", text)
     if m:
         rest = re.findall(r"\[0\]PETSC ERROR: (.*\S)", text)
-        detail = [r for r in rest if not r.startswith(("---", "See ", "Petsc Release", "Configure", "#")) and "Caught signal" not in r]
+        detail = [r for r in rest if not r.startswith(("---", "See ", "Petsc Release", "Configure", "#", "WARNING", "Option left")) and "Caught signal" not in r and " named " not in r]
         sig = "Caught signal" in text and "crash (signal): " or ""
         return sig + "; ".join(detail[:2])[:200]
     lines = [l for l in text.splitlines() if l.strip()]
