@@ -17,10 +17,12 @@ ratio is taken against that neighbour. Iterations, products and residuals do not
 Writes the tables between the markers of docs/peers.md and the plot docs/peers.png (unless --no-docs), and
 prints them.
 
-usage: scripts/bench-peers.py [--sizes 10,22] [--large] [--only REGEX] [--timeout 300] [--build build]
-                              [--hugepages 1] [--no-docs]
+usage: scripts/bench-peers.py [--sizes 10,22] [--large] [--only REGEX] [--timeout 1800] [--build build]
+                              [--hugepages 1] [--no-docs] [--save FILE] [--from-saved FILE]
   --sizes  -scene_refine values (n = 9 k (k+1)^2: 10 -> 10890, 22 -> 104742, 48 -> 1.04e6)
   --large  add k = 48 (n = 1.04e6; not run by default: see docs/peers.md for why)
+  --save   every result goes to this JSON file as it comes (default <build>/bench-peers.json);
+           --from-saved FILE writes the tables and the plot from it without running anything
 """
 import argparse, json, os, platform, re, shutil, subprocess, sys, tempfile, time
 
@@ -76,7 +78,7 @@ def error_message(text):
     m = re.search(r"\[0\]PETSC ERROR: (?!-+)(?!See )(.*\S)", text)
     if m:
         rest = re.findall(r"\[0\]PETSC ERROR: (.*\S)", text)
-        detail = [r for r in rest if not r.startswith(("---", "See ", "Petsc Release", "Configure", "#", "WARNING", "Option left")) and "Caught signal" not in r and " named " not in r]
+        detail = [r for r in rest if not r.startswith(("---", "See ", "Petsc Release", "Configure", "#", "WARNING", "Option left", "PETSc Option Table", "-")) and "Caught signal" not in r and " named " not in r]
         sig = "Caught signal" in text and "crash (signal): " or ""
         return sig + "; ".join(detail[:2])[:200]
     lines = [l for l in text.splitlines() if l.strip()]
@@ -220,12 +222,23 @@ def main():
     ap.add_argument("--sizes", default="10,22")
     ap.add_argument("--large", action="store_true")
     ap.add_argument("--only", default="", help="run only the peers whose name matches this regular expression")
-    ap.add_argument("--timeout", type=int, default=300, help="seconds per run; a peer that takes longer is reported as such")
+    ap.add_argument("--timeout", type=int, default=1800, help="wall-clock seconds per run (a loaded machine stretches them); a peer that takes longer is reported as such")
     ap.add_argument("--build", default="build")
     ap.add_argument("--hugepages", type=int, default=1)
     ap.add_argument("--no-docs", action="store_true")
     ap.add_argument("--docs", default="docs")
+    ap.add_argument("--save", default=None, help="every result is written here as it comes (a run cut short keeps what it measured)")
+    ap.add_argument("--from-saved", metavar="FILE", help="run nothing: write the tables and the plot from a file of --save")
     a = ap.parse_args()
+    if a.from_saved:
+        saved = json.load(open(a.from_saved))
+        results = [(k, res) for k, res in saved["results"] if "conefeti" in res]
+        text = tables(results, saved["args"])
+        print(text)
+        if not a.no_docs:
+            write_docs(text, os.path.join(a.docs, "peers.md"), os.path.join(a.docs, "peers.png"), results)
+        return
+    a.save = a.save or os.path.join(a.build, "bench-peers.json")
     env = hugepages.environment(a.hugepages)
     sizes = [int(x) for x in a.sizes.split(",")] + ([48] if a.large else [])
     chosen = [(n, args) for n, args in PEERS if re.search(a.only, n)]
@@ -251,6 +264,8 @@ def main():
             res["conefeti_runs"].append(cf)
             r = peers(a.build, k, args + R, env, a.timeout)
             res["peers"].append((name, r, cf))
+            res["conefeti"] = res["conefeti_runs"][0]
+            json.dump(dict(args=sys.argv[1:], results=results + [(k, res)]), open(a.save, "w"))
             if r["status"] != "ok":
                 failed[name] = ref["n"]
             print("k = %d  %-28s %-28s %s" % (k, name, r["status"], "time ratio %.2f, residual %.1e, error %.1e" % (total(r) / total(cf), r["residual_max"], r["error_u"]) if "residual_max" in r else r.get("message", "")), flush=True)
@@ -258,6 +273,7 @@ def main():
             res["conefeti_runs"].append(peers(a.build, k, ["-peers_solver", "conefeti"] + R, env, a.timeout))
         res["conefeti"] = res["conefeti_runs"][0]
         results.append((k, res))
+        json.dump(dict(args=sys.argv[1:], results=results), open(a.save, "w"))
         os.remove(refpath)
     text = tables(results, sys.argv[1:])
     print(text)
