@@ -6,13 +6,14 @@
    on one displacement component, u_n >= -gap. That is a bound-constrained QP, which PETSc solves with SNES VI
    (-peers_solver snes -snes_type vinewtonrsls) or TAO (-peers_solver tao -tao_type tron|gpcg|bqpip|blmvm|bnls),
    each with the KSP and PC of -ksp_type, -pc_type (CG + ML or GAMG with the rigid-body near-null space, or a
-   sparse Cholesky). -peers_solver conefeti solves the same scene with the FETI contact solver instead
+   sparse Cholesky; TRON, GPCG and BQPIP read -ksp_* and -pc_* unprefixed, BNLS -tao_bnk_ksp_*, -tao_bnk_pc_*;
+   GAMG stops with an error inside TRON and VI in PETSc 3.18, docs/peers.md). -peers_solver conefeti solves the same scene with the FETI contact solver instead
    (ContactSceneSolve(), what the conefeti driver runs). The contact nodes, their normals and gaps are read
    from the scene's ContactModel: the normal rows of the FETI constraints (B u <= c) and ContactModelGetNodes().
 
    Sample runs (from the repository root; the scene options are those of the conefeti driver):
      peers -options_file petsc-options/brick-frictionless.opts -scene_refine 8 -peers_solver tao -tao_type tron -ksp_type cg -pc_type ml
-     peers -options_file petsc-options/brick-frictionless.opts -peers_solver snes -snes_type vinewtonrsls -ksp_type cg -pc_type gamg
+     peers -options_file petsc-options/brick-frictionless.opts -peers_solver snes -snes_type vinewtonrsls -ksp_type preonly -pc_type cholesky
      peers -options_file petsc-options/brick-frictionless.opts -peers_solver conefeti -contact_rtol 1e-10 -peers_save ref.bin
      peers -options_file petsc-options/brick-frictionless.opts -peers_solver tao -tao_type gpcg -peers_reference ref.bin
      peers -options_file petsc-options/brick-frictionless.opts -peers_solver tao -tao_type bqpip -peers_free_bound 1   (finite bounds)
@@ -30,7 +31,8 @@
 
    Output: a few lines, then one JSON line starting with {"peers": (fields: docs/peers.md).
    Exit status: 0 when the solver converged and the largest residual is within -peers_acceptance; 2 when
-   either is not so; 1 for bad input (the message names the option or file). */
+   either is not so; another non-zero status (PETSc's error code) for bad input, after a message naming the
+   option or file. */
 #include <conefeti.h>
 #include <conefeti/compat.h>
 #include <petscsnes.h>
