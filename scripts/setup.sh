@@ -14,7 +14,7 @@ packages=(
   clang-format                          # style check (a test)
   python3 python3-numpy python3-h5py    # result checks and benchmark tables
   gmsh python3-gmsh                     # meshes of your own geometry (meshes/*.geo); the mesh-file tests make theirs at test time
-  python3-matplotlib                    # the figures of docs/ (scripts/figures.sh, scripts/bench-hertz.py)
+  python3-matplotlib                    # the figures of docs/ (scripts/figures.sh, scripts/bench-hertz.py, scripts/bench-peers.py)
 )
 
 missing=()
