@@ -59,8 +59,8 @@ def gmsh(geo, h, out, **params):
     subprocess.run(cmd + ["-o", out, "-v", "2"], check=True, stdout=subprocess.DEVNULL)
 
 
-def options(case, size, tmp):
-    """the driver's options for one mesh, and h at the contact"""
+def options(case, size, tmp, subdomains=16):
+    """the driver's options for one mesh, and h at the contact (subdomains: of the graded indentation block)"""
     if case == "box":
         n = int(size)
         sub = 2 if n <= 16 else 3
@@ -70,7 +70,7 @@ def options(case, size, tmp):
     msh = os.path.join(tmp, "%s-%g.msh" % (case, h))
     if case == "indentation":
         gmsh("indentation.geo", h, msh, L=HBLOCK, H=HBLOCK, hc=HFAR)
-        return ["-scene_name", "indentation-graded", "-scene_body0_mesh", msh, "-scene_body0_E", repr(E), "-scene_body0_nu", repr(NU), "-scene_body0_subdomains", "16",
+        return ["-scene_name", "indentation-graded", "-scene_body0_mesh", msh, "-scene_body0_E", repr(E), "-scene_body0_nu", repr(NU), "-scene_body0_subdomains", str(subdomains),
                 "-scene_body0_fix", "bottom", "-scene_body0_fix_x", "sym_x", "-scene_body0_fix_y", "sym_y",
                 "-scene_zone0_type", "foundation", "-scene_zone0_shape", "sphere", "-scene_zone0_body", "0", "-scene_zone0_face", "top",
                 "-scene_zone0_center", "0,0,%r" % (HBLOCK + R - D), "-scene_zone0_radius", repr(R), "-scene_zone0_law", "frictionless"], h
