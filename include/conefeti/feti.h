@@ -87,6 +87,7 @@ PETSC_EXTERN PetscErrorCode FETIApplyK(FETI, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIApplyCoarseInverse(FETI, Vec, Vec);
 
 PETSC_EXTERN PetscErrorCode FETIComputeAlpha(FETI, Vec, Vec, Vec);
+PETSC_EXTERN PetscErrorCode FETIComputeAlphaFromEquality(FETI, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIRecoverPrimal(FETI, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIGetKSP(FETI, KSP *);
 PETSC_EXTERN PetscErrorCode FETISetKplusExplicit(FETI, PetscBool);

@@ -572,9 +572,7 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
     st->products_qpp     = its + 1;
     PetscCall(PetscSNPrintf(st->reason, sizeof(st->reason), "linear FETI solve (projected CG): %s in %" PetscInt_FMT " iterations", KSPConvergedReasons[reason], its));
   } else {
-    Mat       G;
-    Vec       w, Gw;
-    PetscInt  ncoarse;
+    Vec       w;
     Tao       tao;
     PetscBool recycle;
     PetscCall(ContactProblemGetTao(d.cp, &tao));
@@ -593,15 +591,7 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
     PetscCall(ContactProblemGetStatistics(d.cp, st));
     PetscCall(VecDuplicate(d.lambda, &w));
     PetscCall(ContactProblemGetEqualityMultiplier(d.cp, w));
-    PetscCall(VecGetSize(d.alpha, &ncoarse));
-    if (ncoarse) {
-      PetscCall(FETIGetOperators(d.feti, NULL, &G, NULL, NULL));
-      PetscCall(VecDuplicate(d.alpha, &Gw));
-      PetscCall(MatMult(G, w, Gw));
-      PetscCall(FETIApplyCoarseInverse(d.feti, Gw, d.alpha));
-      PetscCall(VecScale(d.alpha, -1.0));
-      PetscCall(VecDestroy(&Gw));
-    }
+    PetscCall(FETIComputeAlphaFromEquality(d.feti, w, d.alpha)); /* FETI owns the rigid-body amplitudes */
     PetscCall(VecDestroy(&w));
     PetscCall(FETIRecoverPrimal(d.feti, d.lambda, d.alpha, d.u));
   }
@@ -646,7 +636,7 @@ void Accumulate(ContactStatistics &total, const ContactStatistics &one)
   A scene without load (no force, no prescribed displacement, no initial penetration) has the exact solution
   u = 0, l = 0, returned without a solve.
 
-  alpha comes from the augmented Lagrangian's multiplier of G l = e, alpha = -(GG')^{-1} G w with
+  alpha comes from the augmented Lagrangian's multiplier of G l = e, alpha = -(GG')^{-1} G w (`FETIComputeAlphaFromEquality()`) with
   w = G'mu (`ContactProblemGetEqualityMultiplier()`), then u = K+(f - B'l) + R alpha.
 
   Level: beginner

@@ -9,6 +9,7 @@
 #include <conefeti/fem.h>
 #include <petscdmplex.h>
 #include <conefeti/compat.h>
+#include <conefeti/private/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,16 +21,6 @@
 #include <vector>
 
 namespace {
-
-std::string Format(const char *fmt, ...)
-{
-  char    buf[1024];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(buf, sizeof(buf), fmt, ap);
-  va_end(ap);
-  return buf;
-}
 
 /* Labels PETSc keeps for itself (topology, cell types, output) or that are not about faces; "Face Sets" is
    read by value, every other label that holds triangles becomes one facet set named after it. */
@@ -182,12 +173,12 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
   PetscCall(DMGetDimension(dm, &dim));
   PetscCall(DMGetCoordinateDim(dm, &cdim));
   if (dim != 3 || cdim != 3) {
-    body.error = Format("%s: a %dD mesh in %dD space; a body needs a 3D mesh of tetrahedra", name, (int)dim, (int)cdim);
+    body.error = ConeFETIFormat("%s: a %dD mesh in %dD space; a body needs a 3D mesh of tetrahedra", name, (int)dim, (int)cdim);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(DMGetCellCoordinateDM(dm, &cdm));
   if (cdm) {
-    body.error = Format("%s: the mesh has cellwise (periodic) coordinates; a body needs a mesh with one position per vertex", name);
+    body.error = ConeFETIFormat("%s: the mesh has cellwise (periodic) coordinates; a body needs a mesh with one position per vertex", name);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(DMPlexGetDepth(dm, &depth));
@@ -216,13 +207,13 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
   }
   if (!others.empty()) {
     std::string list;
-    for (const auto &o : others) list += Format("%s%ld of type %s", list.empty() ? "" : ", ", o.second, DMPolytopeTypes[o.first]);
-    body.error =
-        Format("%s: %ld tetrahedra and cells %s; a body is a mesh of linear tetrahedra only (in Gmsh: Mesh.SubdivisionAlgorithm 0, no Recombine)", name, (long)(cellvertices.size() / 4), list.c_str());
+    for (const auto &o : others) list += ConeFETIFormat("%s%ld of type %s", list.empty() ? "" : ", ", o.second, DMPolytopeTypes[o.first]);
+    body.error = ConeFETIFormat("%s: %ld tetrahedra and cells %s; a body is a mesh of linear tetrahedra only (in Gmsh: Mesh.SubdivisionAlgorithm 0, no Recombine)", name,
+                                (long)(cellvertices.size() / 4), list.c_str());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (cellvertices.empty()) {
-    body.error = Format("%s: the mesh has no cells (a body needs 3D tetrahedra; a Gmsh file meshed in 2D only?)", name);
+    body.error = ConeFETIFormat("%s: the mesh has no cells (a body needs 3D tetrahedra; a Gmsh file meshed in 2D only?)", name);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   /* nodes: the vertices the tetrahedra use, in DMPlex vertex order */
@@ -264,22 +255,23 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
         for (PetscInt d = 0; d < 3; d++) l2 += PetscSqr(body.coords[3 * id[a] + d] - body.coords[3 * id[b] + d]);
         lmax = std::max(lmax, std::sqrt(l2));
       }
-    const std::string which = Format("%s: tetrahedron %ld (DMPlex cell %" PetscInt_FMT ", vertices at (%g,%g,%g), (%g,%g,%g), (%g,%g,%g), (%g,%g,%g))", name, (long)t, c,
-                                     (double)body.coords[3 * id[0]], (double)body.coords[3 * id[0] + 1], (double)body.coords[3 * id[0] + 2], (double)body.coords[3 * id[1]],
-                                     (double)body.coords[3 * id[1] + 1], (double)body.coords[3 * id[1] + 2], (double)body.coords[3 * id[2]], (double)body.coords[3 * id[2] + 1],
-                                     (double)body.coords[3 * id[2] + 2], (double)body.coords[3 * id[3]], (double)body.coords[3 * id[3] + 1], (double)body.coords[3 * id[3] + 2]);
+    const std::string which = ConeFETIFormat("%s: tetrahedron %ld (DMPlex cell %" PetscInt_FMT ", vertices at (%g,%g,%g), (%g,%g,%g), (%g,%g,%g), (%g,%g,%g))", name, (long)t, c,
+                                             (double)body.coords[3 * id[0]], (double)body.coords[3 * id[0] + 1], (double)body.coords[3 * id[0] + 2], (double)body.coords[3 * id[1]],
+                                             (double)body.coords[3 * id[1] + 1], (double)body.coords[3 * id[1] + 2], (double)body.coords[3 * id[2]], (double)body.coords[3 * id[2] + 1],
+                                             (double)body.coords[3 * id[2] + 2], (double)body.coords[3 * id[3]], (double)body.coords[3 * id[3] + 1], (double)body.coords[3 * id[3] + 2]);
     if (!std::isfinite(det)) {
       body.error = which + " has a coordinate that is not a finite number";
       PetscFunctionReturn(PETSC_SUCCESS);
     }
     if (std::fabs(det) <= 1e-10 * lmax * lmax * lmax) {
-      body.error = Format("%s is degenerate: volume %g for edges up to %g long", which.c_str(), (double)(std::fabs(det) / 6), (double)lmax);
+      body.error = ConeFETIFormat("%s is degenerate: volume %g for edges up to %g long", which.c_str(), (double)(std::fabs(det) / 6), (double)lmax);
       PetscFunctionReturn(PETSC_SUCCESS);
     }
     PetscCall(DMPlexComputeCellGeometryAffineFEM(dm, c, v0, J, NULL, &detJ));
     if (detJ < 0) {
-      body.error = Format("%s is inverted (negative volume %g in DMPlex's orientation convention, which is the reverse of Gmsh's and Exodus's): its vertices are listed in the wrong order in the mesh",
-                          which.c_str(), (double)(-std::fabs(det) / 6));
+      body.error =
+          ConeFETIFormat("%s is inverted (negative volume %g in DMPlex's orientation convention, which is the reverse of Gmsh's and Exodus's): its vertices are listed in the wrong order in the mesh",
+                         which.c_str(), (double)(-std::fabs(det) / 6));
       PetscFunctionReturn(PETSC_SUCCESS);
     }
     if (det < 0) std::swap(id[1], id[2]);
@@ -294,7 +286,7 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
     PetscCall(FacetSetLabels(dm, labels, values, &facesets));
     for (PetscInt v : values) {
       FacetSet s;
-      s.name = Format("%" PetscInt_FMT, v);
+      s.name = ConeFETIFormat("%" PetscInt_FMT, v);
       PetscCall(StratumTriangles(dm, facesets, v, node, vStart, s.triangles, &interior));
       PetscCallCXX(body.sets.push_back(s));
     }
@@ -304,7 +296,7 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
       PetscInt        n;
       const PetscInt *vv;
       if (BuiltinTag(l.first)) {
-        body.error = Format("%s: the label '%s' has the name of a built-in face tag (x0 x1 y0 y1 z0 z1): rename it", name, l.first.c_str());
+        body.error = ConeFETIFormat("%s: the label '%s' has the name of a built-in face tag (x0 x1 y0 y1 z0 z1): rename it", name, l.first.c_str());
         PetscFunctionReturn(PETSC_SUCCESS);
       }
       s.name = l.first;
@@ -467,7 +459,7 @@ PetscErrorCode FEMDMPlexGetFacetSetNames(DM dm, PetscInt *n, char ***names)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(dm, DM_CLASSID, 1);
   PetscCall(FacetSetLabels(dm, labels, values, &facesets));
-  for (PetscInt v : values) PetscCallCXX(all.push_back(Format("%" PetscInt_FMT, v)));
+  for (PetscInt v : values) PetscCallCXX(all.push_back(ConeFETIFormat("%" PetscInt_FMT, v)));
   for (const auto &l : labels) PetscCallCXX(all.push_back(l.first));
   *n = (PetscInt)all.size();
   PetscCall(PetscMalloc1(all.size() + 1, names));
@@ -519,7 +511,7 @@ PetscErrorCode ReadPhysicalNames(const char filename[], double *version, std::ve
     PhysicalName pn;
     const size_t q0 = s.find('"'), q1 = s.rfind('"');
     if (sscanf(s.c_str(), "%d %d", &pn.dim, &pn.tag) != 2 || q0 == std::string::npos || q1 <= q0) {
-      error = Format("%s: the $PhysicalNames line '%s' is not 'dimension tag \"name\"'", filename, s.c_str());
+      error = ConeFETIFormat("%s: the $PhysicalNames line '%s' is not 'dimension tag \"name\"'", filename, s.c_str());
       break;
     }
     pn.name = s.substr(q0 + 1, q1 - q0 - 1);
@@ -565,7 +557,7 @@ PetscErrorCode ReadOnRankZero(const char filename[], DM *dm, std::string &error)
   *dm = NULL;
   PetscCall(PetscTestFile(filename, 'r', &exists));
   if (!exists) {
-    error = Format("%s: no such file, or not readable", filename);
+    error = ConeFETIFormat("%s: no such file, or not readable", filename);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscStrlen(filename, &len));
@@ -593,7 +585,7 @@ PetscErrorCode ReadOnRankZero(const char filename[], DM *dm, std::string &error)
     while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
     for (char &ch : why)
       if (ch == '\n') ch = ' ';
-    error = Format("%s: the mesh could not be read (a truncated file, or not a format PETSc reads?): %s", filename, why.c_str());
+    error = ConeFETIFormat("%s: the mesh could not be read (a truncated file, or not a format PETSc reads?): %s", filename, why.c_str());
     *dm   = NULL; /* left as the failed reader left it: a leak, not a crash */
     PetscFunctionReturn(PETSC_SUCCESS);
   }

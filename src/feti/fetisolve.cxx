@@ -8,6 +8,49 @@
 #include <conefeti/private/fetiimpl.h>
 
 /*@C
+  FETIComputeAlphaFromEquality - The rigid-body amplitudes alpha from the multiplier of the equality G lambda = e, as the
+  augmented Lagrangian solvers carry it: alpha = -(G G')^{-1} G w.
+
+  Collective
+
+  Input Parameters:
++ feti - the FETI problem, set up
+- w    - dual vector: G' mu, with mu the multiplier of G lambda = e (`ContactProblemGetEqualityMultiplier()` gives w)
+
+  Output Parameter:
+. alpha - coarse vector (untouched when the problem has no rigid modes)
+
+  Notes:
+  At a solution of the dual problem, F lambda - h + w lies in the normal cone of the constraints at lambda, so on the
+  rows holding with equality G' alpha = F lambda - h with alpha = -(G G')^{-1} G w: the least squares of
+  `FETIComputeAlpha()` without its own factorization of G_A G_A'.
+
+  Level: intermediate
+
+.seealso: `FETIComputeAlpha()`, `FETIRecoverPrimal()`
+@*/
+PetscErrorCode FETIComputeAlphaFromEquality(FETI feti, Vec w, Vec alpha)
+{
+  Mat      G;
+  Vec      Gw;
+  PetscInt ncoarse;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidHeaderSpecific(w, VEC_CLASSID, 2);
+  PetscValidHeaderSpecific(alpha, VEC_CLASSID, 3);
+  PetscCall(VecGetSize(alpha, &ncoarse));
+  if (!ncoarse) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(FETIGetOperators(feti, NULL, &G, NULL, NULL));
+  PetscCall(VecDuplicate(alpha, &Gw));
+  PetscCall(MatMult(G, w, Gw));
+  PetscCall(FETIApplyCoarseInverse(feti, Gw, alpha));
+  PetscCall(VecScale(alpha, -1.0));
+  PetscCall(VecDestroy(&Gw));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   FETIComputeAlpha - The rigid-body amplitudes alpha of the primal solution, by least squares of G' alpha = F lambda - h over the rows where the constraint holds with equality.
 
   Collective

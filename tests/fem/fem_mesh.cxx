@@ -14,6 +14,7 @@
    out_of_range, inner_facet): the program must stop with an error whose text the test matches. */
 #include <conefeti.h>
 #include <conefeti/compat.h>
+#include "femsolve.h"
 
 #include <cstring>
 #include <vector>
@@ -89,62 +90,6 @@ static PetscErrorCode RunCase(const char *name, const PetscInt cells[3])
   PetscCall(FEMAddFacetSet(fem, 0, "top", (PetscInt)tri.size() / 3, tri.data()));
   PetscCall(FEMSetUp(fem));
   PetscCall(FEMDestroy(&fem));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* K, f and u = K^-1 f of a model, gathered on rank 0 in the model's global node order */
-static PetscErrorCode Solve(FEM fem, Vec *Kx, Vec *f, Vec *u, PetscErrorCode (*field)(FEM, Vec))
-{
-  Mat        K;
-  Vec        x, fl, ul, Kxl;
-  KSP        ksp;
-  VecScatter sc;
-
-  PetscFunctionBeginUser;
-  PetscCall(FEMAssembleGlobal(fem, &K, &fl));
-  PetscCall(MatCreateVecs(K, &x, &ul));
-  PetscCall(VecDuplicate(ul, &Kxl));
-  PetscCall(field(fem, x));
-  PetscCall(MatMult(K, x, Kxl));
-  PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
-  PetscCall(KSPSetOperators(ksp, K, K));
-  PetscCall(KSPSetType(ksp, KSPCG));
-  PetscCall(KSPSetTolerances(ksp, 1e-13, 1e-50, PETSC_DEFAULT, 10000));
-  PetscCall(KSPSolve(ksp, fl, ul));
-  Vec *out[3] = {Kx, f, u}, in[3] = {Kxl, fl, ul};
-  for (int i = 0; i < 3; i++) {
-    PetscCall(VecScatterCreateToZero(in[i], &sc, out[i]));
-    PetscCall(VecScatterBegin(sc, in[i], *out[i], INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(sc, in[i], *out[i], INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterDestroy(&sc));
-  }
-  PetscCall(KSPDestroy(&ksp));
-  PetscCall(VecDestroy(&x));
-  PetscCall(VecDestroy(&fl));
-  PetscCall(VecDestroy(&ul));
-  PetscCall(VecDestroy(&Kxl));
-  PetscCall(MatDestroy(&K));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* x_i = sin of a combination of the node's coordinates: smooth, nowhere symmetric */
-static PetscErrorCode SmoothField(FEM fem, Vec x)
-{
-  Vec                coords;
-  const PetscScalar *c;
-  PetscScalar       *a;
-  PetscInt           n;
-
-  PetscFunctionBeginUser;
-  PetscCall(FEMCreateGlobalCoordinates(fem, &coords));
-  PetscCall(VecGetLocalSize(x, &n));
-  PetscCall(VecGetArrayRead(coords, &c));
-  PetscCall(VecGetArray(x, &a));
-  for (PetscInt i = 0; i < n / 3; i++)
-    for (PetscInt d = 0; d < 3; d++) a[3 * i + d] = PetscSinReal(1.3 * c[3 * i] + 0.7 * (d + 1) * c[3 * i + 1] - 0.4 * c[3 * i + 2] + d);
-  PetscCall(VecRestoreArray(x, &a));
-  PetscCall(VecRestoreArrayRead(coords, &c));
-  PetscCall(VecDestroy(&coords));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -290,13 +235,13 @@ int main(int argc, char **argv)
 
   /* K x, f and u node for node */
   {
-    Vec                Kxb, fb, ub, Kxm, fm, um;
+    Vec                vb[3], vm[3];
     const PetscScalar *a[6];
     PetscReal          err[3] = {0, 0, 0}, scale[3] = {0, 0, 0};
-    PetscCall(Solve(box, &Kxb, &fb, &ub, SmoothField));
-    PetscCall(Solve(mesh, &Kxm, &fm, &um, SmoothField));
+    PetscCall(FEMTestSolveGathered(box, vb));
+    PetscCall(FEMTestSolveGathered(mesh, vm));
+    Vec v[6] = {vb[0], vb[1], vb[2], vm[0], vm[1], vm[2]};
     if (rank == 0) {
-      Vec v[6] = {Kxb, fb, ub, Kxm, fm, um};
       for (int i = 0; i < 6; i++) PetscCall(VecGetArrayRead(v[i], &a[i]));
       for (PetscInt n = 0; n < N; n++)
         for (int d = 0; d < 3; d++)
@@ -308,7 +253,6 @@ int main(int argc, char **argv)
     }
     PetscCall(PetscPrintf(PETSC_COMM_WORLD, "relative differences: K x %.2e, f %.2e, u %.2e\n", (double)(err[0] / scale[0]), (double)(err[1] / scale[1]), (double)(err[2] / scale[2])));
     if (rank == 0) PetscCheck(err[0] < 1e-12 * scale[0] && err[1] < 1e-12 * scale[1] && err[2] < 1e-8 * scale[2], PETSC_COMM_SELF, PETSC_ERR_PLIB, "the mesh body differs from the box");
-    Vec v[6] = {Kxb, fb, ub, Kxm, fm, um};
     for (int i = 0; i < 6; i++) PetscCall(VecDestroy(&v[i]));
   }
   PetscCall(FEMDestroy(&box));

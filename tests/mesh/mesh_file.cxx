@@ -10,6 +10,7 @@
    Options: -file <msh> (required), -lower, -upper, -cells as given to write-box-msh.py */
 #include <conefeti.h>
 #include <conefeti/compat.h>
+#include "femsolve.h"
 
 #include <algorithm>
 #include <array>
@@ -60,50 +61,6 @@ static PetscErrorCode SameTag(FEM box, const char *a, FEM mesh, const char *b, c
   }
   PetscCheck(err < 1e-13, PETSC_COMM_WORLD, PETSC_ERR_PLIB, "areas or normals of %s and %s differ by %g", a, b, (double)err);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "tag %s of the mesh = %s of the box (%" PetscInt_FMT " nodes)\n", b, a, na));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* K x for a smooth x, f and u = K^-1 f, gathered on rank 0 in the model's node order */
-static PetscErrorCode Solve(FEM fem, Vec out[3])
-{
-  Mat                K;
-  Vec                x, f, u, Kx, coords;
-  KSP                ksp;
-  const PetscScalar *c;
-  PetscScalar       *a;
-  PetscInt           n;
-
-  PetscFunctionBeginUser;
-  PetscCall(FEMAssembleGlobal(fem, &K, &f));
-  PetscCall(MatCreateVecs(K, &x, &u));
-  PetscCall(VecDuplicate(u, &Kx));
-  PetscCall(FEMCreateGlobalCoordinates(fem, &coords));
-  PetscCall(VecGetLocalSize(x, &n));
-  PetscCall(VecGetArrayRead(coords, &c));
-  PetscCall(VecGetArray(x, &a));
-  for (PetscInt i = 0; i < n / 3; i++)
-    for (PetscInt d = 0; d < 3; d++) a[3 * i + d] = PetscSinReal(1.3 * c[3 * i] + 0.7 * (d + 1) * c[3 * i + 1] - 0.4 * c[3 * i + 2] + d);
-  PetscCall(VecRestoreArray(x, &a));
-  PetscCall(VecRestoreArrayRead(coords, &c));
-  PetscCall(MatMult(K, x, Kx));
-  PetscCall(KSPCreate(PETSC_COMM_WORLD, &ksp));
-  PetscCall(KSPSetOperators(ksp, K, K));
-  PetscCall(KSPSetType(ksp, KSPCG));
-  PetscCall(KSPSetTolerances(ksp, 1e-13, 1e-50, PETSC_DEFAULT, 10000));
-  PetscCall(KSPSolve(ksp, f, u));
-  Vec in[3] = {Kx, f, u};
-  for (int i = 0; i < 3; i++) {
-    VecScatter sc;
-    PetscCall(VecScatterCreateToZero(in[i], &sc, &out[i]));
-    PetscCall(VecScatterBegin(sc, in[i], out[i], INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterEnd(sc, in[i], out[i], INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(VecScatterDestroy(&sc));
-    PetscCall(VecDestroy(&in[i]));
-  }
-  PetscCall(KSPDestroy(&ksp));
-  PetscCall(VecDestroy(&x));
-  PetscCall(VecDestroy(&coords));
-  PetscCall(MatDestroy(&K));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -163,8 +120,8 @@ int main(int argc, char **argv)
     Vec                vb[3], vm[3];
     const PetscScalar *a, *b;
     PetscReal          err[3] = {0, 0, 0}, scale[3] = {0, 0, 0};
-    PetscCall(Solve(box, vb));
-    PetscCall(Solve(mesh, vm));
+    PetscCall(FEMTestSolveGathered(box, vb));
+    PetscCall(FEMTestSolveGathered(mesh, vm));
     if (rank == 0)
       for (int q = 0; q < 3; q++) {
         PetscCall(VecGetArrayRead(vb[q], &a));

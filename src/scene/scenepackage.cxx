@@ -1,5 +1,5 @@
 /* io layer package: the ContactScene class and its log events. */
-#include "ioimpl.h"
+#include "sceneimpl.h"
 #include <conefeti/private/package.h>
 
 PetscErrorCode ConeFETIIOInitializePackage(void)

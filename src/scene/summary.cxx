@@ -1,6 +1,6 @@
 /* The summary of a solved scene: the pipeline, the counts of the seed paper's tables, times, the
    mechanical residuals; printed as a human table and as one JSON line (docs/output.md). */
-#include "ioimpl.h"
+#include "sceneimpl.h"
 
 #include <cmath>
 #include <cstdio>

@@ -1,4 +1,4 @@
-/* Private structures of the io layer, shared between the files of src/io. */
+/* Private structures of the scene layer (ContactScene: options, summary, output), shared between the files of src/scene. */
 #pragma once
 
 #include <petsc/private/petscimpl.h>

@@ -8,7 +8,7 @@
    Both files are written under temporary names (<file>.tmp) and renamed when complete: a reader
    never sees a half-written file, and a failed write removes its temporary files and leaves any
    previous output untouched. */
-#include "ioimpl.h"
+#include "sceneimpl.h"
 #if defined(PETSC_HAVE_HDF5)
 #  include <petscviewerhdf5.h>
 #endif

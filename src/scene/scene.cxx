@@ -4,7 +4,8 @@
    that names the option and the value; a -scene_* option that no body or zone uses (a typo, or a
    body/zone index after a gap) is an error, not a warning at the end of the run. */
 #include <algorithm>
-#include "ioimpl.h"
+#include "sceneimpl.h"
+#include <conefeti/private/format.h>
 
 #include <cerrno>
 #include <cmath>
@@ -20,16 +21,6 @@ const char *const SceneFaceNames[6] = {"x0", "x1", "y0", "y1", "z0", "z1"};
 namespace {
 
 const PetscInt MaxList = 16; /* entries of a list option (e.g. -scene_body0_fix) */
-
-std::string Format(const char *fmt, ...)
-{
-  char    buf[512];
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(buf, sizeof(buf), fmt, ap);
-  va_end(ap);
-  return buf;
-}
 
 /* What the parser needs to read and check options: the prefix and the communicator for errors */
 struct Reader {
@@ -298,7 +289,7 @@ PetscErrorCode AnySet(const Reader &r, const std::string &stem, std::initializer
 
 PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody &body)
 {
-  const std::string s    = Format("-scene_body%d_", (int)b);
+  const std::string s    = ConeFETIFormat("-scene_body%d_", (int)b);
   const MPI_Comm    comm = r.comm;
   PetscBool         set, setlo, setup, setcells, setE, setnu, setdec, setparts;
   PetscInt          n, parts[3] = {1, 1, 1};
@@ -404,7 +395,7 @@ PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody
     body.tractions.push_back(t);
   }
   for (PetscInt k = 0; k < MaxList; k++) {
-    const std::string sf = Format("%straction%d_face", s.c_str(), (int)k), sv = Format("%straction%d_value", s.c_str(), (int)k);
+    const std::string sf = ConeFETIFormat("%straction%d_face", s.c_str(), (int)k), sv = ConeFETIFormat("%straction%d_value", s.c_str(), (int)k);
     PetscBool         has, hasv, setv;
     SceneTraction     t;
     std::string       text;
@@ -425,7 +416,7 @@ PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody
 
 PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt nbodies, SceneZoneSpec &spec)
 {
-  const std::string s    = Format("-scene_zone%d_", (int)z);
+  const std::string s    = ConeFETIFormat("-scene_zone%d_", (int)z);
   const MPI_Comm    comm = r.comm;
   ContactZone      &zone = spec.zone;
   PetscBool         set, setface, setpoint, setnormal, setother, setotherface, setlaw, setF, setg, setshape, setcenter, setaxis, setradius;
@@ -595,7 +586,7 @@ static PetscErrorCode VolumeNames(DM dm, std::string &list)
       PetscInt first = -1;
       PetscCall(DMLabelGetStratumBounds(label, v[i], &first, NULL));
       if (first < cStart || first >= cEnd) continue; /* not cells (strata of a Gmsh label hold one dimension) */
-      if (!strcmp(name, "Cell Sets")) list += (list.empty() ? "" : ", ") + Format("%" PetscInt_FMT, v[i]);
+      if (!strcmp(name, "Cell Sets")) list += (list.empty() ? "" : ", ") + ConeFETIFormat("%" PetscInt_FMT, v[i]);
       else if (i == 0) list += (list.empty() ? "" : ", ") + std::string(name);
     }
     PetscCall(ISRestoreIndices(values, &v));
@@ -645,7 +636,7 @@ static PetscErrorCode RestrictToVolume(DM dm, const std::string &volume, const s
   if (!ncells) {
     std::string list;
     PetscCall(VolumeNames(dm, list));
-    error = Format("%s: no physical volume '%s' in the mesh (its volumes: %s)", file.c_str(), volume.c_str(), list.c_str());
+    error = ConeFETIFormat("%s: no physical volume '%s' in the mesh (its volumes: %s)", file.c_str(), volume.c_str(), list.c_str());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(DMPlexFilter(dm, label, value, sub));
@@ -986,7 +977,7 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   for (PetscInt b = 0;; b++) {
     PetscBool exists;
     SceneBody body;
-    PetscCall(AnySet(r, Format("-scene_body%d_", (int)b), {"lower", "upper", "cells", "mesh"}, &exists));
+    PetscCall(AnySet(r, ConeFETIFormat("-scene_body%d_", (int)b), {"lower", "upper", "cells", "mesh"}, &exists));
     if (!exists && !(help && b == 0)) break;
     PetscCall(ReadBody(r, b, exists, body));
     if (exists) PetscCallCXX(impl.bodies.push_back(body));
@@ -995,7 +986,7 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   for (PetscInt z = 0;; z++) {
     PetscBool     exists;
     SceneZoneSpec spec;
-    PetscCall(AnySet(r, Format("-scene_zone%d_", (int)z), {"face", "law", "type"}, &exists));
+    PetscCall(AnySet(r, ConeFETIFormat("-scene_zone%d_", (int)z), {"face", "law", "type"}, &exists));
     if (!exists && !(help && z == 0)) break;
     PetscCall(ReadZone(r, z, exists, (PetscInt)impl.bodies.size(), spec));
     if (exists) PetscCallCXX(impl.zones.push_back(spec));
@@ -1013,9 +1004,9 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
     SceneBody &body = impl.bodies[b];
     if (!body.mesh.empty()) continue; /* its size is known when the file is read */
     double            c[3], nodes = 1, tets = 6;
-    const std::string opt   = full(Format("-scene_body%d_cells", (int)b));
-    std::string       given = Format("%s %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT, opt.c_str(), body.cells[0], body.cells[1], body.cells[2]);
-    if (impl.refine > 1) given += Format(" with %s %" PetscInt_FMT, full("-scene_refine").c_str(), impl.refine);
+    const std::string opt   = full(ConeFETIFormat("-scene_body%d_cells", (int)b));
+    std::string       given = ConeFETIFormat("%s %" PetscInt_FMT ",%" PetscInt_FMT ",%" PetscInt_FMT, opt.c_str(), body.cells[0], body.cells[1], body.cells[2]);
+    if (impl.refine > 1) given += ConeFETIFormat(" with %s %" PetscInt_FMT, full("-scene_refine").c_str(), impl.refine);
     for (PetscInt d = 0; d < 3; d++) {
       c[d] = (double)body.cells[d] * impl.refine;
       nodes *= c[d] + 1;
@@ -1239,47 +1230,49 @@ PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
   PetscCallMPI(MPI_Comm_size(PetscObjectComm((PetscObject)scene), &size));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
   /* the lines are formatted here (C printf: plain %g) and printed whole */
-  text = Format("ContactScene Object: %s%s%s%d MPI process%s\n", prefix ? "(" : "", prefix ? prefix : "", prefix ? ") " : "", (int)size, size > 1 ? "es" : "");
-  text += Format("  scene \"%s\": %d bod%s, %d contact zone%s, refinement %d\n", impl.name.c_str(), (int)impl.bodies.size(), impl.bodies.size() == 1 ? "y" : "ies", (int)impl.zones.size(),
-                 impl.zones.size() == 1 ? "" : "s", (int)impl.refine);
+  text = ConeFETIFormat("ContactScene Object: %s%s%s%d MPI process%s\n", prefix ? "(" : "", prefix ? prefix : "", prefix ? ") " : "", (int)size, size > 1 ? "es" : "");
+  text += ConeFETIFormat("  scene \"%s\": %d bod%s, %d contact zone%s, refinement %d\n", impl.name.c_str(), (int)impl.bodies.size(), impl.bodies.size() == 1 ? "y" : "ies", (int)impl.zones.size(),
+                         impl.zones.size() == 1 ? "" : "s", (int)impl.refine);
   for (size_t b = 0; b < impl.bodies.size(); b++) {
     const SceneBody &body = impl.bodies[b];
     if (!body.mesh.empty()) {
-      text += Format("  body %d: mesh %s", (int)b, body.mesh.c_str());
-      if (!body.volume.empty()) text += Format(", volume %s", body.volume.c_str());
-      if (body.scale != 1) text += Format(", scaled by %g", (double)body.scale);
+      text += ConeFETIFormat("  body %d: mesh %s", (int)b, body.mesh.c_str());
+      if (!body.volume.empty()) text += ConeFETIFormat(", volume %s", body.volume.c_str());
+      if (body.scale != 1) text += ConeFETIFormat(", scaled by %g", (double)body.scale);
       if (body.translate[0] != 0 || body.translate[1] != 0 || body.translate[2] != 0)
-        text += Format(", moved by (%g, %g, %g)", (double)body.translate[0], (double)body.translate[1], (double)body.translate[2]);
-      text += Format(", E %g, nu %g", (double)body.E, (double)body.nu);
+        text += ConeFETIFormat(", moved by (%g, %g, %g)", (double)body.translate[0], (double)body.translate[1], (double)body.translate[2]);
+      text += ConeFETIFormat(", E %g, nu %g", (double)body.E, (double)body.nu);
     } else
-      text += Format("  body %d: box [%g,%g]x[%g,%g]x[%g,%g], %dx%dx%d cells, E %g, nu %g", (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1],
-                     (double)body.lower[2], (double)body.upper[2], (int)(body.cells[0] * impl.refine), (int)(body.cells[1] * impl.refine), (int)(body.cells[2] * impl.refine), (double)body.E,
-                     (double)body.nu);
+      text += ConeFETIFormat("  body %d: box [%g,%g]x[%g,%g]x[%g,%g], %dx%dx%d cells, E %g, nu %g", (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1],
+                             (double)body.lower[2], (double)body.upper[2], (int)(body.cells[0] * impl.refine), (int)(body.cells[1] * impl.refine), (int)(body.cells[2] * impl.refine), (double)body.E,
+                             (double)body.nu);
     if (body.decompositionset) {
-      if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED) text += Format(", structured %dx%dx%d subdomains", (int)body.parts[0], (int)body.parts[1], (int)body.parts[2]);
-      else text += Format(", METIS %d subdomains", (int)body.parts[0]);
+      if (body.decomposition == FEM_DECOMPOSITION_STRUCTURED) text += ConeFETIFormat(", structured %dx%dx%d subdomains", (int)body.parts[0], (int)body.parts[1], (int)body.parts[2]);
+      else text += ConeFETIFormat(", METIS %d subdomains", (int)body.parts[0]);
     }
     text += "\n";
     for (const SceneSupport &sp : body.supports)
-      text += Format("    support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : "");
-    for (const SceneTraction &t : body.tractions) text += Format("    traction on %s: (%g, %g, %g)\n", t.selector.text.c_str(), (double)t.value[0], (double)t.value[1], (double)t.value[2]);
-    if (body.hasforce) text += Format("    volume force (%g, %g, %g)\n", (double)body.force[0], (double)body.force[1], (double)body.force[2]);
+      text += ConeFETIFormat("    support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : "");
+    for (const SceneTraction &t : body.tractions) text += ConeFETIFormat("    traction on %s: (%g, %g, %g)\n", t.selector.text.c_str(), (double)t.value[0], (double)t.value[1], (double)t.value[2]);
+    if (body.hasforce) text += ConeFETIFormat("    volume force (%g, %g, %g)\n", (double)body.force[0], (double)body.force[1], (double)body.force[2]);
   }
   for (size_t z = 0; z < impl.zones.size(); z++) {
-    const ContactZone &zn  = impl.zones[z].zone;
-    const std::string  law = zn.law == CONTACT_FRICTIONLESS ? std::string("frictionless") : Format("%s %s %g", ContactLaws[zn.law], zn.law == CONTACT_TRESCA ? "slip bound" : "F", (double)zn.coef);
+    const ContactZone &zn = impl.zones[z].zone;
+    const std::string  law =
+        zn.law == CONTACT_FRICTIONLESS ? std::string("frictionless") : ConeFETIFormat("%s %s %g", ContactLaws[zn.law], zn.law == CONTACT_TRESCA ? "slip bound" : "F", (double)zn.coef);
     if (zn.type == CONTACT_ZONE_FOUNDATION && zn.shape == CONTACT_OBSTACLE_SPHERE)
-      text += Format("  zone %d: body %d face %s on the rigid sphere with center (%g, %g, %g) and radius %g, %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (double)zn.center[0],
-                     (double)zn.center[1], (double)zn.center[2], (double)zn.radius, law.c_str());
+      text += ConeFETIFormat("  zone %d: body %d face %s on the rigid sphere with center (%g, %g, %g) and radius %g, %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (double)zn.center[0],
+                             (double)zn.center[1], (double)zn.center[2], (double)zn.radius, law.c_str());
     else if (zn.type == CONTACT_ZONE_FOUNDATION && zn.shape == CONTACT_OBSTACLE_CYLINDER)
-      text += Format("  zone %d: body %d face %s on the rigid cylinder with axis through (%g, %g, %g) along (%g, %g, %g) and radius %g, %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(),
-                     (double)zn.center[0], (double)zn.center[1], (double)zn.center[2], (double)zn.axis[0], (double)zn.axis[1], (double)zn.axis[2], (double)zn.radius, law.c_str());
+      text += ConeFETIFormat("  zone %d: body %d face %s on the rigid cylinder with axis through (%g, %g, %g) along (%g, %g, %g) and radius %g, %s\n", (int)z, (int)zn.body,
+                             impl.zones[z].face.text.c_str(), (double)zn.center[0], (double)zn.center[1], (double)zn.center[2], (double)zn.axis[0], (double)zn.axis[1], (double)zn.axis[2],
+                             (double)zn.radius, law.c_str());
     else if (zn.type == CONTACT_ZONE_FOUNDATION)
-      text += Format("  zone %d: body %d face %s on the rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (double)zn.point[0],
-                     (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], law.c_str());
+      text += ConeFETIFormat("  zone %d: body %d face %s on the rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(),
+                             (double)zn.point[0], (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], law.c_str());
     else
-      text += Format("  zone %d: body %d face %s against body %d face %s (node to node), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (int)zn.other_body,
-                     impl.zones[z].other.text.c_str(), law.c_str());
+      text += ConeFETIFormat("  zone %d: body %d face %s against body %d face %s (node to node), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (int)zn.other_body,
+                             impl.zones[z].other.text.c_str(), law.c_str());
   }
   for (size_t start = 0, end; start < text.size(); start = end + 1) { /* line by line: the viewer's tab applies to each */
     end = text.find('\n', start);
