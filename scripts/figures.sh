@@ -4,7 +4,7 @@
 #   scripts/figures.sh [--clean] [--quick] [--only name,name,...]
 #
 # --clean   remove the build directory first ($BUILD_DIR, default build) and build from scratch
-# --quick   skip the long ones (table3, the ablation tables, feti, qp)
+# --quick   skip the long ones (validation, peers, table3, the ablation tables, feti, qp)
 # --only    run only the named parts (below)
 #
 # The parts, what each writes and how long it takes. "measured": on the project's test machine (2 cores)
@@ -15,8 +15,13 @@
 #   accuracy      docs/accuracy-cost.md: monolithic from 1e-2 to 1e-8 (scripts/bench-accuracy.py) 1 min page
 #   precision     docs/figures/work-precision*.png and docs/work-precision.md's table
 #                 (scripts/work-precision.py: brick, two bodies, 1e-1 to 1e-10)       12.5 min measured
-#   solutions     docs/figures/solution-brick.png, solution-twobodies.png (build/conefeti -output,
+#   solutions     docs/figures/solution-brick.png, solution-twobodies.png, solution-indentation.png,
+#                 solution-hemisphere.png (build/conefeti -output,
 #                 scripts/render-solution.py)                                         0.5 min measured
+#   validation    docs/validation.md and docs/figures/hertz-*.png: Hertz on three or four meshes per case
+#                 (scripts/bench-hertz.py) and scale on real geometry (scripts/bench-geometry-scale.py) 12 min measured
+#   peers         docs/peers.md, docs/peers.png: PETSc's own solvers on the same problem
+#                 (scripts/bench-peers.py)                                             35 min page
 #   table3        docs/table3.md: the seed paper's Table 3, disks against friction polygons k = 2, 4
 #                 (scripts/bench-table3.py)                                             8 min measured
 #   ablations     docs/brick-ablations.md: every table (scripts/bench-brick.py --extra ...,
@@ -26,7 +31,7 @@
 #                 says; copied into that page by hand: its tables are interleaved with text) 15 min page
 #   qp            build/figures/qp-benchmark.md (scripts/bench-qp.sh; likewise by hand)       11 min page
 #
-# Everything: about 60 minutes, plus the build (3-6 min from clean); --quick: about 15 minutes.
+# Everything: about 1 h 50 min, plus the build (3-6 min from clean); --quick: about 15 minutes.
 # Tables go into their pages between a marker `<!-- generated: NAME -->` and the end of the fenced block
 # after it (scripts/docs-block.py), with a first line "# made at commit <hash> on <machine>, <date>".
 # Needs python3-matplotlib (scripts/setup.sh).
@@ -46,7 +51,7 @@ while [ $# -gt 0 ]; do
 done
 want() {
   if [ -n "$only" ]; then [[ ",$only," == *",$1,"* ]]; return; fi
-  if [ $quick -eq 1 ]; then case "$1" in table3|ablations|feti|qp) return 1 ;; esac; fi
+  if [ $quick -eq 1 ]; then case "$1" in validation|peers|table3|ablations|feti|qp) return 1 ;; esac; fi
   return 0
 }
 
@@ -93,7 +98,27 @@ if want solutions; then
   "$build/conefeti" -options_file petsc-options/twobodies.opts -scene_refine 5 -output "$tmp/twobodies" -summary_table 0 >/dev/null
   scripts/render-solution.py "$tmp/twobodies.h5" docs/figures/solution-twobodies.png \
     --title "two bodies, Coulomb F = 0.3, defaults (build/conefeti -options_file petsc-options/twobodies.opts -scene_refine 5)"
+  "$build/conefeti" -options_file petsc-options/indentation.opts -scene_body0_cells 20,20,20 -scene_body0_subdomains 3,3,3 -output "$tmp/indentation" -summary_table 0 >/dev/null
+  scripts/render-solution.py "$tmp/indentation.h5" docs/figures/solution-indentation.png \
+    --title "Hertz indentation, frictionless (build/conefeti -options_file petsc-options/indentation.opts -scene_body0_cells 20,20,20 -scene_body0_subdomains 3,3,3)"
+  gmsh -3 meshes/hemisphere.geo -setnumber h 0.02 -o "$tmp/hemisphere.msh" -v 2 >/dev/null
+  "$build/conefeti" -options_file petsc-options/hemisphere.opts -scene_body0_mesh "$tmp/hemisphere.msh" -output "$tmp/hemisphere" -summary_table 0 >/dev/null
+  scripts/render-solution.py "$tmp/hemisphere.h5" docs/figures/solution-hemisphere.png \
+    --title "elastic hemisphere on a rigid plane (Gmsh, h = 0.02 at the contact; petsc-options/hemisphere.opts)"
   rm -rf "$tmp"
+fi
+
+if want validation; then
+  say "validation (docs/validation.md: Hertz on three meshes per case, scale on real geometry)"
+  scripts/bench-hertz.py --build "$build" --case box --sizes 10,20,30 --write docs/validation.md --plot docs/figures/hertz-box.png
+  scripts/bench-hertz.py --build "$build" --case indentation --sizes 0.04,0.02,0.01 --write docs/validation.md --plot docs/figures/hertz-indentation.png
+  scripts/bench-hertz.py --build "$build" --case hemisphere --sizes 0.04,0.02,0.01,0.007 --write docs/validation.md --plot docs/figures/hertz-hemisphere.png
+  scripts/bench-geometry-scale.py --build "$build" --write docs/validation.md
+fi
+
+if want peers; then
+  say "peers (docs/peers.md, docs/peers.png)"
+  scripts/bench-peers.py --build "$build"
 fi
 
 if want ablations; then

@@ -54,11 +54,28 @@ def closed(tris, bodies):
     return bool(len(tris)) and bool(np.all(counts == 2)) and chi == 2 * bodies
 
 
-def contact_plane(x):
-    """Two in-plane axes of the contact nodes (drop the coordinate axis with the least spread)."""
-    spread = x.max(axis=0) - x.min(axis=0)
-    keep = [i for i in range(3) if i != int(np.argmin(spread))]
-    return keep
+def contact_plane(x, normal=None, touching=None):
+    """Two in-plane axes of the contact nodes: drop the coordinate axis along which the normals of the nodes in
+    contact point most (a curved zone, e.g. a hemisphere's surface), else the axis with the least spread."""
+    if normal is not None and touching is not None and touching.any():
+        drop = int(np.argmax(np.abs(normal[touching]).mean(axis=0)))
+    else:
+        drop = int(np.argmin(x.max(axis=0) - x.min(axis=0)))
+    return [i for i in range(3) if i != drop]
+
+
+def contact_window(C, i, j, touching):
+    """The nodes to draw: all, or, when the nodes in contact cover a small part of the zone, those within a square
+    twice the size of the part in contact (the Hertz cases: a contact disk of a tenth of the face)"""
+    if not touching.any():
+        return np.ones(len(C), dtype=bool)
+    lo, hi = C[touching][:, [i, j]].min(axis=0), C[touching][:, [i, j]].max(axis=0)
+    ext = max(hi - lo)
+    span = max(np.ptp(C[:, i]), np.ptp(C[:, j]))
+    if ext <= 0 or ext > 0.3 * span:
+        return np.ones(len(C), dtype=bool)
+    centre, half = 0.5 * (lo + hi), ext
+    return (np.abs(C[:, i] - centre[0]) <= half) & (np.abs(C[:, j] - centre[1]) <= half)
 
 
 def render_matplotlib(h, png, scale, title):
@@ -101,7 +118,10 @@ def render_matplotlib(h, png, scale, title):
         st = h["contact/status"][()].reshape(-1)
         p = h["contact/pressure"][()].reshape(-1)
         tau = -h["contact/tangential_stress"][()]  # friction traction on the first body
-        i, j = contact_plane(C)
+        nrm = h["contact/normal"][()] if "contact/normal" in h else None
+        i, j = contact_plane(C, nrm, st != 0)
+        keep = contact_window(C, i, j, st != 0)
+        C, st, p, tau = C[keep], st[keep], p[keep], tau[keep]
         names = "xyz"
         span = max(np.ptp(C[:, i]), np.ptp(C[:, j])) or 1.0
         ms = max(4.0, min(60.0, 2.2e4 / len(C) * (1 if len(C) > 1 else 1)))

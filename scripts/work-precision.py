@@ -42,6 +42,8 @@ SCENES = {
     "brick12-tresca": ("brick, n = 18252, Tresca", ["-options_file", "petsc-options/brick-tresca.opts", "-scene_refine", "12"], "single"),
     "brick12-frictionless": ("brick, n = 18252, frictionless", ["-options_file", "petsc-options/brick-frictionless.opts", "-scene_refine", "12"], "single"),
     "twobodies": ("two bodies, Coulomb F = 0.3", ["-options_file", "petsc-options/twobodies.opts"], "coulomb"),
+    "indentation": ("Hertz indentation (rigid sphere, block of 20^3 cells), frictionless", ["-options_file", "petsc-options/indentation.opts", "-scene_body0_cells", "20,20,20",
+                                                                                         "-scene_body0_subdomains", "3,3,3"], "single"),
 }
 # figures: which cases share a picture (Tresca and frictionless beside the Coulomb curves of the same mesh)
 FIGURES = {
@@ -51,6 +53,7 @@ FIGURES = {
     "brick12-F0.3": ["brick12-F0.3", "brick12-tresca", "brick12-frictionless"],
     "brick12-F0.1": ["brick12-F0.1"],
     "twobodies": ["twobodies"],
+    "indentation": ["indentation"],
 }
 __doc__ += "".join("  %-22s %s: %s\n" % (k, v[0], " ".join(v[1])) for k, v in SCENES.items())
 
@@ -273,7 +276,7 @@ def table(data):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--cases", default="brick8-F0.3,brick8-F0.1,brick12-F0.3,brick8-tresca,brick8-frictionless,twobodies")
+    ap.add_argument("--cases", default="brick8-F0.3,brick8-F0.1,brick12-F0.3,brick12-F0.1,brick8-tresca,brick8-frictionless,twobodies,indentation")
     ap.add_argument("--rtols", default="1e-1,1e-2,1e-3,1e-4,1e-5,1e-6,1e-7,1e-8,1e-9,1e-10")
     ap.add_argument("--ref-rtol", type=float, default=1e-12)
     ap.add_argument("--build", default="build")

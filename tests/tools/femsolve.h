@@ -47,4 +47,3 @@ static inline PetscErrorCode FEMTestSolveGathered(FEM fem, Vec out[3])
   PetscCall(MatDestroy(&K));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
-
