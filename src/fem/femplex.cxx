@@ -5,8 +5,7 @@
    FEMAddMesh() takes rank 0's arrays and broadcasts them. Errors found while converting are raised on every
    rank with the same message (rank 0 finds them, the message is broadcast), so an error in the mesh never
    leaves the other ranks waiting in a collective call. */
-#include <petsc/private/petscimpl.h>
-#include <conefeti/fem.h>
+#include <conefeti/private/femimpl.h>
 #include <petscdmplex.h>
 #include <conefeti/compat.h>
 #include <conefeti/private/format.h>
@@ -244,17 +243,9 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
   for (size_t t = 0; t < cellvertices.size() / 4; t++) {
     const PetscInt c = cStart + (PetscInt)t;
     PetscInt       id[4];
-    PetscReal      e[3][3], det, detJ, J[9], v0[3], lmax = 0;
+    PetscReal      det, detJ, J[9], v0[3], lmax;
     for (PetscInt k = 0; k < 4; k++) id[k] = node[cellvertices[4 * t + k] - vStart];
-    for (PetscInt k = 0; k < 3; k++)
-      for (PetscInt d = 0; d < 3; d++) e[k][d] = body.coords[3 * id[k + 1] + d] - body.coords[3 * id[0] + d];
-    det = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) + e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
-    for (PetscInt a = 0; a < 4; a++)
-      for (PetscInt b = a + 1; b < 4; b++) {
-        PetscReal l2 = 0;
-        for (PetscInt d = 0; d < 3; d++) l2 += PetscSqr(body.coords[3 * id[a] + d] - body.coords[3 * id[b] + d]);
-        lmax = std::max(lmax, std::sqrt(l2));
-      }
+    FEMTetrahedronGeometry(body.coords.data(), id, &det, &lmax);
     const std::string which = ConeFETIFormat("%s: tetrahedron %ld (DMPlex cell %" PetscInt_FMT ", vertices at (%g,%g,%g), (%g,%g,%g), (%g,%g,%g), (%g,%g,%g))", name, (long)t, c,
                                              (double)body.coords[3 * id[0]], (double)body.coords[3 * id[0] + 1], (double)body.coords[3 * id[0] + 2], (double)body.coords[3 * id[1]],
                                              (double)body.coords[3 * id[1] + 1], (double)body.coords[3 * id[1] + 2], (double)body.coords[3 * id[2]], (double)body.coords[3 * id[2] + 1],
@@ -263,7 +254,7 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
       body.error = which + " has a coordinate that is not a finite number";
       PetscFunctionReturn(PETSC_SUCCESS);
     }
-    if (std::fabs(det) <= 1e-10 * lmax * lmax * lmax) {
+    if (FEMTetrahedronIsFlat(det, lmax)) {
       body.error = ConeFETIFormat("%s is degenerate: volume %g for edges up to %g long", which.c_str(), (double)(std::fabs(det) / 6), (double)lmax);
       PetscFunctionReturn(PETSC_SUCCESS);
     }

@@ -6,7 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
-static void TetEdgesAndVolume(const PetscReal *X, const PetscInt v[4], PetscReal *det, PetscReal *longest)
+/* 6 x the signed volume of tetrahedron v (det[x1-x0, x2-x0, x3-x0]) and its longest edge */
+void FEMTetrahedronGeometry(const PetscReal *X, const PetscInt v[4], PetscReal *det, PetscReal *longest)
 {
   PetscReal e[3][3];
   for (PetscInt a = 0; a < 3; a++)
@@ -42,10 +43,8 @@ PetscErrorCode FEMCheckMesh(MPI_Comm comm, PetscInt body, const FEMBody &b)
                  "FEMAddMesh(): body %" PetscInt_FMT ": tetrahedron %" PetscInt_FMT " has node %" PetscInt_FMT ", outside 0..%" PetscInt_FMT, body, e, v[a], b.nnodes - 1);
       used[v[a]] = 1;
     }
-    TetEdgesAndVolume(b.coords.data(), v, &det, &longest);
-    /* 6 |volume| against the cube of the longest edge: 1 for a right-angled corner, 0.7 for a regular
-       tetrahedron, below 1e-10 only for a sliver no mesher produces on purpose */
-    PetscCheck(PetscAbsReal(det) > 1e-10 * longest * longest * longest, comm, PETSC_ERR_ARG_WRONG,
+    FEMTetrahedronGeometry(b.coords.data(), v, &det, &longest);
+    PetscCheck(!FEMTetrahedronIsFlat(det, longest), comm, PETSC_ERR_ARG_WRONG,
                "FEMAddMesh(): body %" PetscInt_FMT ": tetrahedron %" PetscInt_FMT " (nodes %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT " %" PetscInt_FMT
                ") is degenerate (volume %g, longest edge %g)",
                body, e, v[0], v[1], v[2], v[3], (double)(det / 6), (double)longest);

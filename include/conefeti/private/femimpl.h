@@ -150,7 +150,12 @@ static inline void FEMElementNodes(const FEMBody &b, PetscInt e, PetscInt v[4])
 /* Mesh of a box (femmesh.cxx) */
 PETSC_INTERN PetscErrorCode FEMBoxBuildMesh(FEMBody &);
 
+/* A flat tetrahedron: 6 |volume| against the cube of its longest edge is 1 for a right-angled corner, 0.7 for a
+   regular tetrahedron, and below 1e-10 only for a sliver no mesher produces on purpose */
+static inline PetscBool FEMTetrahedronIsFlat(PetscReal det, PetscReal longest) { return PetscAbsReal(det) <= 1e-10 * longest * longest * longest ? PETSC_TRUE : PETSC_FALSE; }
+
 /* Any tetrahedral mesh (femtopology.cxx): boundary triangles, tags, Dirichlet mask, interface nodes */
+PETSC_INTERN void           FEMTetrahedronGeometry(const PetscReal *, const PetscInt[4], PetscReal *, PetscReal *);
 PETSC_INTERN PetscErrorCode FEMCheckMesh(MPI_Comm, PetscInt, const FEMBody &);
 PETSC_INTERN PetscErrorCode FEMBuildBoundary(FEMBody &);
 PETSC_INTERN PetscErrorCode FEMBuildTags(PetscInt, FEMBody &);
