@@ -28,8 +28,9 @@
      friction cone, and the balance of each block's loads against the contact forces it receives.
 
    Sample runs
-     contact_ex3_usercontact                                  (2 x 4^3 + upper block of 5 x 3 x 2 cells)
-     mpiexec -n 2 contact_ex3_usercontact -cells 6 -friction 0.2 -shear 0.25
+     contact_ex3_usercontact
+     mpiexec -n 2 contact_ex3_usercontact -cells 6 -friction 0.4 -shear 0.25
+     contact_ex3_usercontact -contact_coulomb_algorithm msa   (any -contact_ option of ContactProblemSetFromOptions())
      contact_ex3_usercontact -write contact.feti              (also writes the problem with its pairing:
                                                                FETIWriteContact(), docs/feti-interchange.md)
 
@@ -41,7 +42,6 @@
      more than the solve delivers). */
 #include <conefeti.h>
 
-#include <array>
 #include <cmath>
 #include <vector>
 
