@@ -300,9 +300,8 @@ static PetscErrorCode SplitVec(Vec v, const std::vector<PetscInt> &offsets, cons
 }
 
 /* A read that fails (the file ends early, or holds another object than the format says) becomes an error
-   naming the file and the item. The binary viewer reads on rank 0 and broadcasts the outcome of each object's
-   header, so every rank fails together there; a file cut inside an object's data may be seen by rank 0 alone
-   (the others then wait for it), which is why the tests truncate files on one rank. */
+   naming the file and the item, on every rank: PETSc's binary viewer reads on rank 0 and shares the outcome
+   (the tests cut files inside an object's header and inside its data, on 1 and 2 ranks). */
 #define FETIReadItem(call, item)                                                                                                                                                   \
   do {                                                                                                                                                                             \
     PetscErrorCode ierr_;                                                                                                                                                          \

@@ -1,11 +1,13 @@
 /* Rewrites a FETI interchange file of version 2 object by object (docs/feti-interchange.md), for the tests of the
-   reader: as version 1 (the pairing dropped: the files older codes wrote), with another version number, or with a
-   contact pairing index out of range. Runs on one rank. */
+   reader: as version 1 (the pairing dropped: the files older codes wrote), with another version number, with a
+   contact pairing index out of range, or with the first node's normal and first tangential row swapped (rows of
+   the wrong kind). Runs on one rank. */
 #pragma once
 
 #include <conefeti.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 static inline PetscErrorCode FETIFileRewrite(const char *in, const char *out, const std::string &how)
@@ -57,7 +59,7 @@ static inline PetscErrorCode FETIFileRewrite(const char *in, const char *out, co
     if (how == "version3") header[1] = 3;
     PetscCall(ISDestroy(&is[0]));
     PetscCall(ISCreateGeneral(PETSC_COMM_SELF, how == "v1" ? 4 : 6, how == "v1" ? v1 : header, PETSC_COPY_VALUES, &is[0]));
-  } else if (how == "out_of_range") { /* the first node's normal row beyond the last row of B */
+  } else if (how == "out_of_range" || how == "swap_rows") { /* the first node's normal row beyond the last row of B, or swapped with its first tangential row */
     std::vector<PetscInt> p;
     const PetscInt       *pa;
     PetscCall(ISGetLocalSize(is[4], &n));
@@ -65,10 +67,11 @@ static inline PetscErrorCode FETIFileRewrite(const char *in, const char *out, co
     PetscCall(ISGetIndices(is[4], &pa));
     p.assign(pa, pa + n);
     PetscCall(ISRestoreIndices(is[4], &pa));
-    p[0] = header[4] + 5;
+    if (how == "out_of_range") p[0] = header[4] + 5;
+    else std::swap(p[0], p[1]);
     PetscCall(ISDestroy(&is[4]));
     PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, p.data(), PETSC_COPY_VALUES, &is[4]));
-  } else SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "unknown rewrite %s (v1, version3, out_of_range)", how.c_str());
+  } else SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "unknown rewrite %s (v1, version3, out_of_range, swap_rows)", how.c_str());
 
   PetscCall(PetscViewerBinaryOpen(PETSC_COMM_SELF, out, FILE_MODE_WRITE, &vout));
   for (int i = 0; i < 4; i++) PetscCall(ISView(is[i], vout));
