@@ -196,7 +196,7 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, "Contact with Coulomb friction from your own FEM code"));
   PetscCall(ConeFETIInitializePackage());
   PetscOptionsBegin(PETSC_COMM_WORLD, NULL, "Two blocks in contact, from your own code", "ex3_usercontact");
-  PetscCall(PetscOptionsBoundedInt("-cells", "Cells along the edge of a lower subdomain (the upper block gets cells + 1 along x)", "ex3_usercontact", cells, &cells, NULL, 2));
+  PetscCall(PetscOptionsBoundedInt("-cells", "Cells along the edge of a lower subdomain (the upper block gets cells + 1 along x)", "ex3_usercontact", cells, &cells, NULL, 1));
   PetscCall(PetscOptionsReal("-pressure", "Pressure on the upper block's top face", "ex3_usercontact", pressure, &pressure, NULL));
   PetscCall(PetscOptionsReal("-shear", "Traction along x on the upper block's top face, as a fraction of -pressure", "ex3_usercontact", shear, &shear, NULL));
   PetscCall(PetscOptionsReal("-friction", "Coulomb friction coefficient on both contact surfaces", "ex3_usercontact", friction, &friction, NULL));
