@@ -35,14 +35,12 @@ void ContactTriangleClosestPoint(const PetscReal x[3], const PetscReal a[3], con
      barycentric weights when x' is inside */
   const PetscReal va = d3 * d6 - d5 * d4, vb = d5 * d2 - d1 * d6, vc = d1 * d4 - d3 * d2;
   PetscReal       wa, wb, wc;
-  if (d1 <= 0 && d2 <= 0) wa = 1, wb = 0, wc = 0;         /* vertex a */
-  else if (d3 >= 0 && d4 <= d3) wa = 0, wb = 1, wc = 0;    /* vertex b */
-  else if (vc <= 0 && d1 >= 0 && d3 <= 0) {                /* edge ab */
-    wb = d1 / (d1 - d3);
+  if (d1 <= 0 && d2 <= 0) wa = 1, wb = 0, wc = 0;       /* vertex a */
+  else if (d3 >= 0 && d4 <= d3) wa = 0, wb = 1, wc = 0; /* vertex b */
+  else if (vc <= 0 && d1 >= 0 && d3 <= 0) { /* edge ab */ wb = d1 / (d1 - d3);
     wa = 1 - wb, wc = 0;
   } else if (d6 >= 0 && d5 <= d6) wa = 0, wb = 0, wc = 1; /* vertex c */
-  else if (vb <= 0 && d2 >= 0 && d6 <= 0) {               /* edge ac */
-    wc = d2 / (d2 - d6);
+  else if (vb <= 0 && d2 >= 0 && d6 <= 0) { /* edge ac */ wc = d2 / (d2 - d6);
     wa = 1 - wc, wb = 0;
   } else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) { /* edge bc */
     wc = (d4 - d3) / ((d4 - d3) + (d5 - d6));
@@ -81,9 +79,9 @@ void ContactTriangleClosestPoint(const PetscReal x[3], const PetscReal a[3], con
 PetscErrorCode ContactSurfaceSearch::SetUp(PetscInt ntri, const PetscInt tri[], const PetscReal X[])
 {
   PetscFunctionBegin;
-  this->ntri = ntri;
-  this->tri  = tri;
-  this->X    = X;
+  this->ntri   = ntri;
+  this->tri    = tri;
+  this->X      = X;
   longest_edge = 0;
   mean_edge    = 0;
   PetscCallCXX(box.assign(6 * (size_t)ntri, 0));
@@ -150,8 +148,8 @@ void ContactSurfaceSearch::Range(const PetscReal lo[3], const PetscReal hi[3], P
 {
   for (int i = 0; i < 3; i++) {
     const double a = std::floor((lo[i] - origin[i]) / h), b = std::floor((hi[i] - origin[i]) / h);
-    r[2 * i]       = (PetscInt)std::min(std::max(a, 0.0), (double)(n[i] - 1));
-    r[2 * i + 1]   = (PetscInt)std::min(std::max(b, 0.0), (double)(n[i] - 1));
+    r[2 * i]     = (PetscInt)std::min(std::max(a, 0.0), (double)(n[i] - 1));
+    r[2 * i + 1] = (PetscInt)std::min(std::max(b, 0.0), (double)(n[i] - 1));
   }
 }
 

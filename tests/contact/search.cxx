@@ -21,14 +21,8 @@ static PetscErrorCode Triangle()
     PetscReal   x[3], w[3];
     const char *region;
   } cases[] = {
-    {{0.2, 0.3, 0.5},   {0.5, 0.2, 0.3},  "interior"},
-    {{-1, -1, 1},       {1, 0, 0},        "vertex a"},
-    {{2, -0.5, 0},      {0, 1, 0},        "vertex b"},
-    {{-0.5, 2, 0.3},    {0, 0, 1},        "vertex c"},
-    {{0.5, -1, 0.2},    {0.5, 0.5, 0},    "edge ab"},
-    {{-1, 0.25, 0},     {0.75, 0, 0.25},  "edge ac"},
-    {{1, 1, 0.5},       {0, 0.5, 0.5},    "edge bc"},
-    {{0.25, 0.25, -3},  {0.5, 0.25, 0.25}, "interior, below"},
+      {{0.2, 0.3, 0.5}, {0.5, 0.2, 0.3}, "interior"}, {{-1, -1, 1}, {1, 0, 0}, "vertex a"},        {{2, -0.5, 0}, {0, 1, 0}, "vertex b"},   {{-0.5, 2, 0.3}, {0, 0, 1}, "vertex c"},
+      {{0.5, -1, 0.2}, {0.5, 0.5, 0}, "edge ab"},     {{-1, 0.25, 0}, {0.75, 0, 0.25}, "edge ac"}, {{1, 1, 0.5}, {0, 0.5, 0.5}, "edge bc"}, {{0.25, 0.25, -3}, {0.5, 0.25, 0.25}, "interior, below"},
   };
   std::mt19937                           gen(7);
   std::uniform_real_distribution<double> U(-1, 1);
@@ -58,9 +52,9 @@ static PetscErrorCode Triangle()
     const PetscReal d = Dist(x, chi);
     for (int i = 0; i <= 40; i++)
       for (int j = 0; i + j <= 40; j++) {
-        const PetscReal s = i / 40.0, t = j / 40.0, q[3] = {(1 - s - t) * P[0][0] + s * P[1][0] + t * P[2][0], (1 - s - t) * P[0][1] + s * P[1][1] + t * P[2][1],
-                                                             (1 - s - t) * P[0][2] + s * P[1][2] + t * P[2][2]};
-        worst = PetscMax(worst, d - Dist(x, q));
+        const PetscReal s = i / 40.0, t = j / 40.0,
+                        q[3] = {(1 - s - t) * P[0][0] + s * P[1][0] + t * P[2][0], (1 - s - t) * P[0][1] + s * P[1][1] + t * P[2][1], (1 - s - t) * P[0][2] + s * P[1][2] + t * P[2][2]};
+        worst                = PetscMax(worst, d - Dist(x, q));
       }
   }
   PetscCheck(worst <= 1e-14, PETSC_COMM_SELF, PETSC_ERR_PLIB, "a sampled point of a triangle is nearer than its closest point by %g", (double)worst);
@@ -70,13 +64,13 @@ static PetscErrorCode Triangle()
 
 static PetscErrorCode Surface()
 {
-  const PetscInt         nx = 7, ny = 5; /* squares, each cut into two triangles along its diagonal */
-  std::vector<PetscReal> X;
-  std::vector<PetscInt>  tri;
-  ContactSurfaceSearch   search;
-  std::mt19937           gen(11);
+  const PetscInt                         nx = 7, ny = 5; /* squares, each cut into two triangles along its diagonal */
+  std::vector<PetscReal>                 X;
+  std::vector<PetscInt>                  tri;
+  ContactSurfaceSearch                   search;
+  std::mt19937                           gen(11);
   std::uniform_real_distribution<double> U(-0.5, 1.5);
-  PetscInt               within = 0, beyond = 0;
+  PetscInt                               within = 0, beyond = 0;
 
   PetscFunctionBegin;
   /* the grid over [0,1]^2, tilted and bumped so that no triangle is axis-aligned */
@@ -99,8 +93,8 @@ static PetscErrorCode Surface()
     PetscCall(search.Closest(x, dmax, p));
     PetscCall(search.Nearest(x, all));
     if (all.dist <= dmax) {
-      PetscCheck(p.triangle >= 0 && p.dist == all.dist, PETSC_COMM_SELF, PETSC_ERR_PLIB, "point %d: the search finds triangle %" PetscInt_FMT " at %.17g, every triangle gives %" PetscInt_FMT " at %.17g",
-                 trial, p.triangle, (double)p.dist, all.triangle, (double)all.dist);
+      PetscCheck(p.triangle >= 0 && p.dist == all.dist, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+                 "point %d: the search finds triangle %" PetscInt_FMT " at %.17g, every triangle gives %" PetscInt_FMT " at %.17g", trial, p.triangle, (double)p.dist, all.triangle, (double)all.dist);
       within++;
     } else {
       PetscCheck(p.triangle < 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "point %d: the search finds triangle %" PetscInt_FMT " at %g beyond the search distance %g", trial, p.triangle, (double)p.dist,
@@ -108,8 +102,9 @@ static PetscErrorCode Surface()
       beyond++;
     }
   }
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "surface of %" PetscInt_FMT " triangles: %" PetscInt_FMT " points found as by testing every triangle, %" PetscInt_FMT " beyond the search distance found none\n", ntri,
-                        within, beyond));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                        "surface of %" PetscInt_FMT " triangles: %" PetscInt_FMT " points found as by testing every triangle, %" PetscInt_FMT " beyond the search distance found none\n", ntri, within,
+                        beyond));
   /* an inner vertex shared by six triangles: the smallest index among them, weight exactly 1 on the vertex */
   {
     const PetscInt      v = 3 + (nx + 1) * 2;
