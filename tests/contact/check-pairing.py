@@ -7,6 +7,7 @@
   --flat           (non-matching meshes, one flat interface) every slave node's master point is the node itself
                    (gap 0, the normal the slave's outward +-z), with 1 to 3 master nodes whose weights are in
                    [1e-12, 1] and sum to 1
+  --gap G          every contact node has the initial gap G (to 1e-12; negative: an overlap)
   --pressure P --rtol r   the patch test: every contact node carries the pressure P to a relative r (prints the
                    largest relative deviation |lambda_n/area - P|/P)
 
@@ -21,13 +22,15 @@ import numpy as np
 
 
 def main(argv):
-    checks, pressure, rtol = [], None, None
+    checks, pressure, rtol, gapvalue = [], None, None, None
     while argv and argv[0] != "--":
         a = argv.pop(0)
         if a == "--pressure":
             pressure = float(argv.pop(0))
         elif a == "--rtol":
             rtol = float(argv.pop(0))
+        elif a == "--gap":
+            gapvalue = float(argv.pop(0))
         else:
             checks.append(a)
     cmd = argv[1:]
@@ -61,6 +64,11 @@ def main(argv):
               % (at, np.abs(gap).max(), nz, counts, ok))
         if not ok or at > 1e-12 * scale or np.abs(gap).max() > 1e-12 * scale or nz > 1e-12:
             failed.append("the pairing on the flat interface is wrong")
+    if gapvalue is not None:
+        err = np.abs(gap - gapvalue).max()
+        print("gap: from %.9g to %.9g, expected %.9g everywhere" % (gap.min(), gap.max(), gapvalue))
+        if not err <= 1e-12 * scale:
+            failed.append("the initial gaps differ from %g by %.1e" % (gapvalue, err))
     if pressure is not None:
         pr = c["pressure"]
         dev = np.abs(pr - pressure).max() / abs(pressure)
