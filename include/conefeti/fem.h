@@ -120,6 +120,7 @@ PETSC_EXTERN PetscErrorCode FEMGetNumBodies(FEM, PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMGetBodyNodes(FEM, PetscInt, PetscInt *, const PetscReal **);
 PETSC_EXTERN PetscErrorCode FEMGetBodyNodeOffset(FEM, PetscInt, PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMGetTaggedNodes(FEM, PetscInt, const char[], PetscInt *, const PetscInt **, const PetscReal **, const PetscReal **);
+PETSC_EXTERN PetscErrorCode FEMGetTaggedTriangles(FEM, PetscInt, const char[], PetscInt *, const PetscInt **);
 PETSC_EXTERN PetscErrorCode FEMGetNodeCopies(FEM, PetscInt, PetscInt, PetscInt *, const PetscInt **, const PetscInt **);
 PETSC_EXTERN PetscErrorCode FEMGetNumSubdomains(FEM, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMGetSubdomainMesh(FEM, PetscInt, PetscInt *, PetscInt *, const PetscInt **, PetscInt *, const PetscInt **);

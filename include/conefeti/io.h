@@ -58,7 +58,7 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . failed_check  - why the solve did not converge: a `ContactChecks` name, "solver", or "" when it converged
 . kplus_explicit - whether F products used explicit dense blocks of K+ (in at least one subdomain)
 . kplus_fallback - whether those blocks were asked for but dropped because they would not fit in memory (`FETIGetKplusExplicit()`)
-. unmatched_nodes - nodes of node-to-node zones' first faces without a partner (`ContactModelGetUnmatchedNodes()`)
+. unmatched_nodes - slave nodes of zones between bodies without a master point within the search distance (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
 . normal_force  - the sum of the normal contact forces l_n over all contact nodes

@@ -882,6 +882,39 @@ PetscErrorCode FEMGetTaggedNodes(FEM fem, PetscInt body, const char tag[], Petsc
 }
 
 /*@C
+  FEMGetTaggedTriangles - The boundary triangles of a tag (the same on every rank).
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model, set up
+. body - the body
+- tag  - the tag (x0 ... z1 or one from `FEMTagFaces()`)
+
+  Output Parameters:
++ n         - number of triangles
+- triangles - 3 body node ids per triangle (do not free); every id is among the tag's nodes (`FEMGetTaggedNodes()`)
+
+  Notes:
+  The surface a contact zone between bodies searches for the closest point of each slave node.
+
+  Level: intermediate
+
+.seealso: `FEMGetTaggedNodes()`, `FEMTagFaces()`
+@*/
+PetscErrorCode FEMGetTaggedTriangles(FEM fem, PetscInt body, const char tag[], PetscInt *n, const PetscInt **triangles)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckSetUpBody(fem, body));
+  auto it = fem->impl->bodies[body].taggednodes.find(tag);
+  PetscCheck(it != fem->impl->bodies[body].taggednodes.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Body %" PetscInt_FMT " has no boundary tag \"%s\"", body, tag);
+  if (n) *n = (PetscInt)(it->second.triangles.size() / 3);
+  if (triangles) *triangles = it->second.triangles.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   FEMGetNodeCopies - The copies of a body node in the subdomains: which subdomains hold it and where its dofs are in the FETI primal vector.
 
   Not Collective

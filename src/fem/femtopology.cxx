@@ -201,6 +201,7 @@ PetscErrorCode FEMBuildTags(PetscInt body, FEMBody &b)
       }
     }
     FEMTaggedNodes &tn = b.taggednodes[entry.first];
+    for (PetscInt t : entry.second) PetscCallCXX(tn.triangles.insert(tn.triangles.end(), b.boundary[t].v.begin(), b.boundary[t].v.end()));
     for (const auto &na : acc) {
       const PetscReal len = std::sqrt(na.second[1] * na.second[1] + na.second[2] * na.second[2] + na.second[3] * na.second[3]);
       PetscCallCXX(tn.nodes.push_back(na.first));

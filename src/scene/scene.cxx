@@ -419,7 +419,7 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   const std::string s    = ConeFETIFormat("-scene_zone%d_", (int)z);
   const MPI_Comm    comm = r.comm;
   ContactZone      &zone = spec.zone;
-  PetscBool         set, setface, setpoint, setnormal, setother, setotherface, setlaw, setF, setg, setshape, setcenter, setaxis, setradius;
+  PetscBool         set, setface, setpoint, setnormal, setother, setotherface, setlaw, setF, setg, setshape, setcenter, setaxis, setradius, setslave, setsearch;
   std::string       face, other;
   PetscReal         F = 0, g = 0;
 
@@ -439,7 +439,12 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   PetscCall(r.Reals(s + "axis", "Foundation, cylinder: the axis direction", "3 numbers ax,ay,az", 3, 3, zone.axis, NULL, &setaxis));
   PetscCall(r.Real(s + "radius", "Foundation, sphere or cylinder: the radius > 0", "a radius > 0", &zone.radius, &setradius));
   PetscCall(r.Int(s + "other_body", "Bodies: the other body", "a body index", &zone.other_body, &setother));
-  PetscCall(r.String(s + "other_face", "Bodies: the other body's face (its nodes must coincide with the first face's)", "a face selector", other, &setotherface));
+  PetscCall(r.String(s + "other_face", "Bodies: the other body's face (any mesh: node to surface)", "a face selector", other, &setotherface));
+  PetscCall(r.Enum(s + "slave",
+                   "Bodies: the slave face, whose nodes are paired with the closest point of the other (master) face: finer (smaller mean edge; a tie: _face), body (_face) or other (_other_face)",
+                   ContactZoneSlaves, (PetscEnum *)&zone.slave, &setslave));
+  PetscCall(r.Real(s + "search_distance", "Bodies: slave nodes without a master point within this distance are not contact nodes (default: the master face's longest triangle edge)", "a distance > 0",
+                   &zone.search_distance, &setsearch));
   PetscCall(r.Enum(s + "law", "Contact law: frictionless, tresca (given slip bound) or coulomb (friction coefficient)", ContactLaws, (PetscEnum *)&zone.law, &setlaw));
   PetscCall(r.Real(s + "friction", "Coulomb: the friction coefficient F >= 0", "a friction coefficient F >= 0", &F, &setF));
   PetscCall(r.Real(s + "slip_bound", "Tresca: the slip bound, a tangential stress (force per area) >= 0", "a slip bound (stress) >= 0", &g, &setg));
@@ -452,6 +457,8 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   if (zone.type == CONTACT_ZONE_FOUNDATION) {
     PetscCheck(!setother && !setotherface, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is a foundation zone: %s and %s belong to -scene_zone%d_type bodies", (int)z, r.Full(s + "other_body").c_str(),
                r.Full(s + "other_face").c_str(), (int)z);
+    PetscCheck(!setslave && !setsearch, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is a foundation zone: %s belongs to -scene_zone%d_type bodies", (int)z,
+               r.Full(s + (setslave ? "slave" : "search_distance")).c_str(), (int)z);
     const char *shape = ContactObstacleShapes[zone.shape];
     if (zone.shape == CONTACT_OBSTACLE_PLANE) {
       PetscCheck(!setcenter && !setaxis && !setradius, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d is a plane: %s belongs to %s sphere or cylinder", (int)z,
@@ -491,6 +498,8 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
                "%s %" PetscInt_FMT ": must be a body of the scene (0..%" PetscInt_FMT ") other than %s %" PetscInt_FMT, r.Full(s + "other_body").c_str(), zone.other_body, nbodies - 1,
                r.Full(s + "body").c_str(), zone.body);
     PetscCall(ParseSelector(comm, r.Full(s + "other_face"), other, spec.other));
+    PetscCheck(!setsearch || (zone.search_distance > 0 && zone.search_distance < PETSC_MAX_REAL), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: the search distance must be finite and > 0",
+               r.Full(s + "search_distance").c_str(), (double)zone.search_distance);
   }
   switch (zone.law) {
   case CONTACT_FRICTIONLESS:
@@ -935,6 +944,8 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 . -scene_zone<z>_center <x,y,z>, _radius <R> - foundation, sphere: center and radius; cylinder: a point of the axis and radius
 . -scene_zone<z>_axis <ax,ay,az>             - foundation, cylinder: the axis direction
 . -scene_zone<z>_other_body, _other_face     - bodies: the other body and its face
+. -scene_zone<z>_slave <finer,body,other>    - bodies: the slave face, paired node to surface with the other (master) face
+. -scene_zone<z>_search_distance <d>         - bodies: slave nodes farther than d from the master face are not contact nodes (default: its longest edge)
 - -scene_zone<z>_law <frictionless,tresca,coulomb> - with -scene_zone<z>_slip_bound <g> (Tresca, a stress) or -scene_zone<z>_friction <F> (Coulomb)
 
   Notes:
@@ -1271,8 +1282,9 @@ PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
       text += ConeFETIFormat("  zone %d: body %d face %s on the rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(),
                              (double)zn.point[0], (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], law.c_str());
     else
-      text += ConeFETIFormat("  zone %d: body %d face %s against body %d face %s (node to node), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (int)zn.other_body,
-                             impl.zones[z].other.text.c_str(), law.c_str());
+      text += ConeFETIFormat("  zone %d: body %d face %s against body %d face %s (node to surface, slave %s, search distance %s), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(),
+                             (int)zn.other_body, impl.zones[z].other.text.c_str(), ContactZoneSlaves[zn.slave],
+                             zn.search_distance > 0 ? ConeFETIFormat("%g", (double)zn.search_distance).c_str() : "the master's longest edge", law.c_str());
   }
   for (size_t start = 0, end; start < text.size(); start = end + 1) { /* line by line: the viewer's tab applies to each */
     end = text.find('\n', start);

@@ -297,9 +297,11 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
     PetscCall(PetscViewerASCIIPrintf(viewer, "contact force on the bodies: (%.6e, %.6e, %.6e); sum of the normal forces %.6e\n", (double)s->contact_force[0], (double)s->contact_force[1],
                                      (double)s->contact_force[2], (double)s->normal_force));
   if (s->unmatched_nodes)
-    PetscCall(PetscViewerASCIIPrintf(
-        viewer, "note: %" PetscInt_FMT " nodes of node-to-node zone faces have no node of the other face at the same position and are not in contact (meshes that do not conform?)\n",
-        s->unmatched_nodes));
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "note: %" PetscInt_FMT
+                                     " slave nodes of zones between bodies have no point of the master face within the search distance and are not contact nodes (faces that overlap only in part, or "
+                                     "a gap above -scene_zone<z>_search_distance; -scene_view shows them per zone)\n",
+                                     s->unmatched_nodes));
   /* P1 tetrahedra lock as nu -> 0.5: the displacements come out too small, and K_s and F get ill-conditioned
      (more products); the solve itself stays correct for the discrete problem */
   if (s->max_nu > 0.45)
@@ -433,6 +435,7 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Int(out, "separated", r.counts[0]);
   Int(out, "stick", r.counts[1]);
   Int(out, "slip", r.counts[2]);
+  Int(out, "unmatched_nodes", s->unmatched_nodes);
   Key(out, "contact_force");
   out += "[";
   for (int c = 0; c < 3; c++) {

@@ -75,10 +75,12 @@ PETSC_INTERN void      ContactPolygonTangentialMotion(PetscInt, const PetscReal[
 PETSC_INTERN PetscReal ContactPolygonGauge(PetscInt, const PetscReal[2], PetscReal);
 
 /* A contact row of B that can hold bodies (contactrigidmotions.cxx): the displacement component along dir
-   at node `node` of `body`, minus the one at `other_node` of `other_body` (-1: a rigid foundation).
-   Normal rows, and tangential rows that can carry a force (friction coefficient or slip bound > 0). */
+   at node `node` of `body`, minus the one at the point sum_v other_weight[v] X(other_node[v]) of `other_body`
+   (-1: a rigid foundation; nother = 0). Normal rows, and tangential rows that can carry a force (friction
+   coefficient or slip bound > 0). */
 struct ContactHoldingRow {
-  PetscInt  zone, body, node, other_body, other_node;
+  PetscInt  zone, body, node, other_body, nother, other_node[3];
+  PetscReal other_weight[3];
   PetscReal dir[3];
 };
 PETSC_INTERN PetscErrorCode ContactCheckRigidMotions_Private(ContactModel, FEM, const std::vector<ContactZone> &, const std::vector<ContactHoldingRow> &);

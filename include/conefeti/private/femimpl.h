@@ -25,9 +25,10 @@ struct FEMBoundaryTriangle {
 };
 
 struct FEMTaggedNodes {
-  std::vector<PetscInt>  nodes;   /* sorted body node ids */
-  std::vector<PetscReal> areas;   /* lumped nodal area: sum over the tagged triangles of area/3 */
-  std::vector<PetscReal> normals; /* 3 per node: area-weighted average outward unit normal */
+  std::vector<PetscInt>  nodes;     /* sorted body node ids */
+  std::vector<PetscReal> areas;     /* lumped nodal area: sum over the tagged triangles of area/3 */
+  std::vector<PetscReal> normals;   /* 3 per node: area-weighted average outward unit normal */
+  std::vector<PetscInt>  triangles; /* 3 body node ids per tagged triangle (boundary order) */
 };
 
 struct FEMUserTag {
