@@ -467,7 +467,8 @@ PetscErrorCode FEMGetNumDirichlet(FEM fem, PetscInt body, PetscInt *n)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
-  PetscCall(CheckBody(fem, body));
+  PetscCheck(body >= 0 && body < (PetscInt)fem->impl->bodies.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "FEMGetNumDirichlet(): body %" PetscInt_FMT " does not exist (%zu bodies)", body,
+             fem->impl->bodies.size());
   PetscAssertPointer(n, 3);
   *n = (PetscInt)fem->impl->bodies[body].dirichlet.size();
   PetscFunctionReturn(PETSC_SUCCESS);
