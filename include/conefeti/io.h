@@ -99,28 +99,28 @@ typedef struct {
 .seealso: `ContactSceneGetSummary()`, `ContactSceneSummaryView()`, `ContactSceneSummaryViewJSON()`
 S*/
 typedef struct {
-  char                    scene[256];
-  PetscMPIInt             ranks;
-  ContactPipeline         pipeline;
-  ContactCoulombAlgorithm algorithm;
-  char                    description[256];
-  PetscInt                n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
-  PetscInt                iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
-  PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
-  PetscInt                refinements;
-  char                    failed_check[32];
-  PetscBool               kplus_explicit, kplus_fallback;
-  PetscInt                unmatched_nodes;
-  PetscReal               max_nu;
-  PetscReal               contact_force[3], normal_force;
+  char                     scene[256];
+  PetscMPIInt              ranks;
+  ContactPipeline          pipeline;
+  ContactCoulombAlgorithm  algorithm;
+  char                     description[256];
+  PetscInt                 n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
+  PetscInt                 iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
+  PetscReal                norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
+  PetscInt                 refinements;
+  char                     failed_check[32];
+  PetscBool                kplus_explicit, kplus_fallback;
+  PetscInt                 unmatched_nodes;
+  PetscReal                max_nu;
+  PetscReal                contact_force[3], normal_force;
   PetscInt                 nsupports;
   ContactSceneSupportForce supports[CONTACTSCENE_MAX_SUPPORTS];
   PetscReal                reaction[3], applied_load[3];
-  PetscInt                friction_polygon;
-  ContactResiduals        residuals;
-  char                    fingerprint[17];
-  PetscBool               finite, converged;
-  char                    reason[256];
+  PetscInt                 friction_polygon;
+  ContactResiduals         residuals;
+  char                     fingerprint[17];
+  PetscBool                finite, converged;
+  char                     reason[256];
 } ContactSceneSummary;
 
 PETSC_EXTERN PetscErrorCode ContactSceneCreate(MPI_Comm, ContactScene *);

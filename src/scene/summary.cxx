@@ -329,10 +329,12 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
     const ContactSceneSupportForce &f = s->supports[k];
     PetscCall(PetscViewerASCIIPrintf(viewer, "reaction of body %" PetscInt_FMT " %s %s: (%.6e, %.6e, %.6e)\n", f.body, f.option, f.face, (double)f.force[0], (double)f.force[1], (double)f.force[2]));
   }
-  if (s->nsupports > CONTACTSCENE_MAX_SUPPORTS) PetscCall(PetscViewerASCIIPrintf(viewer, "(%" PetscInt_FMT " more supports: only their sum below)\n", s->nsupports - (PetscInt)CONTACTSCENE_MAX_SUPPORTS));
+  if (s->nsupports > CONTACTSCENE_MAX_SUPPORTS)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "(%" PetscInt_FMT " more supports: only their sum below)\n", s->nsupports - (PetscInt)CONTACTSCENE_MAX_SUPPORTS));
   if (s->nsupports)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "forces on the bodies: reactions (%.6e, %.6e, %.6e) + loads (%.6e, %.6e, %.6e)%s\n", (double)s->reaction[0], (double)s->reaction[1], (double)s->reaction[2],
-                                     (double)s->applied_load[0], (double)s->applied_load[1], (double)s->applied_load[2], s->pipeline != CONTACT_PIPELINE_LINEAR ? " + contact force above" : ""));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "forces on the bodies: reactions (%.6e, %.6e, %.6e) + loads (%.6e, %.6e, %.6e)%s\n", (double)s->reaction[0], (double)s->reaction[1],
+                                     (double)s->reaction[2], (double)s->applied_load[0], (double)s->applied_load[1], (double)s->applied_load[2],
+                                     s->pipeline != CONTACT_PIPELINE_LINEAR ? " + contact force above" : ""));
   if (s->unmatched_nodes)
     PetscCall(PetscViewerASCIIPrintf(
         viewer, "note: %" PetscInt_FMT " nodes of node-to-node zone faces have no node of the other face at the same position and are not in contact (meshes that do not conform?)\n",

@@ -78,11 +78,11 @@ struct FEMBody {
   std::vector<FEMBoundaryTriangle>             boundary;
   std::map<std::string, std::vector<PetscInt>> tags; /* tag -> indices into boundary */
   std::map<std::string, FEMTaggedNodes>        taggednodes;
-  std::vector<PetscInt>                        part;          /* element -> subdomain index within the body */
+  std::vector<PetscInt>                        part;           /* element -> subdomain index within the body */
   std::vector<unsigned char>                   dirichletmask;  /* node -> prescribed component bits */
   std::vector<PetscReal>                       dirichletvalue; /* 3 per node: the prescribed displacement; empty when every prescribed value is 0 */
-  std::vector<unsigned char>                   onboundary;    /* node -> 1 when on the body's boundary */
-  std::vector<unsigned char>                   oninterface;   /* node -> 1 when elements of two subdomains share it */
+  std::vector<unsigned char>                   onboundary;     /* node -> 1 when on the body's boundary */
+  std::vector<unsigned char>                   oninterface;    /* node -> 1 when elements of two subdomains share it */
 };
 
 /* One subdomain owned by this rank */
