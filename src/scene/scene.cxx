@@ -967,13 +967,18 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 . -scene_body<b>_decomposition <structured,metis> - how the body is cut into subdomains
 . -scene_body<b>_subdomains <px,py,pz or n>  - subdomains (structured: per axis; metis: a count)
 . -scene_body<b>_fix <sel,...>               - faces (or parts) with u = 0; _fix_x, _fix_y, _fix_z fix one component
-. -scene_body<b>_displace<k>_face <sel,...>  - faces (or parts) moved by displacement k (k = 0, 1, ...), with -scene_body<b>_displace<k>_value <ux,uy,uz>, or only some components: _displace<k>_x <ux>,
-_y, _z . -scene_body<b>_traction_<face> <tx,ty,tz>  - traction on a whole face x0 x1 y0 y1 z0 z1 . -scene_body<b>_traction<k>_face <sel>      - traction k on part of a face, with
--scene_body<b>_traction<k>_value <tx,ty,tz> . -scene_body<b>_force <fx,fy,fz>            - volume force density (none when not given) . -scene_zone<z>_type <foundation,bodies>    - contact zone z: a
-rigid obstacle or another body . -scene_zone<z>_body, _face <b>, <sel>      - the body and face (part) that may touch . -scene_zone<z>_shape <plane,sphere,cylinder> - foundation: the obstacle's shape
-(the body lies outside it) . -scene_zone<z>_point, _normal <x,y,z>      - foundation, plane: the plane (normal toward the body) . -scene_zone<z>_center <x,y,z>, _radius <R> - foundation, sphere:
-center and radius; cylinder: a point of the axis and radius . -scene_zone<z>_axis <ax,ay,az>             - foundation, cylinder: the axis direction . -scene_zone<z>_other_body, _other_face     -
-bodies: the other body and its face
+. -scene_body<b>_displace<k>_face <sel,...>  - faces (or parts) moved by displacement k (k = 0, 1, ...)
+. -scene_body<b>_displace<k>_value <ux,uy,uz> - displacement k, every component; or only some: _displace<k>_x <ux>, _y, _z
+. -scene_body<b>_traction_<face> <tx,ty,tz>  - traction on a whole face x0 x1 y0 y1 z0 z1
+. -scene_body<b>_traction<k>_face <sel>      - traction k on part of a face, with -scene_body<b>_traction<k>_value <tx,ty,tz>
+. -scene_body<b>_force <fx,fy,fz>            - volume force density (none when not given)
+. -scene_zone<z>_type <foundation,bodies>    - contact zone z: a rigid obstacle or another body
+. -scene_zone<z>_body, _face <b>, <sel>      - the body and face (part) that may touch
+. -scene_zone<z>_shape <plane,sphere,cylinder> - foundation: the obstacle's shape (the body lies outside it)
+. -scene_zone<z>_point, _normal <x,y,z>      - foundation, plane: the plane (normal toward the body)
+. -scene_zone<z>_center <x,y,z>, _radius <R> - foundation, sphere: center and radius; cylinder: a point of the axis and radius
+. -scene_zone<z>_axis <ax,ay,az>             - foundation, cylinder: the axis direction
+. -scene_zone<z>_other_body, _other_face     - bodies: the other body and its face
 - -scene_zone<z>_law <frictionless,tresca,coulomb> - with -scene_zone<z>_slip_bound <g> (Tresca, a stress) or -scene_zone<z>_friction <F> (Coulomb)
 
   Notes:
