@@ -4,7 +4,8 @@
      K_s  sequential stiffness matrix (SEQAIJ or SEQSBAIJ, block size 3, dofs interleaved x,y,z per node),
      f_s  sequential load vector,
      node coordinates (for the 6 rigid-body modes) or a user kernel basis R_s,
-     optionally the dofs where u = 0 is kept in the primal (FETI with Dirichlet kept in the primal);
+     optionally the dofs where u is prescribed and kept in the primal (FETI with Dirichlet kept in the primal;
+     u = 0 there unless values are given: then they are lifted, f - K u_D);
    and globally
      B    MPIAIJ constraint matrix: rows are the multipliers, columns the global primal vector
           (the concatenation of all subdomains' dofs, each rank owning its own subdomains' dofs),
@@ -60,6 +61,7 @@ PETSC_EXTERN PetscErrorCode FETISetSubdomains(FETI, PetscInt, const Mat[], const
 PETSC_EXTERN PetscErrorCode FETISetSubdomainCoordinates(FETI, PetscInt, Vec);
 PETSC_EXTERN PetscErrorCode FETISetSubdomainKernel(FETI, PetscInt, Mat);
 PETSC_EXTERN PetscErrorCode FETISetSubdomainDirichletDofs(FETI, PetscInt, IS);
+PETSC_EXTERN PetscErrorCode FETISetSubdomainDirichletValues(FETI, PetscInt, Vec);
 PETSC_EXTERN PetscErrorCode FETISetConstraints(FETI, Mat, Vec, const FETIRowKind[]);
 PETSC_EXTERN PetscErrorCode FETISetOptionsPrefix(FETI, const char[]);
 PETSC_EXTERN PetscErrorCode FETIAppendOptionsPrefix(FETI, const char[]);

@@ -25,6 +25,28 @@ PETSC_EXTERN PetscClassId  CONTACTSCENE_CLASSID;
 PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_Summary, CONTACTSCENE_Output;
 
 /*S
+  ContactSceneSupportForce - The reaction of one Dirichlet condition of a scene (a clamped or a displaced face): the force
+  the support exerts on the body (`FEMComputeReactions()`).
+
+  Fields:
++ body   - the body
+. option - the option stem that set it: fix, fix_x, fix_y, fix_z, or displace<k>
+. face   - the face selector as given
+- force  - the resultant force (fx, fy, fz)
+
+  Level: intermediate
+
+.seealso: `ContactSceneSummary`, `FEMComputeReactions()`
+S*/
+#define CONTACTSCENE_MAX_SUPPORTS 32
+typedef struct {
+  PetscInt  body;
+  char      option[16];
+  char      face[64];
+  PetscReal force[3];
+} ContactSceneSupportForce;
+
+/*S
   ContactSceneSummary - What a solve of a scene cost and how good it is: the counts of the seed paper's
   tables, times, the mechanical residuals and the contact node states.
 
@@ -61,6 +83,10 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . unmatched_nodes - slave nodes of zones between bodies without a master point within the search distance (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
+. nsupports     - the Dirichlet conditions (clamped and displaced faces) of all bodies; the first CONTACTSCENE_MAX_SUPPORTS are in supports
+. supports      - their reactions, body by body in the order of the options (_fix, _fix_x, _fix_y, _fix_z, then _displace0, _displace1, ...)
+. reaction      - the sum of all reactions (over every condition, also those beyond supports)
+. applied_load  - the resultant of all applied loads (tractions and volume forces, `FEMComputeLoadResultant()`, summed over the bodies)
 . normal_force  - the sum of the normal contact forces l_n over all contact nodes
 . residuals     - the mechanical residuals (each relative) and the node counts
 . fingerprint   - `ConeFETIVecFingerprint()` of the multipliers: the same on any number of ranks (on one machine)
@@ -73,25 +99,28 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 .seealso: `ContactSceneGetSummary()`, `ContactSceneSummaryView()`, `ContactSceneSummaryViewJSON()`
 S*/
 typedef struct {
-  char                    scene[256];
-  PetscMPIInt             ranks;
-  ContactPipeline         pipeline;
-  ContactCoulombAlgorithm algorithm;
-  char                    description[256];
-  PetscInt                n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
-  PetscInt                iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
-  PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
-  PetscInt                refinements;
-  char                    failed_check[32];
-  PetscBool               kplus_explicit, kplus_fallback;
-  PetscInt                unmatched_nodes;
-  PetscReal               max_nu;
-  PetscReal               contact_force[3], normal_force;
-  PetscInt                friction_polygon;
-  ContactResiduals        residuals;
-  char                    fingerprint[17];
-  PetscBool               finite, converged;
-  char                    reason[256];
+  char                     scene[256];
+  PetscMPIInt              ranks;
+  ContactPipeline          pipeline;
+  ContactCoulombAlgorithm  algorithm;
+  char                     description[256];
+  PetscInt                 n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
+  PetscInt                 iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
+  PetscReal                norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
+  PetscInt                 refinements;
+  char                     failed_check[32];
+  PetscBool                kplus_explicit, kplus_fallback;
+  PetscInt                 unmatched_nodes;
+  PetscReal                max_nu;
+  PetscReal                contact_force[3], normal_force;
+  PetscInt                 nsupports;
+  ContactSceneSupportForce supports[CONTACTSCENE_MAX_SUPPORTS];
+  PetscReal                reaction[3], applied_load[3];
+  PetscInt                 friction_polygon;
+  ContactResiduals         residuals;
+  char                     fingerprint[17];
+  PetscBool                finite, converged;
+  char                     reason[256];
 } ContactSceneSummary;
 
 PETSC_EXTERN PetscErrorCode ContactSceneCreate(MPI_Comm, ContactScene *);

@@ -58,19 +58,24 @@ void Tangents(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3])
 
 /* The Dirichlet components of every node (global node -> mask of fixed components). A node fixed in all the
    components its contact row would act on is left out of contact (its row would be a zero row of B); see
-   CollectZoneNodes(). */
+   CollectZoneNodes(). A node with a nonzero prescribed displacement (FEMSetDisplacement()) is marked fixed in all
+   three components, so it is left out whatever its law: a row that dropped a moved component would need the
+   value in its gap, and a grip or punch face is not a contact face. */
 PetscErrorCode DirichletNodes(FEM fem, std::map<PetscInt, unsigned> &fixed)
 {
-  IS              is, all;
-  PetscInt        n;
-  const PetscInt *idx;
+  IS                     is, all;
+  PetscInt               n;
+  const PetscInt        *idx;
+  std::vector<PetscReal> values;
 
   PetscFunctionBegin;
   PetscCall(FEMGetGlobalDirichletDofs(fem, &is));
   PetscCall(ISAllGather(is, &all));
   PetscCall(ISGetLocalSize(all, &n));
+  PetscCallCXX(values.resize(n));
+  PetscCall(FEMGetDirichletValues(fem, all, values.data()));
   PetscCall(ISGetIndices(all, &idx));
-  for (PetscInt i = 0; i < n; i++) PetscCallCXX(fixed[idx[i] / 3] |= 1u << (idx[i] % 3));
+  for (PetscInt i = 0; i < n; i++) PetscCallCXX(fixed[idx[i] / 3] |= values[i] != 0.0 ? 7u : 1u << (idx[i] % 3));
   PetscCall(ISRestoreIndices(all, &idx));
   PetscCall(ISDestroy(&all));
   PetscCall(ISDestroy(&is));

@@ -124,7 +124,7 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
   ContactSceneSummary     summary;
   ContactPipeline         pipeline;
   ContactCoulombAlgorithm algorithm;
-  char                    output[PETSC_MAX_PATH_LEN] = "", jsonfile[PETSC_MAX_PATH_LEN] = "", description[256], json[4096];
+  char                    output[PETSC_MAX_PATH_LEN] = "", jsonfile[PETSC_MAX_PATH_LEN] = "", description[256], json[16384];
   PetscBool               hasoutput = PETSC_FALSE, hasjson = PETSC_FALSE, table = PETSC_TRUE, unconverged = PETSC_FALSE, help;
   PetscInt                major, minor, patch;
   MPI_Comm                comm = PETSC_COMM_WORLD;

@@ -278,6 +278,40 @@ PetscErrorCode FETISetSubdomainDirichletDofs(FETI feti, PetscInt s, IS is)
 }
 
 /*@C
+  FETISetSubdomainDirichletValues - Give the prescribed (nonzero) values of the Dirichlet dofs a subdomain keeps in the primal.
+
+  Not Collective
+
+  Input Parameters:
++ feti - the FETI problem
+. s    - local subdomain index
+- uD   - sequential vector of the subdomain's length n_s; its entries at the dofs of `FETISetSubdomainDirichletDofs()` are the
+         prescribed displacements, the others are ignored (NULL: zero, the default)
+
+  Notes:
+  The values are lifted: `FETISetUp()` takes f_s - K_s u_D as the subdomain's load (K_s whole, before its
+  Dirichlet rows and columns are removed), so that the problem on the free dofs is K u = f - K u_D, and
+  `FETIRecoverPrimal()` puts u_D at those dofs. `FETIGetLoad()` returns the lifted load, which is what
+  `FETIApplyK()` (zero on the Dirichlet dofs) balances. `FETIWrite()` writes the lifted problem: read back, it has
+  the same multipliers and free dofs, and zeros at the Dirichlet dofs.
+
+  Level: intermediate
+
+.seealso: `FETISetSubdomainDirichletDofs()`, `FETIRecoverPrimal()`, `FEMSetDisplacement()`
+@*/
+PetscErrorCode FETISetSubdomainDirichletValues(FETI feti, PetscInt s, Vec uD)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckLocal(feti, s));
+  if (uD) PetscValidHeaderSpecific(uD, VEC_CLASSID, 3);
+  if (uD) PetscCall(PetscObjectReference((PetscObject)uD));
+  PetscCall(VecDestroy(&feti->impl->sub[s].uD));
+  feti->impl->sub[s].uD = uD;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   FETISetConstraints - Give the constraint matrix B, the right-hand side c of B u = c, and the kind of each row.
 
   Collective
@@ -917,13 +951,39 @@ PetscErrorCode FETISetUp(FETI feti)
       const PetscScalar *a;
       if (!sd.f) {
         for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = 0;
-        continue;
+      } else {
+        PetscCall(VecGetArrayRead(sd.f, &a));
+        for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = a[i];
+        PetscCall(VecRestoreArrayRead(sd.f, &a));
+        PetscCall(VecDestroy(&sd.f));
       }
-      PetscCall(VecGetArrayRead(sd.f, &a));
-      for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = a[i];
-      PetscCall(VecRestoreArrayRead(sd.f, &a));
-      for (PetscInt d : sd.dirichletdofs) fa[sd.localoffset + d] = 0; /* no work on fixed dofs */
-      PetscCall(VecDestroy(&sd.f));
+      sd.dirichletvalues.clear();
+      if (sd.uD && !sd.dirichletdofs.empty()) { /* lifting: f - K u_D with K_s still whole (FETISetSubdomainDirichletValues()) */
+        Vec          w, Kw;
+        PetscScalar *wa;
+        PetscInt     n;
+        PetscCall(VecGetSize(sd.uD, &n));
+        PetscCheck(n == sd.n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomainDirichletValues(): subdomain %" PetscInt_FMT ": %" PetscInt_FMT " values for %" PetscInt_FMT " dofs",
+                   impl.firstsub + (PetscInt)(&sd - impl.sub.data()), n, sd.n);
+        PetscCall(VecDuplicate(sd.uD, &w));
+        PetscCall(VecDuplicate(sd.uD, &Kw));
+        PetscCall(VecGetArray(w, &wa));
+        PetscCall(VecGetArrayRead(sd.uD, &a));
+        for (PetscInt i = 0; i < sd.n; i++) wa[i] = 0;
+        PetscCallCXX(sd.dirichletvalues.resize(sd.dirichletdofs.size()));
+        for (size_t k = 0; k < sd.dirichletdofs.size(); k++) wa[sd.dirichletdofs[k]] = sd.dirichletvalues[k] = a[sd.dirichletdofs[k]];
+        PetscCall(VecRestoreArrayRead(sd.uD, &a));
+        PetscCall(VecRestoreArray(w, &wa));
+        PetscCall(MatMult(sd.K, w, Kw));
+        PetscCall(VecGetArrayRead(Kw, &a));
+        for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] -= a[i];
+        PetscCall(VecRestoreArrayRead(Kw, &a));
+        PetscCall(VecDestroy(&w));
+        PetscCall(VecDestroy(&Kw));
+        if (std::all_of(sd.dirichletvalues.begin(), sd.dirichletvalues.end(), [](PetscScalar v) { return v == 0.0; })) sd.dirichletvalues.clear();
+      }
+      PetscCall(VecDestroy(&sd.uD));
+      for (PetscInt d : sd.dirichletdofs) fa[sd.localoffset + d] = 0; /* no work on prescribed dofs */
     }
     PetscCall(VecRestoreArray(impl.f, &fa));
   }

@@ -109,7 +109,7 @@ PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
 }
 
 /*@C
-  FETIRecoverPrimal - The primal solution u = K+(f - B' lambda) + R alpha.
+  FETIRecoverPrimal - The primal solution u = K+(f - B' lambda) + R alpha (and the prescribed values of `FETISetSubdomainDirichletValues()` at the Dirichlet dofs kept in the primal).
 
   Collective
 
@@ -148,6 +148,13 @@ PetscErrorCode FETIRecoverPrimal(FETI feti, Vec lambda, Vec alpha, Vec u)
   PetscCall(VecAYPX(impl.wp1, -1.0, impl.f));
   PetscCall(FETIApplyKplus(feti, impl.wp1, u));
   if (impl.ncoarse) PetscCall(MatMultAdd(impl.R, alpha, u, u));
+  { /* prescribed values of Dirichlet dofs kept in the primal (K+ and R vanish there) */
+    PetscScalar *ua;
+    PetscCall(VecGetArray(u, &ua));
+    for (FETISubdomain &sd : impl.sub)
+      for (size_t k = 0; k < sd.dirichletvalues.size(); k++) ua[sd.localoffset + sd.dirichletdofs[k]] = sd.dirichletvalues[k];
+    PetscCall(VecRestoreArray(u, &ua));
+  }
   PetscCall(PetscLogEventEnd(FETI_PrimalRecovery, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

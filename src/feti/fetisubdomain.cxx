@@ -367,6 +367,7 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(VecDestroy(&sd.coords));
   PetscCall(MatDestroy(&sd.Ruser));
   PetscCall(ISDestroy(&sd.dirichlet));
+  PetscCall(VecDestroy(&sd.uD));
   PetscCall(MatDestroy(&sd.Kreg));
   PetscCall(MatDestroy(&sd.correction));
   PetscCall(KSPDestroy(&sd.ksp));

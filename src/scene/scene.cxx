@@ -380,8 +380,50 @@ PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody
         SceneSupport sp;
         PetscCall(ParseSelector(comm, r.Full(s + keys[k]), t, sp.selector));
         sp.mask = k == 0 ? 7u : (1u << (k - 1));
+        sp.kind = keys[k];
         body.supports.push_back(sp);
       }
+    }
+  }
+  /* displaced faces (grips, punches): face k moved by a given vector, all components (_value) or some (_x, _y, _z) */
+  for (PetscInt k = 0; k < MaxList; k++) {
+    const std::string        stem = ConeFETIFormat("%sdisplace%d_", s.c_str(), (int)k), sf = stem + "face", sv = stem + "value";
+    const std::string        sc[3] = {stem + "x", stem + "y", stem + "z"};
+    PetscBool                has, any, setv, setc[3];
+    std::vector<std::string> list;
+    std::array<PetscReal, 3> value{};
+    unsigned                 mask = 0;
+    PetscCall(r.Has(sf, &has));
+    PetscCall(AnySet(r, stem, {"face", "value", "x", "y", "z"}, &any));
+    if (!any && !(r.help && k == 0)) break;
+    PetscCall(r.Strings(sf, "Faces (or parts) moved by displacement <k>: FACE[/COND...],... (a grip or a punch)", "face selectors FACE[/COND...]", list, &set));
+    PetscCall(r.Reals(sv, "Displacement <k> ux,uy,uz of those faces (every component prescribed)", "3 numbers ux,uy,uz", 3, 3, value.data(), NULL, &setv));
+    for (PetscInt c = 0; c < 3; c++) {
+      const char *help[3] = {"Displacement <k>: only the x component prescribed (y, z free unless given)", "Displacement <k>: only the y component prescribed",
+                             "Displacement <k>: only the z component prescribed"};
+      PetscCall(r.Real(sc[c], help[c], "a displacement component", &value[c], &setc[c]));
+      if (setc[c]) mask |= 1u << c;
+    }
+    if (!exists || !any) continue;
+    PetscCheck(has, comm, PETSC_ERR_ARG_WRONG, "displacement %d of body %d needs %s (the faces it moves)", (int)k, (int)b, r.Full(sf).c_str());
+    PetscCheck(setv || mask, comm, PETSC_ERR_ARG_WRONG, "displacement %d of body %d needs %s ux,uy,uz, or the components it prescribes: %s, %s, %s", (int)k, (int)b, r.Full(sv).c_str(),
+               r.Full(sc[0]).c_str(), r.Full(sc[1]).c_str(), r.Full(sc[2]).c_str());
+    PetscCheck(!(setv && mask), comm, PETSC_ERR_ARG_WRONG, "displacement %d of body %d: %s prescribes every component, so %s cannot be given with it (use %s, %s, %s alone to leave components free)",
+               (int)k, (int)b, r.Full(sv).c_str(),
+               r.Full(sc[setc[0]   ? 0
+                         : setc[1] ? 1
+                                   : 2])
+                   .c_str(),
+               r.Full(sc[0]).c_str(), r.Full(sc[1]).c_str(), r.Full(sc[2]).c_str());
+    if (setv) mask = 7u;
+    for (const std::string &t : list) {
+      SceneSupport sp;
+      PetscCall(ParseSelector(comm, r.Full(sf), t, sp.selector));
+      sp.mask     = mask;
+      sp.value    = value;
+      sp.displace = k;
+      sp.kind     = ConeFETIFormat("displace%d", (int)k);
+      body.supports.push_back(sp);
     }
   }
   /* tractions: per whole face, then on parts of faces */
@@ -934,6 +976,8 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 . -scene_body<b>_decomposition <structured,metis> - how the body is cut into subdomains
 . -scene_body<b>_subdomains <px,py,pz or n>  - subdomains (structured: per axis; metis: a count)
 . -scene_body<b>_fix <sel,...>               - faces (or parts) with u = 0; _fix_x, _fix_y, _fix_z fix one component
+. -scene_body<b>_displace<k>_face <sel,...>  - faces (or parts) moved by displacement k (k = 0, 1, ...)
+. -scene_body<b>_displace<k>_value <ux,uy,uz> - displacement k, every component; or only some: _displace<k>_x <ux>, _y, _z
 . -scene_body<b>_traction_<face> <tx,ty,tz>  - traction on a whole face x0 x1 y0 y1 z0 z1
 . -scene_body<b>_traction<k>_face <sel>      - traction k on part of a face, with -scene_body<b>_traction<k>_value <tx,ty,tz>
 . -scene_body<b>_force <fx,fy,fz>            - volume force density (none when not given)
@@ -1130,7 +1174,7 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
     }
     for (const SceneSupport &sp : body.supports) {
       const PetscBool comps[3] = {(sp.mask & 1u) ? PETSC_TRUE : PETSC_FALSE, (sp.mask & 2u) ? PETSC_TRUE : PETSC_FALSE, (sp.mask & 4u) ? PETSC_TRUE : PETSC_FALSE};
-      PetscCall(FEMSetDirichlet(impl.fem, id, sp.selector.tag.c_str(), comps));
+      PetscCall(FEMSetDisplacement(impl.fem, id, sp.selector.tag.c_str(), comps, sp.value.data()));
     }
     for (const SceneTraction &t : body.tractions) PetscCall(FEMSetTraction(impl.fem, id, t.selector.tag.c_str(), t.value.data()));
     if (body.hasforce) PetscCall(FEMSetBodyForce(impl.fem, id, ConstantForce, body.force.data()));
@@ -1262,8 +1306,14 @@ PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
       else text += ConeFETIFormat(", METIS %d subdomains", (int)body.parts[0]);
     }
     text += "\n";
-    for (const SceneSupport &sp : body.supports)
-      text += ConeFETIFormat("    support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : "");
+    for (const SceneSupport &sp : body.supports) {
+      if (sp.displace < 0) text += ConeFETIFormat("    support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : "");
+      else {
+        text += ConeFETIFormat("    displacement %d on %s:", (int)sp.displace, sp.selector.text.c_str());
+        for (PetscInt c = 0; c < 3; c++) text += (sp.mask & (1u << c)) ? ConeFETIFormat(" u%c = %g", (char)('x' + c), (double)sp.value[c]) : ConeFETIFormat(" u%c free", (char)('x' + c));
+        text += "\n";
+      }
+    }
     for (const SceneTraction &t : body.tractions) text += ConeFETIFormat("    traction on %s: (%g, %g, %g)\n", t.selector.text.c_str(), (double)t.value[0], (double)t.value[1], (double)t.value[2]);
     if (body.hasforce) text += ConeFETIFormat("    volume force (%g, %g, %g)\n", (double)body.force[0], (double)body.force[1], (double)body.force[2]);
   }

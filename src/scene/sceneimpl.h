@@ -30,9 +30,13 @@ struct SceneSelector {
   std::string                 tag; /* the FEM boundary tag it becomes */
 };
 
+/* A Dirichlet condition: a clamped face (-scene_body<b>_fix, _fix_x, ...) or a displaced one (_displace<k>_*) */
 struct SceneSupport {
-  SceneSelector selector;
-  unsigned      mask; /* bit c: component c fixed */
+  SceneSelector            selector;
+  unsigned                 mask;          /* bit c: component c prescribed */
+  std::array<PetscReal, 3> value{};       /* the prescribed displacement (0 for _fix) */
+  PetscInt                 displace = -1; /* k of -scene_body<b>_displace<k>_*, or -1 for _fix */
+  std::string              kind;          /* "fix", "fix_x", ..., "displace<k>": the option's stem, for the summary */
 };
 
 struct SceneTraction {

@@ -218,6 +218,35 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   s->max_nu = -1;
   for (const SceneBody &b : impl.bodies) s->max_nu = PetscMax(s->max_nu, b.nu);
   if (cp) PetscCall(ContactModelGetContactForce(impl.cm, -1, s->contact_force, &s->normal_force));
+  /* the reaction of every clamped or displaced face, and the loads they balance with the contact forces */
+  {
+    Vec                    u;
+    PetscInt               total = 0;
+    std::vector<PetscReal> reaction;
+    for (const SceneBody &b : impl.bodies) total += (PetscInt)b.supports.size();
+    PetscCallCXX(reaction.resize(3 * (size_t)total));
+    PetscCall(ContactModelGetSolution(impl.cm, NULL, &u));
+    PetscCall(FEMComputeReactions(impl.fem, feti, u, lambda, reaction.data()));
+    s->nsupports = total;
+    PetscInt k   = 0;
+    for (size_t b = 0; b < impl.bodies.size(); b++) {
+      const PetscReal origin[3] = {0, 0, 0};
+      PetscReal       load[3];
+      PetscCall(FEMComputeLoadResultant(impl.fem, (PetscInt)b, origin, load, NULL, NULL));
+      for (int c = 0; c < 3; c++) s->applied_load[c] += load[c];
+      for (const SceneSupport &sp : impl.bodies[b].supports) {
+        for (int c = 0; c < 3; c++) s->reaction[c] += reaction[3 * k + c];
+        if (k < CONTACTSCENE_MAX_SUPPORTS) {
+          ContactSceneSupportForce &f = s->supports[k];
+          f.body                      = (PetscInt)b;
+          PetscCall(PetscStrncpy(f.option, sp.kind.c_str(), sizeof(f.option)));
+          PetscCall(PetscStrncpy(f.face, sp.selector.text.c_str(), sizeof(f.face)));
+          for (int c = 0; c < 3; c++) f.force[c] = reaction[3 * k + c];
+        }
+        k++;
+      }
+    }
+  }
   /* the mechanical residuals, from u and lambda */
   PetscCall(ContactModelComputeResiduals(impl.cm, &s->residuals));
   s->contact_nodes = s->residuals.counts[0] + s->residuals.counts[1] + s->residuals.counts[2];
@@ -296,6 +325,16 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
   if (s->pipeline != CONTACT_PIPELINE_LINEAR)
     PetscCall(PetscViewerASCIIPrintf(viewer, "contact force on the bodies: (%.6e, %.6e, %.6e); sum of the normal forces %.6e\n", (double)s->contact_force[0], (double)s->contact_force[1],
                                      (double)s->contact_force[2], (double)s->normal_force));
+  for (PetscInt k = 0; k < PetscMin(s->nsupports, (PetscInt)CONTACTSCENE_MAX_SUPPORTS); k++) {
+    const ContactSceneSupportForce &f = s->supports[k];
+    PetscCall(PetscViewerASCIIPrintf(viewer, "reaction of body %" PetscInt_FMT " %s %s: (%.6e, %.6e, %.6e)\n", f.body, f.option, f.face, (double)f.force[0], (double)f.force[1], (double)f.force[2]));
+  }
+  if (s->nsupports > CONTACTSCENE_MAX_SUPPORTS)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "(%" PetscInt_FMT " more supports: only their sum below)\n", s->nsupports - (PetscInt)CONTACTSCENE_MAX_SUPPORTS));
+  if (s->nsupports)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "forces on the bodies: reactions (%.6e, %.6e, %.6e) + loads (%.6e, %.6e, %.6e)%s\n", (double)s->reaction[0], (double)s->reaction[1],
+                                     (double)s->reaction[2], (double)s->applied_load[0], (double)s->applied_load[1], (double)s->applied_load[2],
+                                     s->pipeline != CONTACT_PIPELINE_LINEAR ? " + contact force above" : ""));
   if (s->unmatched_nodes)
     PetscCall(PetscViewerASCIIPrintf(viewer,
                                      "note: %" PetscInt_FMT
@@ -446,6 +485,34 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   }
   out += "]";
   Real(out, "normal_force", s->normal_force);
+  {
+    auto Vector = [&out](const char *key, const PetscReal v[3]) {
+      Key(out, key);
+      out += "[";
+      for (int c = 0; c < 3; c++) {
+        char buf[64];
+        if (c) out += ",";
+        snprintf(buf, sizeof(buf), "%.6e", (double)v[c]);
+        out += std::isfinite((double)v[c]) ? buf : "null";
+      }
+      out += "]";
+    };
+    Key(out, "supports");
+    out += "[";
+    for (PetscInt k = 0; k < PetscMin(s->nsupports, (PetscInt)CONTACTSCENE_MAX_SUPPORTS); k++) {
+      const ContactSceneSupportForce &f = s->supports[k];
+      out += k ? ",{" : "{";
+      Int(out, "body", f.body);
+      Str(out, "option", f.option);
+      Str(out, "face", f.face);
+      Vector("force", f.force);
+      out += "}";
+    }
+    out += "]";
+    Int(out, "nsupports", s->nsupports);
+    Vector("reaction", s->reaction);
+    Vector("applied_load", s->applied_load);
+  }
   Real(out, "acceptance", s->acceptance);
   Str(out, "failed_check", s->failed_check[0] ? s->failed_check : NULL);
   Int(out, "refinements", s->refinements);
@@ -486,7 +553,7 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
 @*/
 PetscErrorCode ContactSceneSummaryViewJSON(const ContactSceneSummary *s, PetscViewer viewer)
 {
-  char json[4096];
+  char json[16384];
 
   PetscFunctionBegin;
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PETSC_COMM_WORLD, &viewer));

@@ -15,7 +15,8 @@ struct FETISubdomain {
   Vec f         = nullptr;
   Vec coords    = nullptr;
   Mat Ruser     = nullptr;
-  IS  dirichlet = nullptr; /* dofs kept at zero in the primal */
+  IS  dirichlet = nullptr; /* dofs kept in the primal at a prescribed value (zero unless given) */
+  Vec uD        = nullptr; /* the prescribed values (length n, read at the Dirichlet dofs), or NULL: zero */
 
   /* setup */
   PetscInt                 n = 0, offset = 0, localoffset = 0; /* dofs, first global primal dof, first dof in the rank's local array */
@@ -23,6 +24,7 @@ struct FETISubdomain {
   std::vector<PetscScalar> R;                                  /* n x nkernel orthonormal kernel basis, column-major */
   std::vector<PetscInt>    fixing;                             /* dofs removed to regularize (sorted) */
   std::vector<PetscInt>    dirichletdofs;                      /* sorted */
+  std::vector<PetscScalar> dirichletvalues;                    /* u at dirichletdofs after recovery; empty: all zero */
   std::vector<PetscInt>    removed;                            /* fixing and Dirichlet dofs, sorted */
   Mat                      Kreg       = nullptr;               /* K with removed rows/columns replaced by identity*diag */
   Mat                      correction = nullptr;               /* K_V - Kreg restricted to rows/cols of removed dofs (SeqAIJ) */
