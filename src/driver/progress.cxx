@@ -16,9 +16,9 @@ namespace {
 struct Printer {
   DriverProgressMode   mode = DRIVER_PROGRESS_NONE;
   PetscMPIInt          rank = 0, size = 1;
-  PetscLogDouble       last = -1; /* when the terminal line was last written */
-  size_t               width = 0; /* characters on the terminal line */
-  ConeFETIProgressInfo solve{};   /* the last outer iteration, for the log line of the solve */
+  PetscLogDouble       last  = -1; /* when the terminal line was last written */
+  size_t               width = 0;  /* characters on the terminal line */
+  ConeFETIProgressInfo solve{};    /* the last outer iteration, for the log line of the solve */
 };
 
 Printer printer;
@@ -93,10 +93,7 @@ PetscErrorCode Print(const ConeFETIProgressInfo *info, void *)
 } // namespace
 
 /* Before MPI_Init() (which sets the same variables in a process started alone): whether an MPI launcher started us */
-void DriverProgressNoteLauncher(void)
-{
-  launched = getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE") || getenv("PMIX_RANK") || getenv("PMI_RANK");
-}
+void DriverProgressNoteLauncher(void) { launched = getenv("OMPI_COMM_WORLD_SIZE") || getenv("PMI_SIZE") || getenv("PMIX_RANK") || getenv("PMI_RANK"); }
 
 /* Install the printer on the scene: mode auto picks the terminal form when stdout is a terminal, else the log form */
 PetscErrorCode DriverProgressSet(ContactScene scene, DriverProgressMode mode)

@@ -4,21 +4,11 @@
 #include <conefeti/compat.h>
 #include <petsctime.h>
 
-const char *const ConeFETIPhases[] = {"mesh",          "contact_rows",   "kernels",         "memory", "coarse",
-                                      "factorization", "explicit_kplus", "operators",       "contact_problem",
-                                      "solve",         "ConeFETIPhase",  "CONEFETI_PHASE_", nullptr};
+const char *const ConeFETIPhases[] = {"mesh",      "contact_rows",    "kernels", "memory",        "coarse",          "factorization", "explicit_kplus",
+                                      "operators", "contact_problem", "solve",   "ConeFETIPhase", "CONEFETI_PHASE_", nullptr};
 
-const char *const ConeFETIPhaseDescriptions[] = {"meshing and assembling the bodies",
-                                                 "contact nodes and rows",
-                                                 "subdomain kernels",
-                                                 "memory estimate",
-                                                 "coarse problem",
-                                                 "factorizing subdomains",
-                                                 "explicit (K+)_bb of subdomains",
-                                                 "operators F, G, P, Q",
-                                                 "contact problem",
-                                                 "starting",
-                                                 nullptr};
+const char *const ConeFETIPhaseDescriptions[] = {"meshing and assembling the bodies", "contact nodes and rows", "subdomain kernels", "memory estimate", "coarse problem", "factorizing subdomains",
+                                                 "explicit (K+)_bb of subdomains",    "operators F, G, P, Q",   "contact problem",   "starting",        nullptr};
 
 static PetscErrorCode Call(ConeFETIProgress &p)
 {
