@@ -36,6 +36,8 @@ PetscErrorCode ContactSceneProgress_Private(const ConeFETIProgressInfo *info, vo
   Scene_Impl &impl = *static_cast<ContactScene>(ctx)->impl;
 
   PetscFunctionBegin;
+  /* a phase may end in parts (none does yet): the durations add up; a new solve starts its own */
+  if (info->phase == CONEFETI_PHASE_SOLVE && !info->done && info->iteration == 0) impl.time_phases[CONEFETI_PHASE_SOLVE] = 0;
   if (info->done) impl.time_phases[info->phase] += info->time;
   if (impl.progressfn) PetscCall(impl.progressfn(info, impl.progressctx));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -10,10 +10,10 @@
 #include <vector>
 
 struct Seen {
-  std::vector<ConeFETIPhase> ended;                 /* phases in the order they ended */
-  PetscInt                   open = -1;             /* the phase begun and not ended (-1: none) */
+  std::vector<ConeFETIPhase> ended;     /* phases in the order they ended */
+  PetscInt                   open = -1; /* the phase begun and not ended (-1: none) */
   PetscInt                   k = 0, iteration = 0, step = 0;
-  PetscInt                   iterations           = 0; /* outer iterations reported */
+  PetscInt                   iterations                 = 0; /* outer iterations reported */
   PetscLogDouble             time[CONEFETI_PHASE_COUNT] = {};
   PetscInt                   checks                     = 0;
 };
@@ -77,8 +77,8 @@ int main(int argc, char **argv)
   /* the setup phases in the order they run; every phase at most once (the contact problem only with contact) */
   for (size_t i = 1; i < seen.ended.size(); i++)
     PetscCheck(seen.ended[i] > seen.ended[i - 1], PETSC_COMM_SELF, PETSC_ERR_PLIB, "phase %s ended after %s", ConeFETIPhases[seen.ended[i]], ConeFETIPhases[seen.ended[i - 1]]);
-  for (ConeFETIPhase p : {CONEFETI_PHASE_MESH, CONEFETI_PHASE_CONTACT_ROWS, CONEFETI_PHASE_KERNELS, CONEFETI_PHASE_MEMORY, CONEFETI_PHASE_COARSE, CONEFETI_PHASE_FACTORIZATION, CONEFETI_PHASE_OPERATORS,
-                          CONEFETI_PHASE_SOLVE}) {
+  for (ConeFETIPhase p : {CONEFETI_PHASE_MESH, CONEFETI_PHASE_CONTACT_ROWS, CONEFETI_PHASE_KERNELS, CONEFETI_PHASE_MEMORY, CONEFETI_PHASE_COARSE, CONEFETI_PHASE_FACTORIZATION,
+                          CONEFETI_PHASE_OPERATORS, CONEFETI_PHASE_SOLVE}) {
     bool found = false;
     for (ConeFETIPhase q : seen.ended) found = found || q == p;
     PetscCheck(found, PETSC_COMM_SELF, PETSC_ERR_PLIB, "phase %s was not reported", ConeFETIPhases[p]);
