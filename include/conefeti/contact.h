@@ -164,6 +164,10 @@ PETSC_EXTERN PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem, Vec
 #include <conefeti/fem.h>
 #include <conefeti/feti.h>
 
+/* The FETI interchange file with the contact pairing of a ContactProblem (docs/feti-interchange.md) */
+PETSC_EXTERN PetscErrorCode FETIWriteContact(FETI, ContactProblem, PetscViewer);
+PETSC_EXTERN PetscErrorCode FETILoadContact(FETI, ContactProblem, PetscViewer);
+
 /*E
   ContactZoneType - Where a contact zone's nodes may touch.
 

@@ -226,8 +226,9 @@ PetscErrorCode FETISetSubdomainCoordinates(FETI feti, PetscInt s, Vec coords)
 - R    - sequential matrix n_s x k (any type convertible to MATSEQDENSE); k = 0 means K_s is nonsingular
 
   Notes:
-  The columns are orthonormalized. With Dirichlet dofs kept in the primal, only the combinations
-  vanishing on them are kept. The basis is checked against K_s (-feti_check).
+  The columns are orthonormalized, unless they already are to 1e-12 (then they are kept to the bit, so that
+  a problem read back with `FETILoad()` is the one written). With Dirichlet dofs kept in the primal, only the
+  combinations vanishing on them are kept. The basis is checked against K_s (-feti_check).
 
   Level: intermediate
 
