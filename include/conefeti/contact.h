@@ -10,6 +10,7 @@
    mpgp solve; Coulomb: the friction loop (Algorithm 1, 2 of the seed paper, or monolithic). */
 #pragma once
 
+#include <conefeti/sys.h>
 #include <conefeti/qp.h>
 
 /*E
@@ -153,6 +154,7 @@ PETSC_EXTERN PetscErrorCode ContactProblemGetEqualityMultiplier(ContactProblem, 
 PETSC_EXTERN PetscErrorCode ContactProblemGetNodes(ContactProblem, PetscInt *, const PetscInt **, const PetscInt **, const PetscInt **, const ContactLaw **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode ContactProblemGetSlipBounds(ContactProblem, Vec, PetscReal[]);
 PETSC_EXTERN PetscErrorCode ContactProblemGetTao(ContactProblem, Tao *);
+PETSC_EXTERN PetscErrorCode ContactProblemSetProgress(ContactProblem, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem, Vec, PetscReal *, PetscReal *);
 
 /* ---------------------------------------------------------------------------------------------
@@ -384,6 +386,7 @@ PETSC_EXTERN PetscErrorCode ContactModelGetContactProblem(ContactModel, ContactP
 PETSC_EXTERN PetscErrorCode ContactModelGetPipeline(ContactModel, ContactPipeline *);
 PETSC_EXTERN PetscErrorCode ContactModelGetSolution(ContactModel, Vec *, Vec *);
 PETSC_EXTERN PetscErrorCode ContactModelGetStatistics(ContactModel, ContactStatistics *);
+PETSC_EXTERN PetscErrorCode ContactModelSetProgress(ContactModel, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode ContactModelComputeResiduals(ContactModel, ContactResiduals *);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodes(ContactModel, PetscInt *, const PetscInt **, const PetscInt **, const PetscReal **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel, PetscInt *);

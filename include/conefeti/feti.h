@@ -16,6 +16,7 @@
 #pragma once
 
 #include <petscksp.h>
+#include <conefeti/sys.h>
 
 /*S
   FETI - A FETI (finite element tearing and interconnecting) dual problem built from subdomain data:
@@ -93,6 +94,7 @@ PETSC_EXTERN PetscErrorCode FETIComputeAlphaFromEquality(FETI, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIRecoverPrimal(FETI, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIGetKSP(FETI, KSP *);
 PETSC_EXTERN PetscErrorCode FETISetKplusExplicit(FETI, PetscBool);
+PETSC_EXTERN PetscErrorCode FETISetProgress(FETI, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode FETIGetKplusExplicit(FETI, PetscBool *, PetscBool *);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryEstimate(FETI, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryBudget(MPI_Comm, const char[], PetscReal *, PetscBool *);

@@ -71,6 +71,9 @@ typedef struct {
 . norm_F        - the ||F|| estimate the solver used (0 for the linear pipeline)
 . time_setup    - seconds: mesh, FETI operators and factorizations, contact problem
 . time_solve    - seconds: the solve with primal recovery
+. time_phases   - seconds per `ConeFETIPhase` (rank 0's): the setup broken down (mesh, contact rows, kernels, memory, coarse,
+                  factorization, explicit_kplus, operators, contact_problem; they sum to at most time_setup) and the solve;
+                  0 for a phase that did not run
 . fixed_point   - Coulomb: relative fixed-point residual |g - F l_n| / |F l_n| at the end
 . feasibility   - |G l - e| at the end
 . rtol          - the contact solver's relative tolerance (-contact_rtol; 0 for the linear pipeline)
@@ -107,6 +110,7 @@ typedef struct {
   PetscInt                 n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
   PetscInt                 iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
   PetscReal                norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
+  PetscReal                time_phases[CONEFETI_PHASE_COUNT];
   PetscInt                 refinements;
   char                     failed_check[32];
   PetscBool                kplus_explicit, kplus_fallback;
@@ -137,6 +141,7 @@ PETSC_EXTERN PetscErrorCode ContactSceneGetContactModel(ContactScene, ContactMod
 PETSC_EXTERN PetscErrorCode ContactSceneGetBodyMaterial(ContactScene, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode ContactSceneGetPipelineDescription(ContactScene, ContactPipeline *, ContactCoulombAlgorithm *, char[], size_t);
 PETSC_EXTERN PetscErrorCode ContactSceneGetSummary(ContactScene, ContactSceneSummary *);
+PETSC_EXTERN PetscErrorCode ContactSceneSetProgress(ContactScene, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *, PetscViewer);
 PETSC_EXTERN PetscErrorCode ContactSceneSummaryViewJSON(const ContactSceneSummary *, PetscViewer);
 PETSC_EXTERN PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *, char[], size_t);

@@ -579,6 +579,7 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", (double)d->acceptance_factor);
   PetscCheck(d->refine_max >= 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE, "-contact_refine_max must be >= 0, got %" PetscInt_FMT, d->refine_max);
+  PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_CONTACT_ROWS, 0));
   PetscCall(DirichletNodes(d->fem, fixed));
   PetscCallCXX(d->unmatched.assign(d->zones.size(), 0));
   PetscCallCXX(d->slave.assign(d->zones.size(), -1));
@@ -610,14 +611,19 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   /* contact needs hundreds of F products: dense K+ blocks on the interface pay for their setup (-feti_kplus_explicit) */
   if (!d->zones.empty()) PetscCall(FETISetKplusExplicit(d->feti, PETSC_TRUE));
   PetscCall(FETISetFromOptions(d->feti));
+  PetscCall(ConeFETIProgressEnd_Private(d->progress));
+  PetscCall(FETISetProgress(d->feti, d->progress.fn, d->progress.ctx));
   PetscCall(FETISetUp(d->feti));
   PetscCall(FETICreateVecs(d->feti, &d->u, &d->lambda, &d->alpha));
   if (!d->zones.empty()) {
+    PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_CONTACT_PROBLEM, 0));
     PetscCall(BuildContactProblem(cm));
+    PetscCall(ContactProblemSetProgress(d->cp, d->progress.fn, d->progress.ctx));
     d->cp->data->kkt_check = PETSC_FALSE; /* the model judges by the mechanical residuals of u and lambda (ContactModelSolve()) */
     PetscCall(ContactProblemSetFromOptions(d->cp));
     PetscCall(ContactProblemSetUp(d->cp));
     PetscCall(ContactProblemGetPipeline(d->cp, &d->pipeline));
+    PetscCall(ConeFETIProgressEnd_Private(d->progress));
   } else d->pipeline = CONTACT_PIPELINE_LINEAR;
   d->setup = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -799,6 +805,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
   PetscCall(ContactModelSetUp(cm));
   d        = cm->data;
   d->stats = ContactStatistics{};
+  PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_SOLVE, 0));
   PetscCall(GetSolverTolerance(cm, &rtol0));
   d->stats.pipeline   = d->pipeline;
   d->stats.acceptance = d->acceptance_factor * rtol0;
@@ -811,6 +818,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     d->solved          = PETSC_TRUE;
     d->stats.converged = PETSC_TRUE;
     PetscCall(PetscStrncpy(d->stats.reason, "no load: u = 0 and l = 0 satisfy every equation and inequality exactly (no solve needed)", sizeof(d->stats.reason)));
+    PetscCall(ConeFETIProgressEnd_Private(d->progress));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   tol = rtol0;
@@ -852,6 +860,35 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     PetscCall(SetSolverTolerance(cm, tol));
   }
   if (tol != rtol0) PetscCall(SetSolverTolerance(cm, rtol0));
+  PetscCall(ConeFETIProgressEnd_Private(d->progress));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactModelSetProgress - A hook told how the setup and the solve progress: contact rows, every phase of
+  `FETISetUp()` (subdomains counted), the contact problem, then the solve with each outer iteration.
+
+  Logically Collective
+
+  Input Parameters:
++ cm  - the model (before `ContactModelSetUp()`)
+. fn  - the hook (NULL: none)
+- ctx - its context
+
+  Notes:
+  Passed on to the model's FETI problem (`FETISetProgress()`) and contact problem (`ContactProblemSetProgress()`).
+  The library prints nothing; see `ConeFETIProgressFn`.
+
+  Level: intermediate
+
+.seealso: `ConeFETIProgressFn`, `ContactSceneSetProgress()`, `FETISetProgress()`, `ContactProblemSetProgress()`
+@*/
+PetscErrorCode ContactModelSetProgress(ContactModel cm, ConeFETIProgressFn fn, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  cm->data->progress.fn  = fn;
+  cm->data->progress.ctx = ctx;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

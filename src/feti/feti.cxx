@@ -488,6 +488,36 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/*@C
+  FETISetProgress - A hook told how the setup and the linear solve progress: the phases of `FETISetUp()` (kernels,
+  memory estimate, coarse problem, factorization of subdomain k of n, explicit (K+)_bb of subdomain k of n,
+  operators) and the iterations of `FETISolveLinear()`.
+
+  Logically Collective
+
+  Input Parameters:
++ feti - the FETI problem
+. fn   - the hook (NULL: none)
+- ctx  - its context
+
+  Notes:
+  The library prints nothing; the hook decides (the conefeti program prints one line, docs/output.md). It is
+  called on every rank with that rank's subdomain counts. A `ContactModel` passes its own hook on
+  (`ContactModelSetProgress()`).
+
+  Level: intermediate
+
+.seealso: `ConeFETIProgressFn`, `ConeFETIProgressInfo`, `FETISetUp()`, `ContactModelSetProgress()`
+@*/
+PetscErrorCode FETISetProgress(FETI feti, ConeFETIProgressFn fn, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  feti->impl->progress.fn  = fn;
+  feti->impl->progress.ctx = ctx;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*@
   FETISetKplusExplicit - Apply K+ inside F = B K+ B' as a dense block on the dofs B touches, instead of two
   sparse triangular solves per subdomain.
@@ -898,6 +928,7 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCheck(minlocal >= 1, comm, PETSC_ERR_ARG_WRONGSTATE, "Every rank needs at least one subdomain (FETISetSubdomains()); some rank has none: use more subdomains than the %d ranks", size);
   PetscCheck(impl.B, comm, PETSC_ERR_ARG_WRONGSTATE, "Call FETISetConstraints() before FETISetUp()");
   PetscCall(PetscLogEventBegin(FETI_SetUp, feti, 0, 0, 0));
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_KERNELS, nlocal));
 
   /* primal layout: this rank's subdomains, contiguous */
   impl.nlocalprimal = 0;
@@ -924,9 +955,16 @@ PetscErrorCode FETISetUp(FETI feti)
   if (impl.kplusexplicit) PetscCall(FETISetUpBoundaryMask(feti)); /* the subdomain factorizations may keep a Schur complement on it */
   /* kernels first: the coarse problem is assembled and factored before the subdomain factors exist, so
      that the memory its assembly needs for a moment is reused by them rather than stacked on them */
-  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
+  for (PetscInt s = 0; s < nlocal; s++) {
+    PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
+    PetscCall(ConeFETIProgressStep_Private(impl.progress, s + 1));
+  }
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   /* before anything large: the factors and explicit blocks must fit (the blocks are dropped when only they do not) */
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_MEMORY, 0));
   PetscCall(FETICheckMemory(feti));
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_COARSE, 0));
 
   /* coarse layout */
   impl.nlocalcoarse = 0;
@@ -1019,13 +1057,22 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCall(FETIRowSumCreate(impl.B, PETSC_TRUE, impl.Btsum));
   PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
   if (impl.ncoarse) PetscCall(SetUpCoarse(feti));
-  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpFactorization(feti, impl.sub[s], impl.firstsub + s));
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_FACTORIZATION, nlocal));
+  for (PetscInt s = 0; s < nlocal; s++) {
+    PetscCall(FETISubdomainSetUpFactorization(feti, impl.sub[s], impl.firstsub + s));
+    PetscCall(ConeFETIProgressStep_Private(impl.progress, s + 1));
+  }
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   if (impl.kplusexplicit) {
     PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
-    PetscCall(FETISetUpExplicitKplus(feti));
+    PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_EXPLICIT, nlocal));
+    PetscCall(FETISetUpExplicitKplus(feti)); /* counts the subdomains */
+    PetscCall(ConeFETIProgressEnd_Private(impl.progress));
     PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
   }
 
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_OPERATORS, 0));
   PetscCall(FETICreateOperators_Private(feti));
   impl.setupcalled = PETSC_TRUE;
 
@@ -1044,6 +1091,7 @@ PetscErrorCode FETISetUp(FETI feti)
     PetscCall(FETIApplyCoarseInverse(feti, impl.e, impl.wc2));
     PetscCall(FETIApplyGt(feti, impl.wc2, impl.lambdatilde));
   } else PetscCall(VecSet(impl.lambdatilde, 0.0));
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   PetscCall(PetscLogEventEnd(FETI_SetUp, feti, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)feti, NULL, "-feti_view"));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -159,6 +159,21 @@ PetscErrorCode FETIRecoverPrimal(FETI feti, Vec lambda, Vec alpha, Vec u)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* the progress hook's view of the projected CG: iteration k, the residual relative to the first one (the
+   KSP's default test with a zero initial guess), against -feti_ksp_rtol */
+static PetscErrorCode ProgressMonitor(KSP ksp, PetscInt k, PetscReal rnorm, void *ctx)
+{
+  FETI_Impl &impl = *static_cast<FETI>(ctx)->impl;
+  PetscReal  rtol;
+
+  PetscFunctionBegin;
+  if (k == 0) impl.progressrnorm0 = rnorm;
+  if (k == 0 || !impl.progress.fn) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(KSPGetTolerances(ksp, &rtol, NULL, NULL, NULL));
+  PetscCall(ConeFETIProgressIterate_Private(impl.progress, 0, k, impl.progressrnorm0 > 0 ? rnorm / impl.progressrnorm0 : rnorm, rtol));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*@C
   FETISolveLinear - Solve the FETI problem when every constraint is an equality (gluing and Dirichlet):
   projected CG on P F P, then primal recovery.
@@ -193,6 +208,11 @@ PetscErrorCode FETISolveLinear(FETI feti, Vec lambda, Vec u)
   PetscCall(FETISetUp(feti));
   PetscCall(FETIGetKSP(feti, &ksp));
   PetscCall(KSPSetOperators(ksp, impl.PFP, impl.PFP));
+  if (impl.progress.fn && !impl.progressmonitor) {
+    PetscCall(KSPMonitorSet(ksp, ProgressMonitor, feti, NULL));
+    impl.progressmonitor = PETSC_TRUE;
+  }
+  PetscCall(ConeFETIProgressEnter_Private(impl.progress, CONEFETI_PHASE_SOLVE));
   PetscCall(MatMult(impl.F, impl.lambdatilde, impl.rhs));
   PetscCall(VecAYPX(impl.rhs, -1.0, impl.h));
   PetscCall(FETIApplyP(feti, impl.rhs, impl.rhs));

@@ -1135,6 +1135,10 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
   }
   PetscCall(PetscLogEventBegin(CONTACTSCENE_SetUp, scene, 0, 0, 0));
   PetscCall(PetscTime(&t0));
+  for (PetscLogDouble &t : impl.time_phases) t = 0;
+  impl.progress.fn  = ContactSceneProgress_Private; /* sceneprogress.cxx */
+  impl.progress.ctx = scene;
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_MESH, 0));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
   PetscCall(FEMCreate(comm, &impl.fem));
   PetscCall(FEMSetOptionsPrefix(impl.fem, prefix));
@@ -1203,7 +1207,9 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
                  sel->text.c_str(), (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1], (double)body.lower[2], (double)body.upper[2]);
     }
   }
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   PetscCall(ContactModelCreate(impl.fem, &impl.cm));
+  PetscCall(ContactModelSetProgress(impl.cm, ContactSceneProgress_Private, scene));
   for (SceneZoneSpec &z : impl.zones) {
     PetscCall(PetscStrncpy(z.zone.face, z.face.tag.c_str(), sizeof(z.zone.face)));
     if (z.zone.type == CONTACT_ZONE_BODIES) PetscCall(PetscStrncpy(z.zone.other_face, z.other.tag.c_str(), sizeof(z.zone.other_face)));

@@ -5,6 +5,7 @@
 #include <conefeti/sys.h>
 #include <conefeti/io.h>
 #include <conefeti/compat.h>
+#include <conefeti/private/progress.h>
 
 #include <array>
 #include <memory>
@@ -76,7 +77,16 @@ struct Scene_Impl {
   FEM                                         fem        = nullptr;
   ContactModel                                cm         = nullptr;
   PetscLogDouble                              time_setup = 0, time_solve = 0;
+  /* progress (sceneprogress.cxx): the caller's hook, the scene's own reports (the mesh phase), and the
+     duration of each phase on this rank, which the summary reports */
+  ConeFETIProgressFn progressfn  = nullptr;
+  void              *progressctx = nullptr;
+  ConeFETIProgress   progress;
+  PetscLogDouble     time_phases[CONEFETI_PHASE_COUNT] = {};
 };
+
+/* the hook the scene sets on itself and its ContactModel: records the phase durations, then calls the caller's */
+PETSC_INTERN PetscErrorCode ContactSceneProgress_Private(const ConeFETIProgressInfo *, void *);
 
 struct _SceneOps {
   PetscErrorCode (*unused)(void);

@@ -2,6 +2,7 @@
    mechanical residuals; printed as a human table and as one JSON line (docs/output.md). */
 #include "sceneimpl.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -206,6 +207,8 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   PetscCall(PetscStrncpy(s->failed_check, st.failed_check, sizeof(s->failed_check)));
   s->time_setup = impl.time_setup;
   s->time_solve = impl.time_solve;
+  for (int ph = 0; ph < CONEFETI_PHASE_COUNT; ph++) s->time_phases[ph] = impl.time_phases[ph];
+  PetscCallMPI(MPI_Bcast(s->time_phases, CONEFETI_PHASE_COUNT, MPIU_REAL, 0, comm)); /* rank 0's, as the table's times */
   PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
   if (cp) {
     Tao tao;
@@ -297,6 +300,19 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                    "multipliers: %" PetscInt_FMT " gluing + %" PetscInt_FMT " Dirichlet + %" PetscInt_FMT " normal + %" PetscInt_FMT " tangential; FETI primal dimension %" PetscInt_FMT
                                    "; ||F|| estimate: %" PetscInt_FMT " products (not in n_A)\n",
                                    s->m_gluing, s->m_dirichlet, s->m_normal, s->m_tangential, s->n_primal, s->n_A_estimate));
+  {
+    /* the setup time broken down by phase (those that ran), then the solve: where a long run spends it */
+    std::string line = "times [s]:";
+    for (int ph = 0; ph < CONEFETI_PHASE_COUNT; ph++) {
+      char buf[64];
+      if (!(s->time_phases[ph] > 0)) continue;
+      std::string name = ConeFETIPhases[ph];
+      std::replace(name.begin(), name.end(), '_', ' ');
+      snprintf(buf, sizeof(buf), "%s%s %.3f", ph == CONEFETI_PHASE_SOLVE ? "; " : (line.back() == ':' ? " " : ", "), name.c_str(), (double)s->time_phases[ph]);
+      line += buf;
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", line.c_str()));
+  }
   if (s->pipeline != CONTACT_PIPELINE_LINEAR)
     PetscCall(PetscViewerASCIIPrintf(viewer, "contact nodes: %" PetscInt_FMT " = %" PetscInt_FMT " separated + %" PetscInt_FMT " stick + %" PetscInt_FMT " slip\n", s->contact_nodes, r.counts[0],
                                      r.counts[1], r.counts[2]));
@@ -470,6 +486,10 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Real(out, "norm_F", s->norm_F);
   Real(out, "time_setup", s->time_setup);
   Real(out, "time_solve", s->time_solve);
+  Key(out, "time_phases");
+  out += "{";
+  for (int ph = 0; ph < CONEFETI_PHASE_COUNT; ph++) Real(out, ConeFETIPhases[ph], s->time_phases[ph]);
+  out += "}";
   Int(out, "contact_nodes", s->contact_nodes);
   Int(out, "separated", r.counts[0]);
   Int(out, "stick", r.counts[1]);

@@ -3,6 +3,7 @@
 
 #include <conefeti/contact.h>
 #include <conefeti/compat.h>
+#include <conefeti/private/progress.h>
 #include <petsc/private/petscimpl.h>
 #include <vector>
 
@@ -57,6 +58,10 @@ struct ContactProblemData {
   PetscBool kkt_check         = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
 
   ContactStatistics stats = {};
+
+  ConeFETIProgress progress;                      /* ContactProblemSetProgress(): outer iterations of the solve */
+  PetscBool        progressmonitor = PETSC_FALSE; /* its TaoMonitor is on tao */
+  PetscInt         progressstep    = 0;           /* the MSA step running (0: not MSA) */
 };
 
 struct _p_ContactProblem {

@@ -50,6 +50,7 @@ struct ContactModelData {
   std::vector<PetscInt>  lbody, lnode;
   std::vector<PetscReal> lcoords, larea;
   PetscBool              setup = PETSC_FALSE, solved = PETSC_FALSE;
+  ConeFETIProgress       progress; /* ContactModelSetProgress(); passed on to the FETI problem and the contact problem */
 };
 
 struct _ContactModelOps {

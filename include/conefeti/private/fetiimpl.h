@@ -4,6 +4,7 @@
 #include <petsc/private/petscimpl.h>
 #include <conefeti/sys.h>
 #include <conefeti/feti.h>
+#include <conefeti/private/progress.h>
 #include <conefeti/compat.h>
 
 #include <vector>
@@ -114,6 +115,10 @@ struct FETI_Impl {
   Vec wp1 = nullptr, wp2 = nullptr, wd1 = nullptr, wd2 = nullptr, wc1 = nullptr, wc2 = nullptr;
   Vec wp3 = nullptr, wd3 = nullptr;                       /* for G and G' (R'B' x, B R x) and their callers, which may hold wp1, wp2 or wd2 */
   Vec rhs = nullptr, residual = nullptr, alpha = nullptr; /* FETISolveLinear(), FETIComputeAlpha(), FETIRecoverPrimal() */
+
+  ConeFETIProgress progress;                      /* FETISetProgress() */
+  PetscBool        progressmonitor = PETSC_FALSE; /* its KSP monitor is on the KSP of FETISolveLinear() */
+  PetscReal        progressrnorm0  = 0;           /* that monitor's first residual norm */
 };
 
 struct _FETIOps {
