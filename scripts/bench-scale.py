@@ -19,6 +19,10 @@ usage: scripts/bench-scale.py [--sizes 2,4] [--full] [--ranks 1,2] [--hh 6] [--f
                  and 13 GB with the defaults of the time of writing: run it alone on the machine)
   --extra        options for the conefeti driver only (the levers: -feti_kplus_explicit 0, ...)
   --no-doc       print only
+  --save f.json  also write the rows (with every -log_view event) to f.json; --load a.json,b.json adds saved rows to
+                 the table (a --full run made alone, a lever's run), --sizes "" runs nothing new
+The wrapper events (the solve and setup stages, TaoSolve, QPSolve, the MatMult of every shell) are left out of
+"where the time goes": they contain the others.
 """
 import argparse, json, os, re, subprocess, sys
 
@@ -52,6 +56,9 @@ def run(cmd, env, key):
     return j, sum(rss), out.stdout, out.returncode
 
 
+WRAPPERS = {"ContactSceneSolve", "ContactSceneSetUp", "ContactSolve", "TaoSolve", "QPSolve", "MatMult", "QPHessianMult", "KSPSolve", "PCApply", "FETISetUp", "SNESSolve"}
+
+
 def log_events(text, top=8):
     """The events of a -log_view table with their max time over the ranks and count, largest first"""
     events, inside = {}, False
@@ -71,7 +78,7 @@ def log_events(text, top=8):
                 continue
             c, s = events.get(name, (0, 0.0))
             events[name] = (c + count, s + t)  # summed over the stages
-    return sorted(((n, c, t) for n, (c, t) in events.items()), key=lambda e: -e[2])[:top], events
+    return sorted(((n, c, t) for n, (c, t) in events.items() if n not in WRAPPERS), key=lambda e: -e[2])[:top], events
 
 
 def fmt_bytes(b):
@@ -90,14 +97,18 @@ def main():
     ap.add_argument("--doc", default=os.path.join(ROOT, "docs", "scale.md"))
     ap.add_argument("--png", default=os.path.join(ROOT, "docs", "figures", "scale.png"))
     ap.add_argument("--no-doc", action="store_true")
+    ap.add_argument("--save", default="")
+    ap.add_argument("--load", default="")
     ap.add_argument("--hugepages", type=int, default=1, help="1: transparent huge pages (scripts/hugepages.py), 0: without")
     a = ap.parse_args()
-    sizes = [int(p) for p in a.sizes.split(",")]
+    sizes = [int(p) for p in a.sizes.split(",") if p]
     if a.full and 8 not in sizes:
         sizes.append(8)
     ranks = [int(r) for r in a.ranks.split(",")]
     env = hugepages.environment(a.hugepages)
     rows = []
+    for f in [f for f in a.load.split(",") if f]:
+        rows += json.load(open(f))
     for p in sizes:
         k = a.hh * p
         scene = ["-options_file", BRICK, "-scene_refine", str(k), "-scene_body0_subdomains", "%d,%d,%d" % (3 * p, p, p), "-scene_zone0_friction", a.friction]
@@ -106,41 +117,48 @@ def main():
             top, events = log_events(cout)
             g, gmem, _, _ = run(command(a.build, "gamg", r) + scene, env, "gamg")
             F = events.get("FETI_MultF", (0, 0.0))
-            row = dict(p=p, k=k, ranks=r, n=c["n"], subdomains=c["subdomains"], iter=c["iter"], nA=c["n_A"], converged=c["converged"] and crc == 0, setup=c["time_setup"],
-                       solve=c["time_solve"], cpu=c["cpu"], mem=cmem, kplus=c.get("kplus", "?"), res=c["residuals"]["max"], F=F, top=top, gamg=g, gmem=gmem)
+            row = dict(p=p, k=k, hh=a.hh, options=a.extra, ranks=r, n=c["n"], subdomains=c["subdomains"], iter=c["iter"], nA=c["n_A"], converged=c["converged"] and crc == 0, setup=c["time_setup"],
+                       solve=c["time_solve"], cpu=c["cpu"], mem=cmem, kplus=c.get("kplus", "?"), res=c["residuals"]["max"], F=F, top=top, events=events, gamg=g, gmem=gmem)
             rows.append(row)
             print("p=%d ranks=%d n=%d: conefeti Iter %d n_A %d setup %.2f solve %.2f mem %s (%s); gamg %d its %.2f s mem %s" % (
                 p, r, row["n"], row["iter"], row["nA"], row["setup"], row["solve"], fmt_bytes(cmem), row["kplus"], g["iter"], g["time"], fmt_bytes(gmem)), flush=True)
 
+    if a.save:
+        with open(a.save, "w") as f:
+            json.dump(rows, f)
+    rows.sort(key=lambda w: (w["n"], w["ranks"]))
     out = []
     out.append("Command: `scripts/bench-scale.py %s` (brick, Coulomb F = %s, H/h = %d, subdomains 3p x p x p; %s; the machine is shared, times vary by 10-30%%)." % (
         " ".join(sys.argv[1:]), a.friction, a.hh, hugepages.describe(a.hugepages)))
     out.append("")
-    out.append("| n | subdomains | ranks | Iter | n_A | K+ | setup + solve [s] | CPU [s] | F product [ms] | peak memory | per unknown | GAMG: its, mesh + assembly + setup + solve [s] | GAMG CPU [s] | GAMG memory | GAMG per unknown | conefeti / GAMG: wall, CPU | max residual |")
-    out.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    if a.load:
+        out.append("Rows from earlier runs of the script: %s (each row's options say how it differs from the defaults)." % a.load)
+        out.append("")
+    out.append("| n | subdomains | ranks | options | Iter | n_A | K+ | setup + solve [s] | CPU [s] | F product [ms] | peak memory | per unknown | GAMG: its, mesh + assembly + setup + solve [s] | GAMG CPU [s] | GAMG memory | GAMG per unknown | conefeti / GAMG: wall, CPU | max residual |")
+    out.append("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for w in rows:
         g = w["gamg"]
         fms = 1e3 * w["F"][1] / w["F"][0] if w["F"][0] else float("nan")
-        out.append("| %d | %d | %d | %s | %d | %s | %.1f + %.1f | %.1f | %.1f | %s | %.1f KB | %d, %.2f + %.2f + %.2f + %.2f = %.1f | %.1f | %s | %.1f KB | %.1f, %.1f | %.1e |" % (
-            w["n"], w["subdomains"], w["ranks"], "%d" % w["iter"] if w["converged"] else "%d (not converged)" % w["iter"], w["nA"], w["kplus"], w["setup"], w["solve"], w["cpu"], fms,
+        out.append("| %d | %d | %d | %s | %s | %d | %s | %.1f + %.1f | %.1f | %.1f | %s | %.1f KB | %d, %.2f + %.2f + %.2f + %.2f = %.1f | %.1f | %s | %.1f KB | %.1f, %.1f | %.1e |" % (
+            w["n"], w["subdomains"], w["ranks"], w.get("options") or "defaults", "%d" % w["iter"] if w["converged"] else "%d (not converged)" % w["iter"], w["nA"], w["kplus"], w["setup"], w["solve"], w["cpu"], fms,
             fmt_bytes(w["mem"]), w["mem"] / w["n"] / 1e3, g["iter"], g["time_mesh"], g["time_assembly"], g["time_setup"], g["time_solve"], g["time"], g["cpu"], fmt_bytes(w["gmem"]),
             w["gmem"] / g["n"] / 1e3, (w["setup"] + w["solve"]) / g["time"], w["cpu"] / g["cpu"], w["res"]))
     out.append("")
-    out.append("Where the time goes (conefeti, -log_view: the %d events with the largest max time over the ranks; events nest, so times overlap):" % len(rows[0]["top"]))
+    out.append("Where the time goes (conefeti, -log_view: the 8 events with the largest max time over the ranks, wrappers left out; events nest, so times overlap; (count)):")
     out.append("")
     for w in rows:
-        out.append("- n = %d, %d rank%s: %s" % (w["n"], w["ranks"], "s" if w["ranks"] > 1 else "", ", ".join("%s %.1f s (%d)" % (e, t, c) for e, c, t in w["top"])))
+        w["top"] = sorted(((e, c, t) for e, (c, t) in w["events"].items() if e not in WRAPPERS), key=lambda e: -e[2])[:8]
+        out.append("- n = %d, %d rank%s%s: %s" % (w["n"], w["ranks"], "s" if w["ranks"] > 1 else "", ", " + w["options"] if w.get("options") else "", ", ".join("%s %.1f s (%d)" % (e, t, c) for e, c, t in w["top"])))
     text = "\n".join(out)
     print(text)
-    print("JSON " + json.dumps([{k: v for k, v in w.items() if k != "top"} for w in rows]))
 
     try:
         import matplotlib
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
-        for r in ranks:
-            sel = [w for w in rows if w["ranks"] == r]
+        for r in sorted({w["ranks"] for w in rows}):
+            sel = [w for w in rows if w["ranks"] == r and not w.get("options")]
             n = [w["n"] for w in sel]
             ax1.loglog(n, [w["setup"] + w["solve"] for w in sel], "o-", label="conefeti setup + solve, %d rank%s" % (r, "s" if r > 1 else ""))
             ax1.loglog(n, [w["gamg"]["time"] for w in sel], "s--", label="CG + GAMG (linear, no contact), %d rank%s" % (r, "s" if r > 1 else ""))
