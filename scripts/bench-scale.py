@@ -157,12 +157,16 @@ def main():
         matplotlib.use("Agg")
         import matplotlib.pyplot as plt
         fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
-        for r in sorted({w["ranks"] for w in rows}):
-            sel = [w for w in rows if w["ranks"] == r and not w.get("options")]
+        for r, opt in sorted({(w["ranks"], w.get("options") or "") for w in rows}):
+            sel = [w for w in rows if w["ranks"] == r and (w.get("options") or "") == opt]
             n = [w["n"] for w in sel]
-            ax1.loglog(n, [w["setup"] + w["solve"] for w in sel], "o-", label="conefeti setup + solve, %d rank%s" % (r, "s" if r > 1 else ""))
+            label = "conefeti%s, %d rank%s" % (" " + opt if opt else "", r, "s" if r > 1 else "")
+            ax1.loglog(n, [w["setup"] + w["solve"] for w in sel], "o-", label=label)
+            ax2.loglog(n, [w["mem"] / 1e9 for w in sel], "o-", label=label)
+        for r in sorted({w["ranks"] for w in rows}):
+            sel = sorted({w["n"]: w for w in rows if w["ranks"] == r}.values(), key=lambda w: w["n"])
+            n = [w["n"] for w in sel]
             ax1.loglog(n, [w["gamg"]["time"] for w in sel], "s--", label="CG + GAMG (linear, no contact), %d rank%s" % (r, "s" if r > 1 else ""))
-            ax2.loglog(n, [w["mem"] / 1e9 for w in sel], "o-", label="conefeti, %d rank%s" % (r, "s" if r > 1 else ""))
             ax2.loglog(n, [w["gmem"] / 1e9 for w in sel], "s--", label="CG + GAMG, %d rank%s" % (r, "s" if r > 1 else ""))
         n = sorted({w["n"] for w in rows})
         ax2.loglog(n, [3e3 * x / 1e9 for x in n], ":", color="gray", label="goal: 3 KB per unknown")
