@@ -133,6 +133,7 @@ PETSC_EXTERN PetscErrorCode ContactSceneDestroy(ContactScene *);
 PETSC_EXTERN PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene, const char[]);
 PETSC_EXTERN PetscErrorCode ContactSceneSetFromOptions(ContactScene);
 PETSC_EXTERN PetscErrorCode ContactSceneSetUp(ContactScene);
+PETSC_EXTERN PetscErrorCode ContactSceneSetUpFEM(ContactScene);
 PETSC_EXTERN PetscErrorCode ContactSceneSolve(ContactScene);
 PETSC_EXTERN PetscErrorCode ContactSceneView(ContactScene, PetscViewer);
 PETSC_EXTERN PetscErrorCode ContactSceneGetName(ContactScene, const char **);

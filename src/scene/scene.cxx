@@ -804,7 +804,7 @@ static PetscErrorCode ContactSceneReset(ContactScene scene)
   PetscCall(ContactModelDestroy(&impl.cm));
   PetscCall(FEMDestroy(&impl.fem));
   impl.predicates.clear();
-  impl.setup = impl.solved = PETSC_FALSE;
+  impl.femsetup = impl.setup = impl.solved = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -1090,8 +1090,8 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
 }
 
 /*@C
-  ContactSceneSetUp - Build the scene's model: mesh and decompose the bodies, set up the FEM, add the contact zones,
-  and set up the `ContactModel` (FETI operators, factorizations, the dual contact problem).
+  ContactSceneSetUpFEM - Build only the scene's finite element model: mesh and decompose the bodies, tag the faces of
+  supports, tractions and contact zones, and set up the `FEM`; no contact model, no FETI operator.
 
   Collective
 
@@ -1099,14 +1099,15 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
 . scene - the scene, read by `ContactSceneSetFromOptions()`
 
   Notes:
-  Only what the scene calls for is built: tractions on the faces given, a volume force only when given, contact
-  rows only for the zones given (no zone: the linear FETI pipeline).
+  For a program that solves the scene's mesh another way (e.g. `tutorials/feti/gamg.cxx`: CG + GAMG on the assembled
+  stiffness) without paying for the FETI set-up. `ContactSceneSetUp()` calls it first when it has not been called;
+  calling it again does nothing.
 
-  Level: beginner
+  Level: intermediate
 
-.seealso: `ContactSceneSolve()`, `ContactSceneGetFEM()`, `ContactSceneGetContactModel()`
+.seealso: `ContactSceneSetUp()`, `ContactSceneGetFEM()`, `FEMAssembleGlobal()`
 @*/
-PetscErrorCode ContactSceneSetUp(ContactScene scene)
+PetscErrorCode ContactSceneSetUpFEM(ContactScene scene)
 {
   Scene_Impl    &impl = *scene->impl;
   MPI_Comm       comm;
@@ -1115,7 +1116,7 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
-  if (impl.setup) PetscFunctionReturn(PETSC_SUCCESS);
+  if (impl.femsetup) PetscFunctionReturn(PETSC_SUCCESS);
   comm = PetscObjectComm((PetscObject)scene);
   PetscCheck(
       !impl.bodies.empty(), comm, PETSC_ERR_ARG_WRONGSTATE,
@@ -1133,7 +1134,6 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
     PetscCheck(!all || nsub >= size, comm, PETSC_ERR_ARG_SIZ, "the scene has %lld subdomains for %d MPI ranks: every rank needs one; raise -scene_body<b>_subdomains or run on fewer ranks",
                (long long)nsub, (int)size);
   }
-  PetscCall(PetscLogEventBegin(CONTACTSCENE_SetUp, scene, 0, 0, 0));
   PetscCall(PetscTime(&t0));
   for (PetscLogDouble &t : impl.time_phases) t = 0;
   impl.progress.fn  = ContactSceneProgress_Private; /* sceneprogress.cxx */
@@ -1208,6 +1208,40 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
     }
   }
   PetscCall(ConeFETIProgressEnd_Private(impl.progress));
+  PetscCall(PetscTime(&t1));
+  impl.time_fem = t1 - t0;
+  impl.femsetup = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactSceneSetUp - Build the scene's model: mesh and decompose the bodies, set up the FEM, add the contact zones,
+  and set up the `ContactModel` (FETI operators, factorizations, the dual contact problem).
+
+  Collective
+
+  Input Parameter:
+. scene - the scene, read by `ContactSceneSetFromOptions()`
+
+  Notes:
+  Only what the scene calls for is built: tractions on the faces given, a volume force only when given, contact
+  rows only for the zones given (no zone: the linear FETI pipeline).
+
+  Level: beginner
+
+.seealso: `ContactSceneSolve()`, `ContactSceneSetUpFEM()`, `ContactSceneGetFEM()`, `ContactSceneGetContactModel()`
+@*/
+PetscErrorCode ContactSceneSetUp(ContactScene scene)
+{
+  Scene_Impl    &impl = *scene->impl;
+  PetscLogDouble t0, t1;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
+  if (impl.setup) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(CONTACTSCENE_SetUp, scene, 0, 0, 0));
+  PetscCall(ContactSceneSetUpFEM(scene));
+  PetscCall(PetscTime(&t0));
   PetscCall(ContactModelCreate(impl.fem, &impl.cm));
   PetscCall(ContactModelSetProgress(impl.cm, ContactSceneProgress_Private, scene));
   for (SceneZoneSpec &z : impl.zones) {
@@ -1217,7 +1251,7 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
   }
   PetscCall(ContactModelSetUp(impl.cm));
   PetscCall(PetscTime(&t1));
-  impl.time_setup = t1 - t0;
+  impl.time_setup = impl.time_fem + (t1 - t0);
   impl.setup      = PETSC_TRUE;
   PetscCall(PetscLogEventEnd(CONTACTSCENE_SetUp, scene, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)scene, NULL, "-scene_view"));
@@ -1379,7 +1413,7 @@ PetscErrorCode ContactSceneGetName(ContactScene scene, const char **name)
 }
 
 /*@C
-  ContactSceneGetFEM - The scene's finite element model (after `ContactSceneSetUp()`).
+  ContactSceneGetFEM - The scene's finite element model (after `ContactSceneSetUp()` or `ContactSceneSetUpFEM()`).
 
   Not Collective
 
@@ -1397,7 +1431,7 @@ PetscErrorCode ContactSceneGetFEM(ContactScene scene, FEM *fem)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(scene, CONTACTSCENE_CLASSID, 1);
-  PetscCheck(scene->impl->setup, PetscObjectComm((PetscObject)scene), PETSC_ERR_ORDER, "Call ContactSceneSetUp() first");
+  PetscCheck(scene->impl->femsetup, PetscObjectComm((PetscObject)scene), PETSC_ERR_ORDER, "Call ContactSceneSetUp() or ContactSceneSetUpFEM() first");
   *fem = scene->impl->fem;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
