@@ -86,11 +86,11 @@ typedef struct {
 . unmatched_nodes - slave nodes of zones between bodies without a master point within the search distance (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
+. normal_force  - the sum of the normal contact forces l_n over all contact nodes
 . nsupports     - the Dirichlet conditions (clamped and displaced faces) of all bodies; the first CONTACTSCENE_MAX_SUPPORTS are in supports
 . supports      - their reactions, body by body in the order of the options (_fix, _fix_x, _fix_y, _fix_z, then _displace0, _displace1, ...)
 . reaction      - the sum of all reactions (over every condition, also those beyond supports)
 . applied_load  - the resultant of all applied loads (tractions and volume forces, `FEMComputeLoadResultant()`, summed over the bodies)
-. normal_force  - the sum of the normal contact forces l_n over all contact nodes
 . residuals     - the mechanical residuals (each relative) and the node counts
 . fingerprint   - `ConeFETIVecFingerprint()` of the multipliers: the same on any number of ranks (on one machine)
 . finite        - whether every residual is a finite number
