@@ -431,8 +431,18 @@ PetscErrorCode TaoMPGPViewChoices(TAO_MPGP *qp, PetscViewer viewer)
   if (qp->pc) PetscCall(PCGetType(qp->pc, &pctype));
   PetscCall(PetscStrcmp(pctype, PCBJACOBI, &blocks));
   if (qp->pc_given) PetscCall(PetscViewerASCIIPrintf(viewer, "pc: %s (set by an option or through TaoQPGetPC())\n", pctype ? pctype : "unset"));
-  else if (qp->solved && blocks) PetscCall(PetscViewerASCIIPrintf(viewer, "pc: bjacobi with icc in each rank's block (%s)\n", chosen));
-  else PetscCall(PetscViewerASCIIPrintf(viewer, "pc: %s (%s)\n", qp->solved ? pctype : "none until the first solve", chosen));
+  else if (qp->solved && blocks) {
+    KSP     *sub;
+    PC       subpc;
+    PCType   subtype = nullptr;
+    PetscInt nlocal;
+    PetscCall(PCBJacobiGetSubKSP(qp->pc, &nlocal, NULL, &sub));
+    if (nlocal > 0) {
+      PetscCall(KSPGetPC(sub[0], &subpc));
+      PetscCall(PCGetType(subpc, &subtype));
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "pc: bjacobi with %s in each rank's block (%s)\n", subtype ? subtype : "a default", chosen));
+  } else PetscCall(PetscViewerASCIIPrintf(viewer, "pc: %s (%s)\n", qp->solved ? pctype : "none until the first solve", chosen));
   PetscCall(PetscViewerASCIIPrintf(viewer, "Gamma: %g (%s)\n", (double)qp->core.gamma, qp->gamma_given ? "set by an option" : chosen));
   PetscCall(PetscViewerASCIIPrintf(viewer, "expansion chosen: %s (%s)\n", qp->core.projcg ? "projected full CG step first" : "Dostal's (feasible half step and fixed-length projected step)",
                                    qp->projcg_given ? "set by an option or TaoQPSetExpansionProjCG()" : chosen));
