@@ -611,13 +611,14 @@ PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *na
   for min 1/2 x'Ax - b'x subject to l <= x <= u.
 
   Options Database Keys:
-+ -tao_mprgp_gamma <1>           - proportioning parameter Gamma
++ -tao_mprgp_gamma <1 or 2>      - proportioning parameter Gamma (default from the Hessian: 2 when assembled, else 1)
 . -tao_mprgp_alpha <1.95>        - fixed step length (expansion steps) in units of 1/||A||, in (0, 2]
 . -tao_mprgp_norm <value>        - ||A|| given, not estimated
 . -tao_mprgp_norm_method <slepc> - slepc or power
 . -tao_mprgp_norm_margin         - safety margin on the estimate
-. -tao_mprgp_expansion_projcg <false> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`)
-. -tao_mprgp_pc_type <none>      - preconditioner of the CG steps, restricted to the free entries (preconditioning in face; e.g. icc, jacobi)
+. -tao_mprgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian: true when assembled)
+. -tao_mprgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries (preconditioning in face; default from the Hessian: icc when assembled, bjacobi with icc on several
+ranks, else none)
 - -tao_mprgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:
@@ -631,6 +632,11 @@ PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *na
   Hessian's preconditioning matrix) the CG steps use z = [M^-1]_FF g_F on the free set F, a principal
   submatrix of M^-1, hence symmetric positive definite on the face; the proportioning test, the
   expansion and proportioning steps and the stopping test stay unpreconditioned.
+  Defaults from the Hessian: when ICC can factor the Hessian's preconditioning matrix (an assembled sparse
+  matrix; on several ranks each rank's diagonal block), the PC is ICC(0) (block Jacobi with ICC(0) on several
+  ranks), the expansion tries the projected CG step and Gamma is 2; otherwise (a MATSHELL, a dense matrix) no
+  PC, Dostal's expansion and Gamma 1. Each of the three options given wins over its default; -tao_view says
+  which was chosen and why.
   The algorithm and what conefeti adds to it: docs/algorithms.md, 'MPRGP and MPGP'.
 
   References:
@@ -653,7 +659,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
   over a separable convex set: bounds, 2D disks, 3D second-order cones, free entries.
 
   Options Database Keys:
-+ -tao_mpgp_gamma <1>           - proportioning parameter Gamma
++ -tao_mpgp_gamma <1 or 2>      - proportioning parameter Gamma (default from the Hessian, as for mprgp)
 . -tao_mpgp_alpha <1.95>        - fixed step length in units of 1/||A||, in (0, 2]
 . -tao_mpgp_norm <value>        - ||A|| given, not estimated
 . -tao_mpgp_norm_method <slepc> - slepc or power
@@ -662,8 +668,8 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_arc <1>            - CG steps also move a disk block on its circle along the circle while alpha |g.nu|/r <= this; 0 turns arc steps off
 . -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
 . -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
-. -tao_mpgp_expansion_projcg <false> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`)
-. -tao_mpgp_pc_type <none>      - preconditioner of the CG steps, restricted to the free entries and interior blocks
+. -tao_mpgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian, as for mprgp)
+. -tao_mpgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries and interior blocks (default from the Hessian, as for mprgp)
 - -tao_mpgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:
