@@ -12,10 +12,18 @@ the independently measured |gP| missed the target although the solver claimed co
 with factor / 10 (down to 1e-4). bqpip starts from factor 10 (its own residual can level off
 above a tight tolerance). The factor used is printed in the tables.
 
-Usage:  scripts/bench-qp.sh [--quick] [--out DIR] [--sizes small,large] [--problems obstacle,bearing,disks]
+With --defaults it compares instead the defaults of mprgp/mpgp, which follow the Hessian (an assembled one
+gets ICC in face, the projected CG expansion and Gamma 2: src/qp/impls/mpgp/mpgpdefaults.cxx), with the old
+defaults (no preconditioner, Dostal's expansion, Gamma 1, now given as options) and with TAO's bound solvers,
+on the obstacle and the journal bearing at 100^2 and 316^2 unknowns and on the disks, and then old against
+new defaults on the random ill-conditioned QPs of tests/qp (qp_known_solution), whose Hessian is a MATSHELL
+(the defaults do not change there) or the same matrix stored as AIJ (-matrix aij).
+
+Usage:  scripts/bench-qp.sh [--quick] [--defaults] [--out DIR] [--sizes small,large] [--problems obstacle,bearing,disks]
                            [--rtol 1e-6] [--timeout 180] [--tao-timeout 60]
 Prints markdown tables; the raw JSON lines go to DIR/results.jsonl (default build/bench-qp).
 """
+import re
 import argparse
 import json
 import os
@@ -26,10 +34,20 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
-# (label, program options); labels name the solver and any non-default options
+
+def old_defaults(t, *chosen):
+    """The defaults of mprgp/mpgp before they followed the Hessian (no PC, Dostal's expansion, Gamma 1), as
+    options, except those a row sets itself: the tables of docs/qp-benchmark.md measured before that change
+    stay reproducible (an assembled Hessian now gets ICC, the projected CG expansion and Gamma 2)."""
+    opts = {"pc_type": "none", "expansion_projcg": "0", "gamma": "1"}
+    return sum((["-tao_%s_%s" % (t, k), v] for k, v in opts.items() if k not in chosen), [])
+
+
+# (label, program options); labels name the solver and any non-default options. In these tables "mprgp" and
+# "mpgp" are the old defaults (old_defaults()); scripts/bench-qp.sh --defaults compares them with the new ones.
 BOUND_SOLVERS = [
-    ("mprgp", ["-tao_type", "mprgp"]),
-    ("mpgp", ["-tao_type", "mpgp"]),
+    ("mprgp", ["-tao_type", "mprgp"] + old_defaults("mprgp")),
+    ("mpgp", ["-tao_type", "mpgp"] + old_defaults("mpgp")),
     ("blmvm", ["-tao_type", "blmvm"]),
     ("bncg", ["-tao_type", "bncg"]),
     ("gpcg", ["-tao_type", "gpcg"]),
@@ -45,35 +63,64 @@ BOUND_SOLVERS = [
     ("tron, -pc_type none", ["-tao_type", "tron", "-pc_type", "none"]),
     ("bqpip, -upper 100 -pc_type none", ["-tao_type", "bqpip", "-upper", "100", "-pc_type", "none"], {"sizes": ["small"], "factors": [10.0, 1.0, 1e-1, 1e-2]}),  # 20x the products of bqpip with ILU
     # sensitivity of ours to the fixed step length (not the defaults)
-    ("mprgp, -tao_mprgp_alpha 1", ["-tao_type", "mprgp", "-tao_mprgp_alpha", "1"]),
+    ("mprgp, -tao_mprgp_alpha 1", ["-tao_type", "mprgp", "-tao_mprgp_alpha", "1"] + old_defaults("mprgp")),
     # the projected CG expansion, preconditioning in face with ICC(0) (the counterpart of gpcg's ILU(0)),
     # and both with Gamma = 2 (fewer proportioning steps: the preconditioned CG steps make more progress)
-    ("mprgp, -tao_mprgp_expansion_projcg", ["-tao_type", "mprgp", "-tao_mprgp_expansion_projcg"]),
-    ("mprgp, -tao_mprgp_pc_type icc", ["-tao_type", "mprgp", "-tao_mprgp_pc_type", "icc"]),
+    ("mprgp, -tao_mprgp_expansion_projcg", ["-tao_type", "mprgp", "-tao_mprgp_expansion_projcg"] + old_defaults("mprgp", "expansion_projcg")),
+    ("mprgp, -tao_mprgp_pc_type icc", ["-tao_type", "mprgp", "-tao_mprgp_pc_type", "icc"] + old_defaults("mprgp", "pc_type")),
     ("mprgp, -tao_mprgp_pc_type icc -tao_mprgp_expansion_projcg -tao_mprgp_gamma 2",
      ["-tao_type", "mprgp", "-tao_mprgp_pc_type", "icc", "-tao_mprgp_expansion_projcg", "-tao_mprgp_gamma", "2"]),
     ("mpgp, -tao_mpgp_pc_type icc -tao_mpgp_expansion_projcg -tao_mpgp_gamma 2",
      ["-tao_type", "mpgp", "-tao_mpgp_pc_type", "icc", "-tao_mpgp_expansion_projcg", "-tao_mpgp_gamma", "2"]),
 ]
 DISK_SOLVERS = [
-    ("mpgp", ["-tao_type", "mpgp"]),
+    ("mpgp", ["-tao_type", "mpgp"] + old_defaults("mpgp")),
     # Kucera's MPGP as published: no arc steps (on by default since they cut the products on the disks and the brick)
-    ("mpgp, -tao_mpgp_arc 0", ["-tao_type", "mpgp", "-tao_mpgp_arc", "0"]),
+    ("mpgp, -tao_mpgp_arc 0", ["-tao_type", "mpgp", "-tao_mpgp_arc", "0"] + old_defaults("mpgp")),
     # the default takes fixed steps 1.95/||A|| in its gradient projections; BB lengths and the shorter
     # 1/||A|| are options (BB is off by default: it did not pay on the contact problems)
-    ("mpgp, -tao_mpgp_bb 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1"]),
-    ("mpgp, -tao_mpgp_alpha 1", ["-tao_type", "mpgp", "-tao_mpgp_alpha", "1"]),
-    ("mpgp, -tao_mpgp_bb 1 -tao_mpgp_alpha 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1", "-tao_mpgp_alpha", "1"]),
-    ("mpgp, -tao_mpgp_bb 1 -tao_mpgp_alpha 1 -tao_mpgp_expansion_projcg", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1", "-tao_mpgp_alpha", "1", "-tao_mpgp_expansion_projcg"]),
+    ("mpgp, -tao_mpgp_bb 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1"] + old_defaults("mpgp")),
+    ("mpgp, -tao_mpgp_alpha 1", ["-tao_type", "mpgp", "-tao_mpgp_alpha", "1"] + old_defaults("mpgp")),
+    ("mpgp, -tao_mpgp_bb 1 -tao_mpgp_alpha 1", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1", "-tao_mpgp_alpha", "1"] + old_defaults("mpgp")),
+    ("mpgp, -tao_mpgp_bb 1 -tao_mpgp_alpha 1 -tao_mpgp_expansion_projcg", ["-tao_type", "mpgp", "-tao_mpgp_bb", "1", "-tao_mpgp_alpha", "1", "-tao_mpgp_expansion_projcg"] + old_defaults("mpgp", "expansion_projcg")),
     ("almm", ["-tao_type", "almm"], {"factors": [1.0, 1e-2, 1e-4]}),
     ("almm, -tao_almm_type classic", ["-tao_type", "almm", "-tao_almm_type", "classic"], {"timeout": 30, "sizes": ["small"]}),  # stalls
     ("pdipm", ["-tao_type", "pdipm", "-mat_mumps_icntl_14", "200"]),
 ]
+# --defaults: the defaults chosen from the Hessian against the old ones and TAO's bound solvers
+OLD_MPRGP = ["-tao_mprgp_pc_type", "none", "-tao_mprgp_expansion_projcg", "0", "-tao_mprgp_gamma", "1"]
+OLD_MPGP = ["-tao_mpgp_pc_type", "none", "-tao_mpgp_expansion_projcg", "0", "-tao_mpgp_gamma", "1"]
+DEFAULT_BOUND_SOLVERS = [
+    ("mprgp (defaults: ICC, projected CG expansion, Gamma 2)", ["-tao_type", "mprgp"]),
+    ("mpgp (defaults: ICC, projected CG expansion, Gamma 2)", ["-tao_type", "mpgp"]),
+    ("mprgp, old defaults: " + " ".join(OLD_MPRGP), ["-tao_type", "mprgp"] + OLD_MPRGP),
+    ("mpgp, old defaults: " + " ".join(OLD_MPGP), ["-tao_type", "mpgp"] + OLD_MPGP),
+    ("mprgp, -tao_mprgp_pc_type none (the other defaults kept)", ["-tao_type", "mprgp", "-tao_mprgp_pc_type", "none"]),
+    ("gpcg", ["-tao_type", "gpcg"]),
+    ("blmvm", ["-tao_type", "blmvm"]),
+    ("tron", ["-tao_type", "tron"]),
+    ("bqpip, -upper 100", ["-tao_type", "bqpip", "-upper", "100"], {"factors": [10.0, 1.0, 1e-1, 1e-2]}),
+    ("bncg", ["-tao_type", "bncg"]),
+]
+DEFAULT_DISK_SOLVERS = [
+    ("mpgp (defaults: ICC, projected CG expansion, Gamma 2)", ["-tao_type", "mpgp"]),
+    ("mpgp, old defaults: " + " ".join(OLD_MPGP), ["-tao_type", "mpgp"] + OLD_MPGP),
+]
+TAO_BOUND_SOLVERS = ("gpcg", "blmvm", "tron", "bqpip", "bncg")
+# random ill-conditioned QPs of tests/qp: (kind, solver, cond); 50 units of 6 entries (300 unknowns), |gP| <= 1e-9 |b|
+RANDOM_CASES = [("bounds", "tao_mprgp", "1e4"), ("bounds", "tao_mprgp", "1e8"), ("bounds", "tao_mpgp", "1e4"), ("disks", "tao_mpgp", "1e4"),
+                ("mixed", "tao_mpgp", "1e2"), ("mixed", "tao_mpgp", "1e4"), ("cones", "tao_mpgp", "1e2"), ("cones", "tao_mpgp", "1e4")]
+
 PROBLEMS = {
     # name: (program, extra options, solvers, {size: (n option, repeat)})
     "obstacle": ("obstacle", ["-problem", "obstacle"], BOUND_SOLVERS, {"small": ("99", 3), "large": ("319", 1)}),
     "bearing": ("obstacle", ["-problem", "bearing"], BOUND_SOLVERS, {"small": ("99", 3), "large": ("319", 1)}),
     "disks": ("disks", [], DISK_SOLVERS, {"small": ("70", 3), "large": ("224", 1)}),
+}
+PROBLEMS_DEFAULTS = {
+    "obstacle": ("obstacle", ["-problem", "obstacle"], DEFAULT_BOUND_SOLVERS, {"small": ("100", 3), "large": ("316", 1)}),
+    "bearing": ("obstacle", ["-problem", "bearing"], DEFAULT_BOUND_SOLVERS, {"small": ("100", 3), "large": ("316", 1)}),
+    "disks": ("disks", [], DEFAULT_DISK_SOLVERS, {"small": ("70", 3), "large": ("224", 1)}),
 }
 FACTORS = [1.0, 1e-1, 1e-2, 1e-3, 1e-4]
 CONVERGED = ("CONVERGED_GATOL", "CONVERGED_GRTOL", "CONVERGED_GTTOL", "CONVERGED_STEPTOL", "CONVERGED_MINF", "CONVERGED_USER")
@@ -130,6 +177,45 @@ def fmt_row(label, rec, err, qref):
         rec["reason"] + ("; " + err.replace("|", "/") if err else ""))
 
 
+def random_known(kind, solver, cond, matrix, old, timeout):
+    """One run of tests/qp's qp_known_solution; returns (its, products or None, note)."""
+    t = solver[4:]
+    cmd = [os.path.join(ROOT, "build", "tests", "qp", "qp_known_solution"), "-kind", kind, "-solver", solver, "-cond", cond, "-units", "50", "-rtol", "1e-9", "-tol", "1",
+           "-tao_max_it", "100000", "-matrix", matrix]
+    if old:
+        cmd += ["-tao_%s_pc_type" % t, "none", "-tao_%s_expansion_projcg" % t, "0", "-tao_%s_gamma" % t, "1"]
+    env = dict(os.environ, PETSC_OPTIONS="", OMP_NUM_THREADS="1")
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
+    except subprocess.TimeoutExpired:
+        return None, None, "timeout after %d s" % timeout, cmd
+    m = re.search(r"its=(\d+) hessian_mults=(\d+)", p.stdout)
+    if not m:
+        err = re.search(r"PETSC ERROR: (TAO did not converge: \S+)", p.stdout + p.stderr)
+        return None, None, err.group(1) if err else "exit %d" % p.returncode, cmd
+    return int(m.group(1)), int(m.group(2)), "", cmd
+
+
+def random_table(timeout):
+    print("\n### random ill-conditioned QPs (tests/qp, qp_known_solution, 300 unknowns, |gP| <= 1e-9 |b|): old defaults against the defaults\n")
+    print("| kind | solver | cond | Hessian | products, old defaults | products, defaults | change |")
+    print("|---|---|---|---|---|---|---|")
+    cmds = []
+    for kind, solver, cond in RANDOM_CASES:
+        for matrix in ("shell", "aij"):
+            r_old = random_known(kind, solver, cond, matrix, True, timeout)
+            r_new = random_known(kind, solver, cond, matrix, False, timeout)
+            cmds.append(" ".join(os.path.relpath(c, ROOT) if c.startswith(ROOT) else c for c in r_new[3]))
+            a = "%d" % r_old[1] if r_old[1] is not None else r_old[2]
+            b = "%d" % r_new[1] if r_new[1] is not None else r_new[2]
+            ch = "%+.0f %%" % (100.0 * (r_new[1] - r_old[1]) / r_old[1]) if r_old[1] and r_new[1] is not None else "-"
+            print("| %s | %s | %s | %s | %s | %s | %s |" % (kind, solver[4:], cond, matrix, a, b, ch))
+            sys.stdout.flush()
+    print("\nCommands (the old defaults add -tao_<type>_pc_type none -tao_<type>_expansion_projcg 0 -tao_<type>_gamma 1):\n")
+    for c in cmds:
+        print("    " + c)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--rtol", type=float, default=1e-6, help="target |gP| <= rtol |b| (default 1e-6)")
@@ -138,6 +224,7 @@ def main():
     ap.add_argument("--timeout", type=int, default=180, help="seconds per run of mprgp/mpgp (a run that takes longer is reported as a timeout)")
     ap.add_argument("--tao-timeout", type=int, default=60, help="seconds per run of a TAO solver (keeps the whole benchmark under 15 minutes)")
     ap.add_argument("--quick", action="store_true", help="small sizes only")
+    ap.add_argument("--defaults", action="store_true", help="the defaults chosen from the Hessian against the old defaults and TAO's bound solvers, and the random QPs of tests/qp")
     ap.add_argument("--out", default=os.path.join(ROOT, "build", "bench-qp"))
     args = ap.parse_args()
     sizes = ["small"] if args.quick else args.sizes.split(",")
@@ -146,8 +233,9 @@ def main():
     with open(os.path.join(args.out, "results.jsonl"), "w") as log:
         print("QP benchmark: target |gP| <= %g |b|, measured by the programs; %s, %d cores, %s" % (args.rtol, platform.node(), os.cpu_count(), time.strftime("%Y-%m-%d %H:%M")))
         print("Load average at start: %.2f %.2f %.2f" % os.getloadavg())
+        table = PROBLEMS_DEFAULTS if args.defaults else PROBLEMS
         for pname in args.problems.split(","):
-            prog, base0, solvers, sz = PROBLEMS[pname]
+            prog, base0, solvers, sz = table[pname]
             for size in sizes:
                 nopt, repeat = sz[size]
                 base = base0 + ["-n", nopt, "-bench_repeat", str(repeat)]
@@ -169,9 +257,16 @@ def main():
                 print("|---|---|---|---|---|---|---|---|---|---|")
                 for label, rec, err, _ in rows:
                     print(fmt_row(label, rec, err, qref))
+                tao = [(r["hessian_products"], label) for label, r, _, _ in rows if r and r["met"] and label.split(",")[0] in TAO_BOUND_SOLVERS]
+                ours = [(r["hessian_products"], label.split(" ")[0]) for label, r, _, _ in rows if r and r["met"] and "(defaults" in label]
+                if args.defaults and ours:
+                    best = "TAO's fewest: %d (%s)" % min(tao) if tao else "no TAO solver in this table"
+                    print("\nDefaults: %s; %s." % (", ".join("%s %d" % (n, p) for p, n in ours), best))
                 print("\nCommands (build/tutorials/qp/...):\n")
                 for label, rec, err, cmd in rows:
                     print("    %s %s" % (prog, cmd))
+        if args.defaults:
+            random_table(args.timeout)
         print("\nTotal wall time of the benchmark: %.0f s" % (time.time() - t_start))
 
 

@@ -10,6 +10,8 @@
      -blocks      tao_smalxe: inner solves as a Gauss-Seidel sweep over two blocks (disk entries, the rest)
      -equality_routines  tao_smalxe: give C x = d through TAO's equality-constraint routines
      -tol <t>     asserted bound on |x - x*| / |x*|
+     -matrix shell|dense|aij  how A is stored (default shell, whose products are the same on any number of
+                  ranks): an assembled A (aij) lets TAO mprgp/mpgp choose a preconditioner in face by default
      -prefix <p>  options prefix of the Tao or KSP (as the contact layer gives smalxe contact_): its
                   options are then -<p>tao_*, and error messages must name them so
      -resolve     TAO solvers: solve again from the solution (a warm start) and print that solve's
@@ -72,7 +74,7 @@ static PetscErrorCode DiskAndRestBlocks(KnownQP *qp, IS blocks[2])
 int main(int argc, char **argv)
 {
   KnownQP     qp;
-  char        kind[64] = "bounds", solver[64] = "tao_mpgp", prefix[64] = "";
+  char        kind[64] = "bounds", solver[64] = "tao_mpgp", prefix[64] = "", matrix[64] = "shell";
   PetscInt    units = 20, m = 0, its = 0;
   PetscReal   cond = 100, scale = 1, rtol = 1e-10, tol = 1e-6, err, dist, xnorm, xsnorm, gpnorm, bound, bnorm;
   Vec         x, g, gp;
@@ -94,7 +96,13 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-equality_routines", &routines, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-resolve", &resolve, NULL));
   PetscCall(PetscOptionsGetString(NULL, NULL, "-prefix", prefix, sizeof(prefix), NULL));
-  PetscCall(KnownQPCreate(PETSC_COMM_WORLD, kind, units, cond, scale, m, &qp));
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-matrix", matrix, sizeof(matrix), NULL));
+  {
+    const std::string mt(matrix);
+    PetscCheck(mt == "shell" || mt == "dense" || mt == "aij", PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-matrix %s: must be shell, dense or aij", matrix);
+    PetscCall(KnownQPCreate(PETSC_COMM_WORLD, kind, units, cond, scale, m, &qp, PETSC_INFINITY, mt == "shell" ? PETSC_TRUE : PETSC_FALSE));
+    if (mt == "aij") PetscCall(MatConvert(qp.A, MATAIJ, MAT_INPLACE_MATRIX, &qp.A));
+  }
   PetscCall(VecDuplicate(qp.xstar, &x));
   PetscCall(VecSet(x, 0.0));
   PetscCall(VecNorm(qp.b, NORM_2, &bnorm));

@@ -42,9 +42,12 @@
    --------------
    Every solver listed by scripts/bench-qp.sh converges to the same objective (to about the
    tolerance) and its line ends with "met":true; with -n 319 the obstacle error against the exact
-   solution is about 5e-5 (discretization error). mprgp needs about 1100 products at -n 319 with the
-   default -bench_rtol 1e-6, blmvm about 700; the numbers for all solvers and what they mean are in
-   docs/qp-benchmark.md. -bench_repeat k solves k times and reports the shortest time. */
+   solution is about 5e-5 (discretization error). The Hessian is assembled (AIJ), so mprgp and mpgp
+   precondition their CG steps in face with ICC(0) by default, with the projected CG expansion and
+   Gamma = 2 (-tao_view says so): mprgp needs about 380 products at -n 316 with the default -bench_rtol
+   1e-6 (about 890 with the old defaults -tao_mprgp_pc_type none -tao_mprgp_expansion_projcg 0
+   -tao_mprgp_gamma 1), blmvm about 630, gpcg about 1460; the numbers for all solvers and what they mean
+   are in docs/qp-benchmark.md. -bench_repeat k solves k times and reports the shortest time. */
 #include "bench.h"
 #include <petscdmda.h>
 #include <cmath>

@@ -207,7 +207,7 @@ PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
 
   Input Parameters:
 + tao - the solver (of any type: a QP type chosen later adopts the setting)
-- flg - `PETSC_TRUE` to try the projected CG step, `PETSC_FALSE` for Dostal's expansion only (the default)
+- flg - `PETSC_TRUE` to try the projected CG step, `PETSC_FALSE` for Dostal's expansion only
 
   Options Database Key:
 . -tao_mprgp_expansion_projcg <bool> - (or -tao_mpgp_expansion_projcg) overrides the setting
@@ -221,7 +221,9 @@ PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
   products on discretized PDE problems (the obstacle, the journal bearing, the friction disks, the brick's
   dual contact problems) and costs more on random ill-conditioned QPs (docs/qp-benchmark.md,
   docs/brick-benchmark.md); mixed on the brick's friction problems (fewer products at
-  -contact_rtol 1e-3 and 1e-4, more at the other tolerances), where it stays off.
+  -contact_rtol 1e-3 and 1e-4, more at the other tolerances), where it stays off. Without this call or the
+  option the default follows the Hessian: on for an assembled sparse one (with ICC in face), off for a
+  MATSHELL (FETI's dual operator) or a dense one.
 
   Level: intermediate
 
@@ -259,7 +261,11 @@ PetscErrorCode TaoQPSetExpansionProjCG(Tao tao, PetscBool flg)
 
   Notes:
   The PC has the options prefix of the solver followed by `tao_mprgp_` or `tao_mpgp_` (so
-  `-tao_mprgp_pc_type icc`) and type `PCNONE` by default. At each solve it gets the Hessian and the
+  `-tao_mprgp_pc_type icc`) and type `PCNONE` until a solve chooses the default from the Hessian: `PCICC`
+  when ICC can factor the Hessian's preconditioning matrix (an assembled sparse matrix; `PCBJACOBI` with
+  `PCICC` in each rank's block on several ranks), else `PCNONE`. A type set on it (or by
+  -tao_mprgp_pc_type) is kept; `PCNONE` set through this PC before the first solve cannot be told from the
+  default, so give the option -tao_mprgp_pc_type none to keep an assembled Hessian unpreconditioned. At each solve it gets the Hessian and the
   Hessian's preconditioning matrix as operators. A CG step uses z = [M^-1]_FF g_F, the preconditioned
   free gradient restricted to the free entries (interior blocks): a principal submatrix of M^-1, hence
   a symmetric positive definite preconditioner of the face's Hessian A_FF. Other steps and the

@@ -32,7 +32,16 @@ struct TAO_MPGP {
   PetscReal   cone_mu       = 1.0;
   PetscBool   counters_view = PETSC_FALSE;
   Tao         tao           = nullptr;
-  PC          pc            = nullptr; /* preconditioning in face, options -tao_mprgp_pc_* or -tao_mpgp_pc_*; PCNONE by default */
+  PC          pc            = nullptr; /* preconditioning in face, options -tao_mprgp_pc_* or -tao_mpgp_pc_*; PCNONE until a solve chooses from the Hessian */
+
+  /* The PC type, the expansion and Gamma the user did not set follow the Hessian (mpgpdefaults.cxx) at each solve */
+  MPGPHessianDefaults defaults;                   /* of the last solve's Hessian */
+  PetscBool           solved       = PETSC_FALSE; /* defaults holds a choice */
+  PetscBool           gamma_given  = PETSC_FALSE; /* by -tao_mprgp_gamma */
+  PetscBool           projcg_given = PETSC_FALSE; /* by -tao_mprgp_expansion_projcg or TaoQPSetExpansionProjCG() */
+  PetscBool           pc_given     = PETSC_FALSE; /* by -tao_mprgp_pc_type, or a type set through TaoQPGetPC() */
+  PCType              pc_auto      = PCNONE;      /* the type the defaults last gave the PC: another type was set by someone else */
+  PetscBool           from_options = PETSC_FALSE; /* TaoSetFromOptions() was called: a PC type chosen later reads its options too */
 };
 
 TAO_MPGP *GetMPGP(Tao tao) { return static_cast<TAO_MPGP *>(tao->data); }
@@ -201,6 +210,72 @@ PetscErrorCode TaoMPGPPrepareSet(Tao tao, TAO_MPGP *qp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Whether -<pc prefix><name> is in the options database (the PC's prefix is the solver's plus tao_mprgp_). */
+PetscErrorCode TaoMPGPHasPCOption(TAO_MPGP *qp, const char *name, PetscBool *has)
+{
+  const char *pcprefix;
+
+  PetscFunctionBegin;
+  PetscCall(PCGetOptionsPrefix(qp->pc, &pcprefix));
+  PetscCall(PetscOptionsHasName(((PetscObject)qp->pc)->options, pcprefix, name, has));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The block Jacobi chosen on several ranks gets ICC in its blocks (PETSc's default there is ILU, whose
+   inverse is not symmetric and would not make [M^-1]_FF a preconditioner for CG), unless
+   -tao_mprgp_sub_pc_type says otherwise. Called after PCSetUp(), which creates the blocks' solvers but does
+   not factor them yet. */
+PetscErrorCode TaoMPGPBlockICC(TAO_MPGP *qp)
+{
+  KSP      *sub;
+  PetscInt  nlocal;
+  PetscBool given;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)qp->pc, PCBJACOBI, &given));
+  if (!given) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(TaoMPGPHasPCOption(qp, "-sub_pc_type", &given));
+  if (given) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PCBJacobiGetSubKSP(qp->pc, &nlocal, NULL, &sub));
+  for (PetscInt k = 0; k < nlocal; k++) {
+    PC        subpc;
+    PetscBool icc;
+    PetscCall(KSPGetPC(sub[k], &subpc));
+    PetscCall(PetscObjectTypeCompare((PetscObject)subpc, PCICC, &icc));
+    if (icc) continue;
+    PetscCall(PCSetType(subpc, PCICC));
+    if (qp->from_options) PetscCall(PCSetFromOptions(subpc)); /* -tao_mprgp_sub_pc_factor_levels ... */
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The PC type, the expansion and Gamma that the user did not choose follow the preconditioning matrix P
+   (MPGPHessianDefaultsGet()). A PC whose type is no longer the one given here was set by the user (or by
+   the caller, e.g. smalxe's penalty preconditioner) through TaoQPGetPC(), and is kept. */
+PetscErrorCode TaoMPGPApplyHessianDefaults(Tao tao, TAO_MPGP *qp, Mat P)
+{
+  PC        pc;
+  PetscBool same;
+
+  PetscFunctionBegin;
+  PetscCall(MPGPHessianDefaultsGet(P, &qp->defaults));
+  qp->solved = PETSC_TRUE;
+  if (!qp->gamma_given) qp->core.gamma = qp->defaults.gamma;
+  if (!qp->projcg_given) qp->core.projcg = qp->defaults.projcg;
+  PetscCall(TaoQPGetPC_MPGP(tao, &pc));
+  if (!qp->pc_given) {
+    PetscCall(PetscObjectTypeCompare((PetscObject)pc, qp->pc_auto, &same));
+    if (!same) qp->pc_given = PETSC_TRUE;
+  }
+  if (qp->pc_given) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscObjectTypeCompare((PetscObject)pc, qp->defaults.pc, &same));
+  if (same) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PCSetType(pc, qp->defaults.pc));
+  qp->pc_auto = qp->defaults.pc;
+  if (qp->from_options) PetscCall(PCSetFromOptions(pc)); /* the options of the type now chosen (-tao_mprgp_pc_factor_levels ...) */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TaoSolve_MPGP(Tao tao)
 {
   TAO_MPGP   *qp = GetMPGP(tao);
@@ -250,6 +325,7 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
   qp->core.counters   = &qp->counters;
   qp->core.report     = TaoQPReport;
   qp->core.report_ctx = tao;
+  PetscCall(TaoMPGPApplyHessianDefaults(tao, qp, tao->hessian_pre ? tao->hessian_pre : A));
   {
     PetscBool none = PETSC_TRUE;
     if (qp->pc) PetscCall(PetscObjectTypeCompare((PetscObject)qp->pc, PCNONE, &none));
@@ -258,6 +334,7 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
     if (!none) {
       PetscCall(PCSetOperators(qp->pc, A, tao->hessian_pre ? tao->hessian_pre : A));
       PetscCall(PCSetUp(qp->pc));
+      if (!qp->pc_given) PetscCall(TaoMPGPBlockICC(qp));
     }
   }
   tao->reason = TAO_CONTINUE_ITERATING;
@@ -302,11 +379,23 @@ PetscErrorCode TaoSetFromOptions_MPGP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptio
   PetscFunctionBegin;
   PetscCall(TaoGetOptionsPrefix(tao, &prefix));
   if (!prefix) prefix = "";
+  {
+    /* an option given, even with the value of a default, is the user's choice (mpgpdefaults.cxx) */
+    PetscBool given;
+    PetscCall(PetscOptionsHasName(((PetscObject)tao)->options, prefix, qp->options->gamma, &given));
+    if (given) qp->gamma_given = PETSC_TRUE;
+    PetscCall(PetscOptionsHasName(((PetscObject)tao)->options, prefix, qp->options->expansion_projcg, &given));
+    if (given) qp->projcg_given = PETSC_TRUE;
+  }
   PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), prefix, qp->options, &qp->core, &qp->norm, &qp->counters_view));
   {
-    PC pc;
+    PC        pc;
+    PetscBool given;
     PetscCall(TaoQPGetPC_MPGP(tao, &pc));
+    PetscCall(TaoMPGPHasPCOption(qp, "-pc_type", &given));
+    if (given) qp->pc_given = PETSC_TRUE;
     PetscCall(PCSetFromOptions(pc));
+    qp->from_options = PETSC_TRUE;
   }
   if (qp->core.variant == MPGPVariant::MPRGP) { /* bounds only: no block description to choose, so none in -help */
     PetscEnum type = (PetscEnum)QP_BLOCK_SCALAR;
@@ -328,6 +417,38 @@ PetscErrorCode TaoSetFromOptions_MPGP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptio
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* What the preconditioner in face, Gamma and the expansion are, and who chose them: the user, or the
+   defaults from the Hessian (with the reason). */
+PetscErrorCode TaoMPGPViewChoices(TAO_MPGP *qp, PetscViewer viewer)
+{
+  char        why[160], chosen[200];
+  const char *pctype = PCNONE;
+  PetscBool   blocks;
+
+  PetscFunctionBegin;
+  PetscCall(MPGPHessianDefaultsReason(&qp->defaults, why, sizeof(why)));
+  PetscCall(PetscSNPrintf(chosen, sizeof(chosen), qp->solved ? "chosen %s" : "to be chosen %s", why));
+  if (qp->pc) PetscCall(PCGetType(qp->pc, &pctype));
+  PetscCall(PetscStrcmp(pctype, PCBJACOBI, &blocks));
+  if (qp->pc_given) PetscCall(PetscViewerASCIIPrintf(viewer, "pc: %s (set by an option or through TaoQPGetPC())\n", pctype ? pctype : "unset"));
+  else if (qp->solved && blocks) {
+    KSP     *sub;
+    PC       subpc;
+    PCType   subtype = nullptr;
+    PetscInt nlocal;
+    PetscCall(PCBJacobiGetSubKSP(qp->pc, &nlocal, NULL, &sub));
+    if (nlocal > 0) {
+      PetscCall(KSPGetPC(sub[0], &subpc));
+      PetscCall(PCGetType(subpc, &subtype));
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "pc: bjacobi with %s in each rank's block (%s)\n", subtype ? subtype : "a default", chosen));
+  } else PetscCall(PetscViewerASCIIPrintf(viewer, "pc: %s (%s)\n", qp->solved ? pctype : "none until the first solve", chosen));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "Gamma: %g (%s)\n", (double)qp->core.gamma, qp->gamma_given ? "set by an option" : chosen));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "expansion chosen: %s (%s)\n", qp->core.projcg ? "projected full CG step first" : "Dostal's (feasible half step and fixed-length projected step)",
+                                   qp->projcg_given ? "set by an option or TaoQPSetExpansionProjCG()" : chosen));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TaoView_MPGP(Tao tao, PetscViewer viewer)
 {
   TAO_MPGP *qp = GetMPGP(tao);
@@ -340,6 +461,7 @@ PetscErrorCode TaoView_MPGP(Tao tao, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPrintf(viewer, "%s: Gamma %g, step length %g/||A||, ||A|| %s %g\n", qp->name, (double)qp->core.gamma, (double)qp->core.alpha_scale,
                                    qp->norm.user > 0 ? "given" : "estimated", (double)qp->norm.used));
   PetscCall(MPGPCoreViewExpansion(&qp->core, viewer));
+  PetscCall(TaoMPGPViewChoices(qp, viewer));
   PetscCall(PetscViewerASCIIPrintf(viewer, "stopping: |projected gradient| <= max(gatol %g, gttol %g * %s = %g)%s\n", (double)tao->gatol, (double)tao->gttol,
                                    qp->bnorm > 0 ? "|b|" : "|gP(x0)| (b = 0)", (double)(tao->gttol * qp->gref), tao->grtol > 0 ? ", or <= grtol |f|" : ""));
   PetscCall(QPCountersView(&qp->counters, NULL, viewer));
@@ -423,7 +545,8 @@ PetscErrorCode TaoQPGetNormEstimate_MPGP(Tao tao, PetscReal *norm)
 PetscErrorCode TaoQPSetExpansionProjCG_MPGP(Tao tao, PetscBool flg)
 {
   PetscFunctionBegin;
-  GetMPGP(tao)->core.projcg = flg;
+  GetMPGP(tao)->core.projcg  = flg;
+  GetMPGP(tao)->projcg_given = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -488,13 +611,14 @@ PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *na
   for min 1/2 x'Ax - b'x subject to l <= x <= u.
 
   Options Database Keys:
-+ -tao_mprgp_gamma <1>           - proportioning parameter Gamma
++ -tao_mprgp_gamma <1 or 2>      - proportioning parameter Gamma (default from the Hessian: 2 when assembled, else 1)
 . -tao_mprgp_alpha <1.95>        - fixed step length (expansion steps) in units of 1/||A||, in (0, 2]
 . -tao_mprgp_norm <value>        - ||A|| given, not estimated
 . -tao_mprgp_norm_method <slepc> - slepc or power
 . -tao_mprgp_norm_margin         - safety margin on the estimate
-. -tao_mprgp_expansion_projcg <false> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`)
-. -tao_mprgp_pc_type <none>      - preconditioner of the CG steps, restricted to the free entries (preconditioning in face; e.g. icc, jacobi)
+. -tao_mprgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian: true when assembled)
+. -tao_mprgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries (preconditioning in face; default from the Hessian: icc when assembled, bjacobi with icc on several
+ranks, else none)
 - -tao_mprgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:
@@ -508,6 +632,11 @@ PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *na
   Hessian's preconditioning matrix) the CG steps use z = [M^-1]_FF g_F on the free set F, a principal
   submatrix of M^-1, hence symmetric positive definite on the face; the proportioning test, the
   expansion and proportioning steps and the stopping test stay unpreconditioned.
+  Defaults from the Hessian: when ICC can factor the Hessian's preconditioning matrix (an assembled sparse
+  matrix; on several ranks each rank's diagonal block), the PC is ICC(0) (block Jacobi with ICC(0) on several
+  ranks), the expansion tries the projected CG step and Gamma is 2; otherwise (a MATSHELL, a dense matrix) no
+  PC, Dostal's expansion and Gamma 1. Each of the three options given wins over its default; -tao_view says
+  which was chosen and why.
   The algorithm and what conefeti adds to it: docs/algorithms.md, 'MPRGP and MPGP'.
 
   References:
@@ -530,7 +659,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
   over a separable convex set: bounds, 2D disks, 3D second-order cones, free entries.
 
   Options Database Keys:
-+ -tao_mpgp_gamma <1>           - proportioning parameter Gamma
++ -tao_mpgp_gamma <1 or 2>      - proportioning parameter Gamma (default from the Hessian, as for mprgp)
 . -tao_mpgp_alpha <1.95>        - fixed step length in units of 1/||A||, in (0, 2]
 . -tao_mpgp_norm <value>        - ||A|| given, not estimated
 . -tao_mpgp_norm_method <slepc> - slepc or power
@@ -539,8 +668,8 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_arc <1>            - CG steps also move a disk block on its circle along the circle while alpha |g.nu|/r <= this; 0 turns arc steps off
 . -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
 . -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
-. -tao_mpgp_expansion_projcg <false> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`)
-. -tao_mpgp_pc_type <none>      - preconditioner of the CG steps, restricted to the free entries and interior blocks
+. -tao_mpgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian, as for mprgp)
+. -tao_mpgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries and interior blocks (default from the Hessian, as for mprgp)
 - -tao_mpgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:
