@@ -25,11 +25,8 @@ PetscErrorCode ConeFETIProgressBegin_Private(ConeFETIProgress &p, ConeFETIPhase 
 {
   PetscFunctionBegin;
   if (!p.fn) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscTime(&p.t0));
-  p.info             = ConeFETIProgressInfo{};
-  p.info.phase       = phase;
-  p.info.description = ConeFETIPhaseDescriptions[phase];
-  p.info.n           = n;
+  PetscCall(ConeFETIProgressEnter_Private(p, phase));
+  p.info.n = n;
   PetscCall(Call(p));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
