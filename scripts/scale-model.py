@@ -247,7 +247,10 @@ def report(data, a):
                 grid.append((n, nodes, hh, p))
                 parts = dict(subdomains=p["sub"], coarse=p["coarse"], reductions=p["comm"])
                 bott = max(parts, key=parts.get)
-                if p["mem0"] > a.node_memory * 1e9 / a.ranks_per_node:
+                share = a.node_memory * 1e9 / a.ranks_per_node
+                if p["mem_rank"] > share:
+                    bott += "; every rank out of memory (more nodes)"
+                elif p["mem0"] > share:
                     bott += "; rank 0 out of memory"
                 out.append("| 10^%d | %d | %d | %.3g | %.3g | %s + %s + %s = %s | %s + %s | %s; %s | %s | %s |" % (
                     round(math.log10(n)), nodes, hh, p["Ns"], p["dim"], fmt_t(p["sub"]), fmt_t(p["coarse"]), fmt_t(p["comm"]), fmt_t(p["product"]),
