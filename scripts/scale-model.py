@@ -301,15 +301,15 @@ def report(data, a):
         ax1.set_xlabel("floating subdomains Ns (coarse dimension 6 Ns)")
         ax1.set_ylabel("seconds (one rank, loaded machine)")
         ax1.set_title("coarse problem, measured and extrapolated")
-        for hh in a.hh:
+        colors = {10: "C0", 100: "C1", 1000: "C2"}
+        for hh, mark in zip(a.hh, ("o", "s", "^", "v")):
             for nodes in (10, 100, 1000):
                 sel = [(n, p) for n, nd, h, p in grid if nd == nodes and h == hh]
-                ax2.loglog([n for n, _ in sel], [p["sub"] for _, p in sel], "o-", label="subdomains, %d nodes, H/h %d" % (nodes, hh) if hh == a.hh[0] else None, color="C%d" % (nodes // 500))
-                ax2.loglog([n for n, _ in sel], [p["coarse"] for _, p in sel], "x--", label="coarse (single), %d nodes, H/h %d" % (nodes, hh) if hh == a.hh[0] else None, color="C%d" % (3 + nodes // 500))
-            break
+                ax2.loglog([n for n, _ in sel], [p["sub"] for _, p in sel], mark + "-", color=colors[nodes], label="subdomains, %d nodes, H/h %d" % (nodes, hh))
+                ax2.loglog([n for n, _ in sel], [p["coarse"] for _, p in sel], mark + "--", color="C3", label="coarse (single; any node count), H/h %d" % hh if nodes == 10 else None)
         ax2.set_xlabel("n (primal unknowns)")
         ax2.set_ylabel("seconds per F product")
-        ax2.set_title("model: one F product per rank, H/h = %d" % a.hh[0])
+        ax2.set_title("model: time per F product and rank")
         for ax in (ax1, ax2):
             ax.grid(True, which="both", alpha=0.3)
             ax.legend(fontsize=7)
