@@ -8,10 +8,16 @@
      parallel   a parallel Cholesky (MUMPS unless -feti_coarse_pc_factor_mat_solver_type says otherwise)
                 on all ranks: the factor is distributed, for coarse problems too large for one rank; the
                 rounding then depends on the distribution.
-   On one rank all three are one sequential Cholesky. */
+     auto       (default) single for a coarse dimension below -feti_coarse_parallel_dim (50 000), parallel from
+                there. Why (docs/scale.md, "Past this machine"): the single factor's entries grow like Ns^1.5 and
+                its flops like Ns^2.2 in the floating subdomains Ns (measured: at Ns = 6912 it took 0.4 GB and
+                26 s on rank 0 while every other rank waited), and at 10^8 unknowns (Ns ~ 1.5e5 at H/h = 6)
+                tens of gigabytes: no rank holds it, so the factor must be distributed. Below the switch,
+                single keeps the results bit for bit those of one rank.
+   On one rank all four are one sequential Cholesky. */
 #include <conefeti/private/fetiimpl.h>
 
-const char *const FETICoarseModes[] = {"single", "redundant", "parallel", "FETICoarseMode", "FETI_COARSE_", NULL};
+const char *const FETICoarseModes[] = {"single", "redundant", "parallel", "auto", "FETICoarseMode", "FETI_COARSE_", NULL};
 
 /* a placeholder of the factored matrix's size: the factor lives on, the matrix it came from does not */
 static PetscErrorCode ReleaseFactoredMatrix(KSP ksp)
@@ -65,6 +71,13 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
   PetscCall(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(A, MAT_SPD, PETSC_TRUE));
   cs.mode = size == 1 ? FETI_COARSE_SINGLE : impl.coarsemode;
+  if (cs.mode == FETI_COARSE_AUTO) {
+    PetscInt N;
+    PetscCall(MatGetSize(A, &N, NULL));
+    cs.mode = N >= impl.coarseparalleldim ? FETI_COARSE_PARALLEL : FETI_COARSE_SINGLE;
+    PetscCall(PetscInfo(feti, "-feti_coarse_mode auto: coarse dimension %" PetscInt_FMT " %s -feti_coarse_parallel_dim %" PetscInt_FMT ": %s\n", N, N >= impl.coarseparalleldim ? ">=" : "<",
+                        impl.coarseparalleldim, FETICoarseModes[cs.mode]));
+  }
   if (cs.mode == FETI_COARSE_SINGLE) {
     Mat           *gathered = NULL, Aseq = A;
     IS             rows;

@@ -64,7 +64,8 @@ struct FETIRowSum {
 typedef enum {
   FETI_COARSE_SINGLE,
   FETI_COARSE_REDUNDANT,
-  FETI_COARSE_PARALLEL
+  FETI_COARSE_PARALLEL,
+  FETI_COARSE_AUTO /* single below -feti_coarse_parallel_dim, parallel from there (resolved in FETICoarseSolverCreate()) */
 } FETICoarseMode;
 PETSC_INTERN const char *const FETICoarseModes[];
 
@@ -92,9 +93,10 @@ struct FETI_Impl {
   PetscBool      check             = PETSC_TRUE; /* -feti_check */
   PetscInt       nfixingcandidates = 8;          /* -feti_fixing_nodes */
   char           subsolver[64]     = "";
-  PetscBool      kplusexplicit     = PETSC_FALSE;        /* -feti_kplus_explicit */
-  PetscBool      kplusschur        = PETSC_TRUE;         /* -feti_kplus_explicit_schur */
-  FETICoarseMode coarsemode        = FETI_COARSE_SINGLE; /* -feti_coarse_mode */
+  PetscBool      kplusexplicit     = PETSC_FALSE;      /* -feti_kplus_explicit */
+  PetscBool      kplusschur        = PETSC_TRUE;       /* -feti_kplus_explicit_schur */
+  FETICoarseMode coarsemode        = FETI_COARSE_AUTO; /* -feti_coarse_mode */
+  PetscInt       coarseparalleldim = 50000;            /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
 
   /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
   PetscReal memfactors = -1, memblocks = -1, membudget = -1; /* bytes; -1: not estimated (budget: unknown) */
