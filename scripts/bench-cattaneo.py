@@ -170,6 +170,17 @@ def fit_p0(r, p, a):
     return math.sqrt(max(c0, 0.0)), (math.sqrt(-c0 / c1) if c1 < 0 < c0 else float("nan"))
 
 
+def ring_means(r, q, area, a, sel, width=0.125):
+    """area-weighted means of q and r over the selected nodes in rings [k w a, (k + 1) w a) up to a"""
+    rm, qm = [], []
+    for k in range(int(round(1 / width))):
+        m = sel & (r >= k * width * a) & (r < (k + 1) * width * a)
+        if m.any() and area[m].sum() > 0:
+            rm.append(np.sum(area[m] * r[m]) / area[m].sum())
+            qm.append(np.sum(area[m] * q[m]) / area[m].sum())
+    return np.array(rm), np.array(qm), None
+
+
 def bracket(r, inner, outer):
     """(midpoint, farthest inner, nearest outer beyond it): a radius between two node sets"""
     r_in = r[inner].max() if inner.any() else 0.0
@@ -185,10 +196,11 @@ def analyse(case, base, js, part, h):
         T = f["/contact/tangential_stress"][()]
         st = f["/contact/status"][()].reshape(-1)
         body = f["/contact/body"][()].reshape(-1)
+        area = f["/contact/area"][()]
     r = np.hypot(X[:, 0], X[:, 1])
     touching = st != 0
     res = {"h": h, "n": js["n"], "subdomains": js["subdomains"], "iter": js["iter"], "nA": js["n_A"], "time": js["time_setup"] + js["time_solve"],
-           "converged": js["converged"], "reason": js.get("reason", ""), "residual": js["residuals"]["max"], "X": X, "r": r, "p": p, "status": st,
+           "converged": js["converged"], "reason": js.get("reason", ""), "residual": js["residuals"]["max"], "X": X, "r": r, "p": p, "status": st, "area": area,
            "contact_nodes": js["contact_nodes"], "stick": js["stick"], "slip": js["slip"], "separated": js["separated"]}
     res["a"], res["a_in"], res["a_out"] = bracket(r, touching, ~touching)
     axis = np.argmin(r)
@@ -217,6 +229,12 @@ def analyse(case, base, js, part, h):
         res["c"], res["c_in"], res["c_out"] = bracket(r, stick, slip)
         qm = mindlin_q(r, res["a_th"], res["p0_th"], res["c_th"])
         res["q_rms"] = float(np.sqrt(np.mean((qx[touching] - qm[touching]) ** 2)) / (MU * res["p0_th"])) if touching.any() else float("nan")
+        # ring means: the area-weighted mean of q over the nodes in rings of width a/8 (the nodal values of an
+        # unstructured mesh scatter; a ring's resultant is what the mesh determines well), against Mindlin's at
+        # the ring's area-weighted mean radius
+        rm, qm_ring, qth_ring = ring_means(r, qx, area, res["a_th"], touching)
+        res["rings"] = (rm, qm_ring)
+        res["q_ring_rms"] = float(np.sqrt(np.mean((qm_ring - mindlin_q(rm, res["a_th"], res["p0_th"], res["c_th"])) ** 2)) / (MU * res["p0_th"])) if len(rm) else float("nan")
     return res
 
 
@@ -261,13 +279,13 @@ def hertz_table(case, rows, ratio):
 
 def mindlin_table(case, rows, ratio):
     out = ["| h hemisphere / block | n | Iter | n_A | time [s] | %s | P |" % ("dx" if case == "mindlin" else "fx") + " Q | Q/(mu P) | a (Hertz) | a | err a | p0 (Hertz) | p0 (axis) | err p0 | "
-           "c (Mindlin) | c | (c - c_M)/h | q RMS err / (mu p0) | stick / slip / separated |",
+           "c (Mindlin) | c | (c - c_M)/h | q RMS err / (mu p0): nodes, rings | stick / slip / separated |",
            "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for x in rows:
         hb = "%.4g / %.4g" % (x["h"], ratio * x["h"]) if case == "mindlin" else "%.4g / rigid" % x["h"]
-        out.append("| %s | %d | %d%s | %d | %.1f | %.3e | %.4g | %.4g | %.3f | %.4f | %.4f (%.4f..%.4f) | %+.1f %% | %.4g | %.4g | %+.1f %% | %.4f | %.4f (%.4f..%.4f) | %+.2f | %.3f | %d / %d / %d |" % (
+        out.append("| %s | %d | %d%s | %d | %.1f | %.3e | %.4g | %.4g | %.3f | %.4f | %.4f (%.4f..%.4f) | %+.1f %% | %.4g | %.4g | %+.1f %% | %.4f | %.4f (%.4f..%.4f) | %+.2f | %.3f, %.3f | %d / %d / %d |" % (
             hb, x["n"], x["iter"], "" if x["converged"] else " (not converged)", x["nA"], x["time"], x["dx"], x["P"], x["Q"], x["k"], x["a_th"], x["a"], x["a_in"], x["a_out"],
-            pct(x["a"], x["a_th"]), x["p0_th"], x["p0"], pct(x["p0"], x["p0_th"]), x["c_th"], x["c"], x["c_in"], x["c_out"], (x["c"] - x["c_th"]) / x["h"], x["q_rms"],
+            pct(x["a"], x["a_th"]), x["p0_th"], x["p0"], pct(x["p0"], x["p0_th"]), x["c_th"], x["c"], x["c_in"], x["c_out"], (x["c"] - x["c_th"]) / x["h"], x["q_rms"], x["q_ring_rms"],
             x["stick"], x["slip"], x["separated"]))
     out += ["", "Theory from each run's P and Q: E* = %.4g, a = (3 P R/(4 E*))^(1/3), p0 = 3 P/(2 pi a^2), c = a (1 - Q/(mu P))^(1/3), mu = %g." % (estar(case), MU)]
     return "\n".join(out)
@@ -310,7 +328,8 @@ def plot_mindlin(case, xs, path_profiles, path_map):
         col = colors[i % len(colors)]
         lab = "Q/(mu P) = %.2f" % x["k"]
         ax1.plot(x["r"][sel] / a, x["p"][sel] / p0, "o", ms=2.5, color=col, alpha=0.6, label="conefeti, %s" % lab)
-        ax2.plot(x["r"][sel] / a, x["q"][sel] / (MU * p0), "o", ms=2.5, color=col, alpha=0.6, label="conefeti, %s" % lab)
+        ax2.plot(x["r"][sel] / a, x["q"][sel] / (MU * p0), "o", ms=2, color=col, alpha=0.35, label="conefeti nodes, %s" % lab)
+        ax2.plot(x["rings"][0] / a, x["rings"][1] / (MU * p0), "s--", ms=5, lw=0.8, color=col, label="ring means (width a/8)")
         ax2.plot(rr / a, mindlin_q(rr, a, p0, c) / (MU * p0), "-", color=col, lw=1.5, label="Mindlin, c/a = %.3f" % (c / a))
     rr = np.linspace(0, 1, 200)
     ax1.plot(rr, np.sqrt(1 - rr ** 2), "k-", lw=1.5, label="Hertz")
@@ -371,9 +390,9 @@ def driven_runs(a, case, h, tmp, state):
     """the runs of one mesh for every target Q/(mu P); state carries the shift factor fitted so far"""
     rows = []
     for k in [float(t) for t in a.targets.split(",")]:
-        P = state.get("P", 4 / 3 * estar(case) * math.sqrt(R) * DZ ** 1.5)
         x = None
         for attempt in range(2):
+            P = state.get("P", 4 / 3 * estar(case) * math.sqrt(R) * DZ ** 1.5)   # the last run's (the normal problem does not depend on dx)
             if case == "mindlin":
                 dx = state.get("s", 1.0) * mindlin_shift(P, k)
             else:   # rigid-friction: the volume force density, Q = s fx V (V the hemisphere's volume)
