@@ -34,6 +34,8 @@ Cases:
 
 Measured per run (the HDF5 output, docs/output.md "/contact"; r = sqrt(x^2 + y^2) of the contact node):
   a   the midpoint between the farthest node in contact and the nearest separated node beyond it (in brackets)
+  a (moment)  sqrt(5/2 sum(l r^2)/sum(l)) over the normal forces l of the nodes (Hertz: the mean of r^2 over p(r) is
+      2 a^2/5): the spread of the force, free of the one node that lies at the edge
   p0  the pressure of the contact node nearest the axis; "p0 fit": p0 of the least-squares fit
       p^2 = p0^2 (1 - r^2/a^2) over the nodes with r < 0.8 a
   c   the midpoint between the farthest stick node and the nearest slip node beyond it (in brackets)
@@ -42,7 +44,7 @@ Measured per run (the HDF5 output, docs/output.md "/contact"; r = sqrt(x^2 + y^2
 
 usage: scripts/bench-cattaneo.py --case hertz|mindlin|rigid-hertz|rigid-friction [--sizes 0.04,0.02,0.01]
            [--ratio 1.3] [--targets 0.25,0.5,0.75] [--tolerance 0.03] [--build build] [--ranks 1]
-           [--write docs/validation.md] [--plot-dir docs/figures] [--check a=0.05,p0=0.1,c=1] [--keep DIR]
+           [--block 5,5] [--write docs/validation.md] [--plot-dir docs/figures] [--check a=0.05,p0=0.1,c=1] [--keep DIR]
            [--extra "-option value ..."]
   --check: exit 1 unless every run converged and each quantity is within its bound: a, p0 relative errors;
            c in units of the hemisphere's mesh size h (|c - c_theory| <= c_bound h)
@@ -61,7 +63,7 @@ E2, NU2 = 2e9, 0.2                 # block (hertz only)
 VOLUME = 2 * math.pi * R ** 3 / 3  # the hemisphere's
 A_AIM = 0.1                        # the contact radius aimed at (a/R = 0.1): force driven cases get P = 4 E* a^3/(3 R)
 DZ = 0.01                          # the grip's downward displacement (Hertz approach a^2/R for a = 0.1)
-BLOCK_L, BLOCK_H = 5.0, 5.0        # the block: half width and height (50 a for a = 0.1)
+BLOCK = [5.0, 5.0]                 # the block: half width and height (50 a for a = 0.1); --block
 
 
 def materials(case):
@@ -137,7 +139,7 @@ def scene_options(case, h, ratio, tmp, dx=0.0):
     gmsh("pair-hemisphere.geo", hemi, part=part, h=h)
     if case in SCENE:
         block = os.path.join(tmp, "block-%s-%g.msh" % (case, h))
-        gmsh("pair-block.geo", block, part=part, h=ratio * h, L=BLOCK_L, H=BLOCK_H)
+        gmsh("pair-block.geo", block, part=part, h=ratio * h, L=BLOCK[0], H=BLOCK[1])
         return ["-options_file", os.path.join(ROOT, "petsc-options", SCENE[case]), "-scene_body0_mesh", hemi, "-scene_body0_subdomains", str(subdomains_for(hemi)),
                 "-scene_body1_mesh", block, "-scene_body1_subdomains", str(subdomains_for(block)), "-scene_body0_displace0_value", "%r,0,%r" % (dx, -DZ)]
     opts = ["-scene_name", case, "-scene_body0_mesh", hemi, "-scene_body0_E", repr(E1), "-scene_body0_nu", repr(NU1), "-scene_body0_subdomains", str(subdomains_for(hemi))]
@@ -221,6 +223,11 @@ def analyse(case, base, js, part, h):
     Pth = res["P_applied"] if force_driven else res["P"]
     res["a_th"], res["p0_th"] = hertz_of_P(case, Pth)
     res["p0_fit"], res["a_fit"] = fit_p0(r, p, res["a_th"])
+    res["p_rings"] = ring_means(r, p, area, res["a_th"], touching)[:2]
+    # the contact radius from the second moment of the normal forces: for Hertz's p(r), the mean of r^2 over the
+    # pressure is 2 a^2/5 (free of the node that happens to lie at the edge)
+    lam = p * area
+    res["a_mom"] = math.sqrt(2.5 * np.sum(lam * r * r) / np.sum(lam)) if np.sum(lam) > 0 else float("nan")
     if case in ("mindlin", "rigid-friction"):
         k = res["Q"] / (MU * res["P"]) if res["P"] > 0 else float("nan")
         res["k"] = k
@@ -266,26 +273,26 @@ def pct(x, ref):
 
 def hertz_table(case, rows, ratio):
     applied = "applied %.4g" % rows[0]["P_applied"] if rows[0]["P_applied"] else "the contact force"
-    out = ["| h hemisphere / block | n | subdomains | Iter | n_A | time [s] | P (%s) | a (Hertz) | a | err a | p0 (Hertz) | p0 (axis) | err p0 | p0 fit | err | max residual |" % applied,
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    out = ["| h hemisphere / block | n | subdomains | Iter | n_A | time [s] | P (%s) | a (Hertz) | a | err a | a (moment) | err | p0 (Hertz) | p0 (axis) | err p0 | p0 fit | err | max residual |" % applied,
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for x in rows:
         hb = "%.4g / %.4g" % (x["h"], ratio * x["h"]) if case == "hertz" else "%.4g / rigid" % x["h"]
-        out.append("| %s (a/%.3g) | %d | %d | %d%s | %d | %.1f | %.4g | %.4f | %.4f (%.4f..%.4f) | %+.1f %% | %.4g | %.4g | %+.1f %% | %.4g | %+.1f %% | %.1e |" % (
+        out.append("| %s (a/%.3g) | %d | %d | %d%s | %d | %.1f | %.4g | %.4f | %.4f (%.4f..%.4f) | %+.1f %% | %.4f | %+.1f %% | %.4g | %.4g | %+.1f %% | %.4g | %+.1f %% | %.1e |" % (
             hb, x["a_th"] / x["h"], x["n"], x["subdomains"], x["iter"], "" if x["converged"] else " (not converged)", x["nA"], x["time"], x["P"], x["a_th"], x["a"], x["a_in"],
-            x["a_out"], pct(x["a"], x["a_th"]), x["p0_th"], x["p0"], pct(x["p0"], x["p0_th"]), x["p0_fit"], pct(x["p0_fit"], x["p0_th"]), x["residual"]))
+            x["a_out"], pct(x["a"], x["a_th"]), x["a_mom"], pct(x["a_mom"], x["a_th"]), x["p0_th"], x["p0"], pct(x["p0"], x["p0_th"]), x["p0_fit"], pct(x["p0_fit"], x["p0_th"]), x["residual"]))
     out += ["", "Hertz from %s: E* = %.4g, a = (3 P R/(4 E*))^(1/3), p0 = 3 P/(2 pi a^2)." % ("the applied P" if rows[0]["P_applied"] else "each run's P", estar(case))]
     return "\n".join(out)
 
 
 def mindlin_table(case, rows, ratio):
-    out = ["| h hemisphere / block | n | Iter | n_A | time [s] | %s | P |" % ("dx" if case == "mindlin" else "fx") + " Q | Q/(mu P) | a (Hertz) | a | err a | p0 (Hertz) | p0 (axis) | err p0 | "
+    out = ["| h hemisphere / block | n | Iter | n_A | time [s] | %s | P |" % ("dx" if case == "mindlin" else "fx") + " Q | Q/(mu P) | a (Hertz) | a | err a | a (moment) | err | p0 (Hertz) | p0 (axis) | err p0 | p0 fit | err | "
            "c (Mindlin) | c | (c - c_M)/h | q RMS err / (mu p0): nodes, rings | stick / slip / separated |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for x in rows:
         hb = "%.4g / %.4g" % (x["h"], ratio * x["h"]) if case == "mindlin" else "%.4g / rigid" % x["h"]
-        out.append("| %s | %d | %d%s | %d | %.1f | %.3e | %.4g | %.4g | %.3f | %.4f | %.4f (%.4f..%.4f) | %+.1f %% | %.4g | %.4g | %+.1f %% | %.4f | %.4f (%.4f..%.4f) | %+.2f | %.3f, %.3f | %d / %d / %d |" % (
+        out.append("| %s | %d | %d%s | %d | %.1f | %.3e | %.4g | %.4g | %.3f | %.4f | %.4f (%.4f..%.4f) | %+.1f %% | %.4f | %+.1f %% | %.4g | %.4g | %+.1f %% | %.4g | %+.1f %% | %.4f | %.4f (%.4f..%.4f) | %+.2f | %.3f, %.3f | %d / %d / %d |" % (
             hb, x["n"], x["iter"], "" if x["converged"] else " (not converged)", x["nA"], x["time"], x["dx"], x["P"], x["Q"], x["k"], x["a_th"], x["a"], x["a_in"], x["a_out"],
-            pct(x["a"], x["a_th"]), x["p0_th"], x["p0"], pct(x["p0"], x["p0_th"]), x["c_th"], x["c"], x["c_in"], x["c_out"], (x["c"] - x["c_th"]) / x["h"], x["q_rms"], x["q_ring_rms"],
+            pct(x["a"], x["a_th"]), x["a_mom"], pct(x["a_mom"], x["a_th"]), x["p0_th"], x["p0"], pct(x["p0"], x["p0_th"]), x["p0_fit"], pct(x["p0_fit"], x["p0_th"]), x["c_th"], x["c"], x["c_in"], x["c_out"], (x["c"] - x["c_th"]) / x["h"], x["q_rms"], x["q_ring_rms"],
             x["stick"], x["slip"], x["separated"]))
     out += ["", "Theory from each run's P and Q: E* = %.4g, a = (3 P R/(4 E*))^(1/3), p0 = 3 P/(2 pi a^2), c = a (1 - Q/(mu P))^(1/3), mu = %g." % (estar(case), MU)]
     return "\n".join(out)
@@ -300,7 +307,8 @@ def plot_hertz(case, x, path):
     fig, ax = plt.subplots(figsize=(6, 4))
     ax.plot(rr / a, np.sqrt(1 - (rr / a) ** 2), "k-", label="Hertz p(r) = p0 sqrt(1 - r²/a²)")
     sel = x["r"] <= 2.0 * a
-    ax.plot(x["r"][sel] / a, x["p"][sel] / p0, "o", ms=3, label="conefeti, nodal pressure (h = %.3g)" % x["h"])
+    ax.plot(x["r"][sel] / a, x["p"][sel] / p0, "o", ms=3, alpha=0.5, label="conefeti, nodal pressure (h = %.3g)" % x["h"])
+    ax.plot(x["p_rings"][0] / a, x["p_rings"][1] / p0, "s--", ms=5, lw=0.8, label="ring means (width a/8)")
     ax.set_xlabel("r / a (Hertz)")
     ax.set_ylabel("p / p0 (Hertz)")
     ax.set_title({"hertz": "elastic hemisphere on an elastic block, non-matching meshes", "rigid-hertz": "elastic hemisphere on a rigid plane"}.get(case, case))
@@ -327,7 +335,8 @@ def plot_mindlin(case, xs, path_profiles, path_map):
         sel = (x["r"] <= 1.6 * a)
         col = colors[i % len(colors)]
         lab = "Q/(mu P) = %.2f" % x["k"]
-        ax1.plot(x["r"][sel] / a, x["p"][sel] / p0, "o", ms=2.5, color=col, alpha=0.6, label="conefeti, %s" % lab)
+        ax1.plot(x["r"][sel] / a, x["p"][sel] / p0, "o", ms=2, color=col, alpha=0.35, label="conefeti nodes, %s" % lab)
+        ax1.plot(x["p_rings"][0] / a, x["p_rings"][1] / p0, "s--", ms=5, lw=0.8, color=col, label="ring means")
         ax2.plot(x["r"][sel] / a, x["q"][sel] / (MU * p0), "o", ms=2, color=col, alpha=0.35, label="conefeti nodes, %s" % lab)
         ax2.plot(x["rings"][0] / a, x["rings"][1] / (MU * p0), "s--", ms=5, lw=0.8, color=col, label="ring means (width a/8)")
         ax2.plot(rr / a, mindlin_q(rr, a, p0, c) / (MU * p0), "-", color=col, lw=1.5, label="Mindlin, c/a = %.3f" % (c / a))
@@ -421,6 +430,7 @@ def main():
     ap.add_argument("--ratio", type=float, default=1.3, help="the block's mesh size at the contact / h")
     ap.add_argument("--targets", default="0.25,0.5,0.75", help="mindlin, rigid-friction: the Q/(mu P) aimed at")
     ap.add_argument("--tolerance", type=float, default=0.03, help="mindlin: repeat a run once when Q/(mu P) is farther than this from its target")
+    ap.add_argument("--block", default="5,5", help="the block's half width and height (the finite-size check)")
     ap.add_argument("--build", default="build")
     ap.add_argument("--ranks", type=int, default=1)
     ap.add_argument("--extra", default="")
@@ -431,6 +441,7 @@ def main():
     ap.add_argument("--check", default=None, help="e.g. a=0.05,p0=0.1,c=1: see above")
     a = ap.parse_args()
     sizes = [float(s) for s in a.sizes.split(",")]
+    BLOCK[:] = [float(v) for v in a.block.split(",")]
     driven = a.case in ("mindlin", "rigid-friction")
     rows, state = [], {}
     with tempfile.TemporaryDirectory() as tmpdir:
