@@ -412,7 +412,7 @@ def driven_runs(a, case, h, tmp, state):
             state["P"] = x["P"]
             if case == "rigid-friction":
                 state["s"] = x["Q"] / (dx * VOLUME)
-            elif 0 < x["k"] < 1:
+            elif 0 < x["k"] < 1 and dx > 0:   # (--targets 0: pressing alone, nothing to fit)
                 state["s"] = dx / mindlin_shift(x["P"], x["k"])
             print("#   target %.2f: Q/(mu P) = %.3f, shift factor now %.3f" % (k, x["k"], state.get("s", 1.0)), file=sys.stderr)
             if abs(x["k"] - k) <= a.tolerance:
@@ -436,6 +436,7 @@ def main():
     ap.add_argument("--extra", default="")
     ap.add_argument("--keep", default=None, help="keep the meshes and outputs in this directory")
     ap.add_argument("--write", default=None, help="replace this case's table in the file (between its bench-cattaneo markers)")
+    ap.add_argument("--section", default=None, help="the markers' name for --write (default: the case)")
     ap.add_argument("--plot-dir", default=None, help="PNGs of the finest mesh: hertz-pair-pressure.png (hertz); cattaneo-traction.png and cattaneo-stick-slip.png "
                     "(mindlin); <case>-... for the rigid cases")
     ap.add_argument("--check", default=None, help="e.g. a=0.05,p0=0.1,c=1: see above")
@@ -460,7 +461,7 @@ def main():
     text = "command: `scripts/bench-cattaneo.py %s`\n\n%s" % (" ".join(sys.argv[1:]), table)
     print(text)
     if a.write:
-        write_section(a.write, a.case, text)
+        write_section(a.write, a.section or a.case, text)
     if a.plot_dir:
         hmin = min(x["h"] for x in rows)
         finest = [x for x in rows if x["h"] == hmin]
