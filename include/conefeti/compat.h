@@ -25,3 +25,8 @@
 #if PETSC_VERSION_LT(3, 20, 0) && !defined(PetscAssertPointer)
 #  define PetscAssertPointer(h, arg) PetscValidPointer(h, arg)
 #endif
+
+/* TaoSetMonitor() was renamed TaoMonitorSet() in 3.21 (the old name later removed); same arguments. */
+#if PETSC_VERSION_LT(3, 21, 0) && !defined(TaoMonitorSet)
+#  define TaoMonitorSet(tao, fn, ctx, destroy) TaoSetMonitor(tao, fn, ctx, destroy)
+#endif

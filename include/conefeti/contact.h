@@ -10,6 +10,7 @@
    mpgp solve; Coulomb: the friction loop (Algorithm 1, 2 of the seed paper, or monolithic). */
 #pragma once
 
+#include <conefeti/sys.h>
 #include <conefeti/qp.h>
 
 /*E
@@ -153,6 +154,7 @@ PETSC_EXTERN PetscErrorCode ContactProblemGetEqualityMultiplier(ContactProblem, 
 PETSC_EXTERN PetscErrorCode ContactProblemGetNodes(ContactProblem, PetscInt *, const PetscInt **, const PetscInt **, const PetscInt **, const ContactLaw **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode ContactProblemGetSlipBounds(ContactProblem, Vec, PetscReal[]);
 PETSC_EXTERN PetscErrorCode ContactProblemGetTao(ContactProblem, Tao *);
+PETSC_EXTERN PetscErrorCode ContactProblemSetProgress(ContactProblem, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem, Vec, PetscReal *, PetscReal *);
 
 /* ---------------------------------------------------------------------------------------------
@@ -162,11 +164,16 @@ PETSC_EXTERN PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem, Vec
 #include <conefeti/fem.h>
 #include <conefeti/feti.h>
 
+/* The FETI interchange file with the contact pairing of a ContactProblem (docs/feti-interchange.md) */
+PETSC_EXTERN PetscErrorCode FETIWriteContact(FETI, ContactProblem, PetscViewer);
+PETSC_EXTERN PetscErrorCode FETILoadContact(FETI, ContactProblem, PetscViewer);
+
 /*E
   ContactZoneType - Where a contact zone's nodes may touch.
 
 $ CONTACT_ZONE_FOUNDATION - a rigid obstacle: a plane, a sphere or a cylinder (`ContactObstacleShape`)
-$ CONTACT_ZONE_BODIES     - another body, node to node on conforming meshes
+$ CONTACT_ZONE_BODIES     - another body, node to surface: each node of the slave face is paired with the closest point of
+                            the master face (any meshes; on conforming meshes this is node to node)
 
   Level: beginner
 E*/
@@ -175,6 +182,30 @@ typedef enum {
   CONTACT_ZONE_BODIES
 } ContactZoneType;
 PETSC_EXTERN const char *const ContactZoneTypes[];
+
+/*E
+  ContactZoneSlave - Which face of a zone between bodies is the slave (its nodes carry the contact rows; the other face,
+  the master, is the surface their closest points lie on).
+
+$ CONTACT_SLAVE_FINER - the face with the smaller mean triangle edge length (on a tie, within a relative 1e-6: the zone's body);
+                        the default of a zero-initialized zone
+$ CONTACT_SLAVE_BODY  - the face of the zone's body
+$ CONTACT_SLAVE_OTHER - the face of the zone's other body
+
+  Notes:
+  The finer face as slave keeps the coarser surface from passing between the slave nodes (docs/contact.md, "Contact
+  between bodies").
+
+  Level: beginner
+
+.seealso: `ContactZone`
+E*/
+typedef enum {
+  CONTACT_SLAVE_FINER,
+  CONTACT_SLAVE_BODY,
+  CONTACT_SLAVE_OTHER
+} ContactZoneSlave;
+PETSC_EXTERN const char *const ContactZoneSlaves[];
 
 /*E
   ContactObstacleShape - The shape of a foundation zone's rigid obstacle; the body lies outside it.
@@ -209,7 +240,7 @@ PETSC_EXTERN const char *const ContactObstacleShapes[];
 . body, face - the body and the tag of the face that may touch (a node with a Dirichlet component is left out,
                except a frictionless node whose contact normal has a nonzero component that is not fixed: its row
                then acts on the free components only, e.g. on a symmetry plane)
-. other_body, other_face - bodies: the other body and its face (its nodes must coincide with the first face's)
+. other_body, other_face - bodies: the other body and its face (any mesh: node to surface, see `ContactZoneSlave`)
 . point, normal - foundation, plane: a point of the plane and its normal pointing toward the body;
                   the gap of a node x is (x - point).normal/|normal|
 . law        - frictionless, Tresca or Coulomb
@@ -218,7 +249,17 @@ PETSC_EXTERN const char *const ContactObstacleShapes[];
 . shape      - foundation: the obstacle's shape (plane when zero-initialized)
 . center     - sphere: its center; cylinder: a point of its axis
 . axis       - cylinder: the axis direction (any length but zero)
-- radius     - sphere, cylinder: the radius (> 0)
+. radius     - sphere, cylinder: the radius (> 0)
+. slave      - bodies: which face is the slave (`ContactZoneSlave`; finer when zero-initialized)
+- search_distance - bodies: a slave node is a contact node when the master face has a point within this distance
+                    (0, the default: the master face's longest triangle edge); larger than any initial gap meant to close
+
+  Notes:
+  Between bodies, each slave node x is paired with the closest point chi(x) of the master face: the contact normal is
+  n = (chi(x) - x)/|chi(x) - x|, turned to the slave's outward side (against it when x has passed into the master), or
+  the slave's outward normal where chi(x) and x (nearly) coincide; the gap is (chi(x) - x).n. The rows act on
+  u_slave(x) - u_master(chi(x)), interpolated with the barycentric weights of chi(x) on its master triangle.
+  `ContactModelGetUnmatchedNodes()` counts the slave nodes without a master point within the search distance.
 
   Level: beginner
 
@@ -235,6 +276,8 @@ typedef struct {
   PetscReal            coef;
   ContactObstacleShape shape;
   PetscReal            center[3], axis[3], radius;
+  ContactZoneSlave     slave;
+  PetscReal            search_distance;
 } ContactZone;
 
 PETSC_EXTERN PetscErrorCode ContactZoneCheckObstacle(const ContactZone *);
@@ -343,9 +386,11 @@ PETSC_EXTERN PetscErrorCode ContactModelGetContactProblem(ContactModel, ContactP
 PETSC_EXTERN PetscErrorCode ContactModelGetPipeline(ContactModel, ContactPipeline *);
 PETSC_EXTERN PetscErrorCode ContactModelGetSolution(ContactModel, Vec *, Vec *);
 PETSC_EXTERN PetscErrorCode ContactModelGetStatistics(ContactModel, ContactStatistics *);
+PETSC_EXTERN PetscErrorCode ContactModelSetProgress(ContactModel, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode ContactModelComputeResiduals(ContactModel, ContactResiduals *);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodes(ContactModel, PetscInt *, const PetscInt **, const PetscInt **, const PetscReal **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel, PetscInt *);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodeStates(ContactModel, PetscReal[], PetscReal[], PetscReal[], ContactNodeStatus[]);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodeGeometry(ContactModel, PetscReal[], PetscReal[]);
+PETSC_EXTERN PetscErrorCode ContactModelGetNodePartners(ContactModel, PetscInt[], PetscInt[], PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode ContactModelGetContactForce(ContactModel, PetscInt, PetscReal[], PetscReal *);

@@ -43,10 +43,10 @@ typedef enum {
 PETSC_EXTERN const char *const FEMDecompositionTypes[];
 
 /*E
-  FEMDirichletMode - How zero displacements on Dirichlet faces enter the FETI problem.
+  FEMDirichletMode - How prescribed displacements (zero or given) on Dirichlet faces enter the FETI problem.
 
-$ FEM_DIRICHLET_MULTIPLIERS - Total FETI: by rows of B (kind FETI_ROW_DIRICHLET); every subdomain floats
-$ FEM_DIRICHLET_PRIMAL      - kept in the primal: the dofs are removed from the subdomain spaces; only floating subdomains contribute rigid modes
+$ FEM_DIRICHLET_MULTIPLIERS - Total FETI: by rows of B (kind FETI_ROW_DIRICHLET, right-hand side the prescribed value); every subdomain floats
+$ FEM_DIRICHLET_PRIMAL      - kept in the primal: the dofs are removed from the subdomain spaces (a nonzero value is lifted into the load); only floating subdomains contribute rigid modes
 
   Level: beginner
 
@@ -105,6 +105,8 @@ PETSC_EXTERN PetscErrorCode FEMGetMaterial(FEM, PetscInt, PetscReal *, PetscReal
 PETSC_EXTERN PetscErrorCode FEMTagFaces(FEM, PetscInt, const char[], FEMFacePredicate, void *);
 PETSC_EXTERN PetscErrorCode FEMTagFacesWithin(FEM, PetscInt, const char[], const char[], FEMFacePredicate, void *);
 PETSC_EXTERN PetscErrorCode FEMSetDirichlet(FEM, PetscInt, const char[], const PetscBool[3]);
+PETSC_EXTERN PetscErrorCode FEMSetDisplacement(FEM, PetscInt, const char[], const PetscBool[3], const PetscReal[3]);
+PETSC_EXTERN PetscErrorCode FEMGetNumDirichlet(FEM, PetscInt, PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMSetTraction(FEM, PetscInt, const char[], const PetscReal[3]);
 PETSC_EXTERN PetscErrorCode FEMSetTractionField(FEM, PetscInt, const char[], FEMVectorField, void *);
 PETSC_EXTERN PetscErrorCode FEMSetBodyForce(FEM, PetscInt, FEMVectorField, void *);
@@ -120,6 +122,7 @@ PETSC_EXTERN PetscErrorCode FEMGetNumBodies(FEM, PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMGetBodyNodes(FEM, PetscInt, PetscInt *, const PetscReal **);
 PETSC_EXTERN PetscErrorCode FEMGetBodyNodeOffset(FEM, PetscInt, PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMGetTaggedNodes(FEM, PetscInt, const char[], PetscInt *, const PetscInt **, const PetscReal **, const PetscReal **);
+PETSC_EXTERN PetscErrorCode FEMGetTaggedTriangles(FEM, PetscInt, const char[], PetscInt *, const PetscInt **);
 PETSC_EXTERN PetscErrorCode FEMGetNodeCopies(FEM, PetscInt, PetscInt, PetscInt *, const PetscInt **, const PetscInt **);
 PETSC_EXTERN PetscErrorCode FEMGetNumSubdomains(FEM, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode FEMGetSubdomainMesh(FEM, PetscInt, PetscInt *, PetscInt *, const PetscInt **, PetscInt *, const PetscInt **);
@@ -133,4 +136,6 @@ PETSC_EXTERN PetscErrorCode FEMCreateGlobalCoordinates(FEM, Vec *);
 PETSC_EXTERN PetscErrorCode FEMPrimalToGlobal(FEM, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FEMGlobalToPrimal(FEM, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FEMGetGlobalDirichletDofs(FEM, IS *);
+PETSC_EXTERN PetscErrorCode FEMGetDirichletValues(FEM, IS, PetscReal[]);
+PETSC_EXTERN PetscErrorCode FEMComputeReactions(FEM, FETI, Vec, Vec, PetscReal[]);
 PETSC_EXTERN PetscErrorCode FEMElementStiffness(const PetscReal[12], PetscReal, PetscReal, PetscReal[144], PetscReal *);

@@ -4,7 +4,8 @@
      K_s  sequential stiffness matrix (SEQAIJ or SEQSBAIJ, block size 3, dofs interleaved x,y,z per node),
      f_s  sequential load vector,
      node coordinates (for the 6 rigid-body modes) or a user kernel basis R_s,
-     optionally the dofs where u = 0 is kept in the primal (FETI with Dirichlet kept in the primal);
+     optionally the dofs where u is prescribed and kept in the primal (FETI with Dirichlet kept in the primal;
+     u = 0 there unless values are given: then they are lifted, f - K u_D);
    and globally
      B    MPIAIJ constraint matrix: rows are the multipliers, columns the global primal vector
           (the concatenation of all subdomains' dofs, each rank owning its own subdomains' dofs),
@@ -15,6 +16,7 @@
 #pragma once
 
 #include <petscksp.h>
+#include <conefeti/sys.h>
 
 /*S
   FETI - A FETI (finite element tearing and interconnecting) dual problem built from subdomain data:
@@ -60,6 +62,7 @@ PETSC_EXTERN PetscErrorCode FETISetSubdomains(FETI, PetscInt, const Mat[], const
 PETSC_EXTERN PetscErrorCode FETISetSubdomainCoordinates(FETI, PetscInt, Vec);
 PETSC_EXTERN PetscErrorCode FETISetSubdomainKernel(FETI, PetscInt, Mat);
 PETSC_EXTERN PetscErrorCode FETISetSubdomainDirichletDofs(FETI, PetscInt, IS);
+PETSC_EXTERN PetscErrorCode FETISetSubdomainDirichletValues(FETI, PetscInt, Vec);
 PETSC_EXTERN PetscErrorCode FETISetConstraints(FETI, Mat, Vec, const FETIRowKind[]);
 PETSC_EXTERN PetscErrorCode FETISetOptionsPrefix(FETI, const char[]);
 PETSC_EXTERN PetscErrorCode FETIAppendOptionsPrefix(FETI, const char[]);
@@ -91,6 +94,7 @@ PETSC_EXTERN PetscErrorCode FETIComputeAlphaFromEquality(FETI, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIRecoverPrimal(FETI, Vec, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FETIGetKSP(FETI, KSP *);
 PETSC_EXTERN PetscErrorCode FETISetKplusExplicit(FETI, PetscBool);
+PETSC_EXTERN PetscErrorCode FETISetProgress(FETI, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode FETIGetKplusExplicit(FETI, PetscBool *, PetscBool *);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryEstimate(FETI, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryBudget(MPI_Comm, const char[], PetscReal *, PetscBool *);

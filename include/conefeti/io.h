@@ -25,6 +25,28 @@ PETSC_EXTERN PetscClassId  CONTACTSCENE_CLASSID;
 PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_Summary, CONTACTSCENE_Output;
 
 /*S
+  ContactSceneSupportForce - The reaction of one Dirichlet condition of a scene (a clamped or a displaced face): the force
+  the support exerts on the body (`FEMComputeReactions()`).
+
+  Fields:
++ body   - the body
+. option - the option stem that set it: fix, fix_x, fix_y, fix_z, or displace<k>
+. face   - the face selector as given
+- force  - the resultant force (fx, fy, fz)
+
+  Level: intermediate
+
+.seealso: `ContactSceneSummary`, `FEMComputeReactions()`
+S*/
+#define CONTACTSCENE_MAX_SUPPORTS 32
+typedef struct {
+  PetscInt  body;
+  char      option[16];
+  char      face[64];
+  PetscReal force[3];
+} ContactSceneSupportForce;
+
+/*S
   ContactSceneSummary - What a solve of a scene cost and how good it is: the counts of the seed paper's
   tables, times, the mechanical residuals and the contact node states.
 
@@ -49,6 +71,9 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . norm_F        - the ||F|| estimate the solver used (0 for the linear pipeline)
 . time_setup    - seconds: mesh, FETI operators and factorizations, contact problem
 . time_solve    - seconds: the solve with primal recovery
+. time_phases   - seconds per `ConeFETIPhase` (rank 0's): the setup broken down (mesh, contact rows, kernels, memory, coarse,
+                  factorization, explicit_kplus, operators, contact_problem; they sum to at most time_setup) and the solve;
+                  0 for a phase that did not run
 . fixed_point   - Coulomb: relative fixed-point residual |g - F l_n| / |F l_n| at the end
 . feasibility   - |G l - e| at the end
 . rtol          - the contact solver's relative tolerance (-contact_rtol; 0 for the linear pipeline)
@@ -58,9 +83,13 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 . failed_check  - why the solve did not converge: a `ContactChecks` name, "solver", or "" when it converged
 . kplus_explicit - whether F products used explicit dense blocks of K+ (in at least one subdomain)
 . kplus_fallback - whether those blocks were asked for but dropped because they would not fit in memory (`FETIGetKplusExplicit()`)
-. unmatched_nodes - nodes of node-to-node zones' first faces without a partner (`ContactModelGetUnmatchedNodes()`)
+. unmatched_nodes - slave nodes of zones between bodies without a master point within the search distance (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
+. nsupports     - the Dirichlet conditions (clamped and displaced faces) of all bodies; the first CONTACTSCENE_MAX_SUPPORTS are in supports
+. supports      - their reactions, body by body in the order of the options (_fix, _fix_x, _fix_y, _fix_z, then _displace0, _displace1, ...)
+. reaction      - the sum of all reactions (over every condition, also those beyond supports)
+. applied_load  - the resultant of all applied loads (tractions and volume forces, `FEMComputeLoadResultant()`, summed over the bodies)
 . normal_force  - the sum of the normal contact forces l_n over all contact nodes
 . residuals     - the mechanical residuals (each relative) and the node counts
 . fingerprint   - `ConeFETIVecFingerprint()` of the multipliers: the same on any number of ranks (on one machine)
@@ -73,25 +102,29 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
 .seealso: `ContactSceneGetSummary()`, `ContactSceneSummaryView()`, `ContactSceneSummaryViewJSON()`
 S*/
 typedef struct {
-  char                    scene[256];
-  PetscMPIInt             ranks;
-  ContactPipeline         pipeline;
-  ContactCoulombAlgorithm algorithm;
-  char                    description[256];
-  PetscInt                n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
-  PetscInt                iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
-  PetscReal               norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
-  PetscInt                refinements;
-  char                    failed_check[32];
-  PetscBool               kplus_explicit, kplus_fallback;
-  PetscInt                unmatched_nodes;
-  PetscReal               max_nu;
-  PetscReal               contact_force[3], normal_force;
-  PetscInt                friction_polygon;
-  ContactResiduals        residuals;
-  char                    fingerprint[17];
-  PetscBool               finite, converged;
-  char                    reason[256];
+  char                     scene[256];
+  PetscMPIInt              ranks;
+  ContactPipeline          pipeline;
+  ContactCoulombAlgorithm  algorithm;
+  char                     description[256];
+  PetscInt                 n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
+  PetscInt                 iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
+  PetscReal                norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
+  PetscReal                time_phases[CONEFETI_PHASE_COUNT];
+  PetscInt                 refinements;
+  char                     failed_check[32];
+  PetscBool                kplus_explicit, kplus_fallback;
+  PetscInt                 unmatched_nodes;
+  PetscReal                max_nu;
+  PetscReal                contact_force[3], normal_force;
+  PetscInt                 nsupports;
+  ContactSceneSupportForce supports[CONTACTSCENE_MAX_SUPPORTS];
+  PetscReal                reaction[3], applied_load[3];
+  PetscInt                 friction_polygon;
+  ContactResiduals         residuals;
+  char                     fingerprint[17];
+  PetscBool                finite, converged;
+  char                     reason[256];
 } ContactSceneSummary;
 
 PETSC_EXTERN PetscErrorCode ContactSceneCreate(MPI_Comm, ContactScene *);
@@ -108,6 +141,7 @@ PETSC_EXTERN PetscErrorCode ContactSceneGetContactModel(ContactScene, ContactMod
 PETSC_EXTERN PetscErrorCode ContactSceneGetBodyMaterial(ContactScene, PetscInt, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode ContactSceneGetPipelineDescription(ContactScene, ContactPipeline *, ContactCoulombAlgorithm *, char[], size_t);
 PETSC_EXTERN PetscErrorCode ContactSceneGetSummary(ContactScene, ContactSceneSummary *);
+PETSC_EXTERN PetscErrorCode ContactSceneSetProgress(ContactScene, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *, PetscViewer);
 PETSC_EXTERN PetscErrorCode ContactSceneSummaryViewJSON(const ContactSceneSummary *, PetscViewer);
 PETSC_EXTERN PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *, char[], size_t);

@@ -1,13 +1,15 @@
 /* ContactModel: contact zones on a FEM model -> constraint rows -> FETI -> ContactProblem -> primal
    recovery -> mechanical residuals and node states.
 
-   Rows per contact node k (outward unit normal n of the first body, tangents t1, t2):
-     N  u = n.(u_A - u_B) <= d_k   (foundation: u_B = 0, n and d_k from the obstacle's closest point, contactobstacle.cxx)
+   Rows per contact node k (unit normal n of the node's body A, tangents t1, t2):
+     N  u = n.(u_A - u_B) <= d_k   (foundation: u_B = 0, n and d_k from the obstacle's closest point, contactobstacle.cxx;
+                                    between bodies: A is the slave node, u_B = sum_v w_v u(master node v) the displacement
+                                    of its closest master point chi, n and d_k from chi - x, CollectBodiesZoneNodes())
      T1 u = t1.(u_A - u_B),  T2 u = t2.(u_A - u_B)   (only for Tresca and Coulomb nodes)
    or, with -contact_friction_polygon k, the k rows D_j u = d_j.(u_A - u_B), d_j = cos(j pi/k) t1 + sin(j pi/k) t2
    (contactpolygon.cxx)
    With the Lagrangian term l'(B u - c), l_n >= 0 is the contact force magnitude and -T'l_t the
-   friction force on the first body, so the slip rule reads: T u = 0 where |l_t| < g, and
+   friction force on body A, so the slip rule reads: T u = 0 where |l_t| < g, and
    T u = s l_t with s >= 0 where |l_t| = g. Multipliers are nodal forces; stresses divide by the
    lumped nodal area of the contact face. */
 #include <conefeti/private/contactmodelimpl.h>
@@ -23,6 +25,7 @@
 
 PetscClassId      CONTACTMODEL_CLASSID;
 const char *const ContactZoneTypes[]    = {"foundation", "bodies", "ContactZoneType", "CONTACT_ZONE_", NULL};
+const char *const ContactZoneSlaves[]   = {"finer", "body", "other", "ContactZoneSlave", "CONTACT_SLAVE_", NULL};
 const char *const ContactNodeStatuses[] = {"separated", "stick", "slip", "ContactNodeStatus", "CONTACT_NODE_", NULL};
 
 namespace {
@@ -55,52 +58,202 @@ void Tangents(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3])
 
 /* The Dirichlet components of every node (global node -> mask of fixed components). A node fixed in all the
    components its contact row would act on is left out of contact (its row would be a zero row of B); see
-   CollectZoneNodes(). */
+   CollectZoneNodes(). A node with a nonzero prescribed displacement (FEMSetDisplacement()) is marked fixed in all
+   three components, so it is left out whatever its law: a row that dropped a moved component would need the
+   value in its gap, and a grip or punch face is not a contact face. */
 PetscErrorCode DirichletNodes(FEM fem, std::map<PetscInt, unsigned> &fixed)
 {
-  IS              is, all;
-  PetscInt        n;
-  const PetscInt *idx;
+  IS                     is, all;
+  PetscInt               n;
+  const PetscInt        *idx;
+  std::vector<PetscReal> values;
 
   PetscFunctionBegin;
   PetscCall(FEMGetGlobalDirichletDofs(fem, &is));
   PetscCall(ISAllGather(is, &all));
   PetscCall(ISGetLocalSize(all, &n));
+  PetscCallCXX(values.resize(n));
+  PetscCall(FEMGetDirichletValues(fem, all, values.data()));
   PetscCall(ISGetIndices(all, &idx));
-  for (PetscInt i = 0; i < n; i++) PetscCallCXX(fixed[idx[i] / 3] |= 1u << (idx[i] % 3));
+  for (PetscInt i = 0; i < n; i++) PetscCallCXX(fixed[idx[i] / 3] |= values[i] != 0.0 ? 7u : 1u << (idx[i] % 3));
   PetscCall(ISRestoreIndices(all, &idx));
   PetscCall(ISDestroy(&all));
   PetscCall(ISDestroy(&is));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<PetscInt, unsigned> &fixed)
+/* A face of a zone between bodies: its nodes (with lumped areas and outward normals) and triangles */
+struct ZoneFace {
+  PetscInt         body = -1, n = 0, ntri = 0, nb = 0, offset = 0;
+  const char      *name  = nullptr;
+  const PetscInt  *nodes = nullptr, *tri = nullptr;
+  const PetscReal *areas = nullptr, *normals = nullptr, *X = nullptr;
+  PetscReal        mean_edge = 0;
+};
+
+PetscErrorCode GetZoneFace(FEM fem, PetscInt body, const char *name, ZoneFace &f)
 {
-  ContactModelData                                               &d    = *cm->data;
-  const ContactZone                                              &zone = d.zones[z];
-  PetscInt                                                        n, offset, nb, offB = 0;
-  const PetscInt                                                 *nodes;
-  const PetscReal                                                *areas, *normals, *X, *XB = nullptr;
-  std::map<std::tuple<long long, long long, long long>, PetscInt> other;
-  PetscReal                                                       scale = 0;
+  PetscFunctionBegin;
+  f.body = body;
+  f.name = name;
+  PetscCall(FEMGetTaggedNodes(fem, body, name, &f.n, &f.nodes, &f.areas, &f.normals));
+  PetscCall(FEMGetTaggedTriangles(fem, body, name, &f.ntri, &f.tri));
+  PetscCall(FEMGetBodyNodes(fem, body, &f.nb, &f.X));
+  PetscCall(FEMGetBodyNodeOffset(fem, body, &f.offset));
+  for (PetscInt t = 0; t < f.ntri; t++)
+    for (int v = 0; v < 3; v++) {
+      const PetscReal *p = &f.X[3 * f.tri[3 * t + v]], *q = &f.X[3 * f.tri[3 * t + (v + 1) % 3]];
+      f.mean_edge += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) + (p[2] - q[2]) * (p[2] - q[2]));
+    }
+  if (f.ntri) f.mean_edge /= 3 * f.ntri;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Below this weight a master node is dropped from a row (and the others renormalized): a slave node on a master node
+   or edge, up to the roundoff of its coordinates, gets exactly the node-to-node (or edge) row */
+constexpr PetscReal kWeightDrop = 1e-12;
+/* Where chi(x) and x are closer than this fraction of the master triangle's longest edge, the direction chi(x) - x is
+   roundoff: the contact normal is the slave's outward normal */
+constexpr PetscReal kNormalFromSlave = 1e-6;
+/* A master point sideways of the slave face (chi(x) - x at more than 60 degrees from the slave's outward normal, e.g.
+   beyond the edge of a smaller master face in the same plane) does not face the slave node: no contact node */
+constexpr PetscReal kFacingCosine = 0.5;
+
+/* The slave node x with outward normal ns, paired with the closest point of the master surface within the search
+   distance: the contact normal, the gap and the master nodes with their weights. PETSC_FALSE when there is no such
+   point, or it does not face the slave node (ContactZone, docs/contact.md "Contact between bodies"). */
+PetscErrorCode PairSlaveNode(ContactSurfaceSearch &search, const ZoneFace &master, const PetscReal x[3], const PetscReal ns[3], PetscReal dsearch, PetscReal coincide, ContactNodeInfo &info,
+                             PetscBool *paired)
+{
+  ContactSurfacePoint p;
 
   PetscFunctionBegin;
+  *paired = PETSC_FALSE;
+  PetscCall(search.Closest(x, dsearch, p));
+  if (p.triangle < 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscReal d[3], hmax = 0;
+  for (int c = 0; c < 3; c++) d[c] = p.chi[c] - x[c];
+  for (int v = 0; v < 3; v++) {
+    const PetscReal *a = &master.X[3 * master.tri[3 * p.triangle + v]], *b = &master.X[3 * master.tri[3 * p.triangle + (v + 1) % 3]];
+    hmax = PetscMax(hmax, std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+  }
+  if (p.dist <= coincide) {
+    /* x on the master surface up to the roundoff of the coordinates (conforming meshes: coinciding nodes) */
+    for (int c = 0; c < 3; c++) info.n[c] = ns[c];
+    info.gap = 0;
+  } else if (p.dist <= kNormalFromSlave * hmax) {
+    for (int c = 0; c < 3; c++) info.n[c] = ns[c];
+    info.gap = d[0] * ns[0] + d[1] * ns[1] + d[2] * ns[2];
+  } else {
+    /* n along chi - x, turned to the slave's outward side: against chi - x when x has passed into the master body
+       (then the gap (chi - x).n is negative, an initial overlap) */
+    const PetscReal s = (d[0] * ns[0] + d[1] * ns[1] + d[2] * ns[2]) / p.dist;
+    if (PetscAbsReal(s) < kFacingCosine) PetscFunctionReturn(PETSC_SUCCESS);
+    for (int c = 0; c < 3; c++) info.n[c] = (s > 0 ? 1 : -1) * d[c] / p.dist;
+    info.gap = s > 0 ? p.dist : -p.dist;
+  }
+  Normalize(info.n);
+  PetscReal sum = 0;
+  info.nmaster  = 0;
+  for (int v = 0; v < 3; v++)
+    if (p.w[v] >= kWeightDrop) {
+      info.master[info.nmaster] = master.tri[3 * p.triangle + v];
+      info.weight[info.nmaster] = p.w[v];
+      sum += p.w[v];
+      info.nmaster++;
+    }
+  for (PetscInt v = 0; v < info.nmaster; v++) info.weight[v] /= sum;
+  for (int c = 0; c < 3; c++) info.chi[c] = p.chi[c];
+  *paired = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* the nodes of a zone between bodies: every slave node that has a master point within the search distance */
+PetscErrorCode CollectBodiesZoneNodes(ContactModel cm, PetscInt z, const std::map<PetscInt, unsigned> &fixed)
+{
+  ContactModelData    &d    = *cm->data;
+  const ContactZone   &zone = d.zones[z];
+  ZoneFace             A, B;
+  ContactSurfaceSearch search;
+  PetscReal            scale = 0;
+  PetscInt             found = 0;
+
+  PetscFunctionBegin;
+  PetscCall(GetZoneFace(d.fem, zone.body, zone.face, A));
+  PetscCall(GetZoneFace(d.fem, zone.other_body, zone.other_face, B));
+  PetscCheck(A.n > 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG, "contact zone %" PetscInt_FMT ": face '%s' of body %" PetscInt_FMT " has no node", z, zone.face, zone.body);
+  PetscCheck(B.n > 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG, "contact zone %" PetscInt_FMT ": face '%s' of body %" PetscInt_FMT " has no node", z, zone.other_face, zone.other_body);
+  /* the finer face is the slave; on a tie (equal meshes up to roundoff) the zone's body */
+  const PetscBool otherslave = zone.slave == CONTACT_SLAVE_OTHER || (zone.slave == CONTACT_SLAVE_FINER && B.mean_edge < (1 - 1e-6) * A.mean_edge) ? PETSC_TRUE : PETSC_FALSE;
+  const ZoneFace &S = otherslave ? B : A, &M = otherslave ? A : B;
+  PetscCall(search.SetUp(M.ntri, M.tri, M.X));
+  const PetscReal dsearch = zone.search_distance > 0 ? zone.search_distance : search.longest_edge;
+  d.slave[z]              = S.body;
+  d.search[z]             = dsearch;
+  /* coordinates that agree to this are the same point (the tolerance node-to-node matching had) */
+  for (PetscInt i = 0; i < 3 * S.nb; i++) scale = PetscMax(scale, PetscAbsReal(S.X[i]));
+  const PetscReal coincide = 1e-9 * PetscMax(scale, 1.0);
+  for (PetscInt i = 0; i < S.n; i++) {
+    ContactNodeInfo info;
+    PetscBool       paired;
+    info.zone = z;
+    info.body = S.body;
+    info.node = S.nodes[i];
+    for (int c = 0; c < 3; c++) info.x[c] = S.X[3 * S.nodes[i] + c];
+    info.area = S.areas[i];
+    /* only the effects the scene calls for: friction with coefficient (or slip bound) 0 is no friction */
+    info.law        = zone.coef == 0 ? CONTACT_FRICTIONLESS : zone.law;
+    info.coef       = info.law == CONTACT_TRESCA ? zone.coef * S.areas[i] : zone.coef;
+    info.other_body = M.body;
+    PetscCall(PairSlaveNode(search, M, info.x, &S.normals[3 * i], dsearch, coincide, info, &paired));
+    if (!paired) { /* no master point within the search distance (or none facing the node): not in contact */
+      d.unmatched[z]++;
+      continue;
+    }
+    found++;
+    /* a node whose own or whose master nodes' displacements are (partly) prescribed is left out, as node to node */
+    PetscBool held = fixed.count(S.offset + info.node) ? PETSC_TRUE : PETSC_FALSE;
+    for (PetscInt v = 0; v < info.nmaster; v++)
+      if (fixed.count(M.offset + info.master[v])) held = PETSC_TRUE;
+    if (held) continue;
+    Tangents(info.n, info.t1, info.t2);
+    PetscCallCXX(d.nodes.push_back(info));
+  }
+  if (!found) {
+    /* how far the master face is: the nearest of (at most 64 of) the slave nodes, by testing every triangle */
+    PetscReal      nearest = PETSC_MAX_REAL;
+    const PetscInt stride  = PetscMax(1, S.n / 64);
+    for (PetscInt i = 0; i < S.n; i += stride) {
+      ContactSurfacePoint p;
+      PetscCall(search.Nearest(&S.X[3 * S.nodes[i]], p));
+      nearest = PetscMin(nearest, p.dist);
+    }
+    SETERRQ(PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG,
+            "contact zone %" PetscInt_FMT ": none of the %" PetscInt_FMT " nodes of the slave face '%s' of body %" PetscInt_FMT " has a point of the master face '%s' of body %" PetscInt_FMT
+            " within the search distance %g facing it (the master face is about %g away): check that the faces face each other (-scene_zone%" PetscInt_FMT "_face, _other_face), or raise the search "
+            "distance above the gap (-scene_zone%" PetscInt_FMT "_search_distance; ContactZone search_distance)",
+            z, S.n, S.name, S.body, M.name, M.body, (double)dsearch, (double)nearest, z, z);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<PetscInt, unsigned> &fixed)
+{
+  ContactModelData  &d    = *cm->data;
+  const ContactZone &zone = d.zones[z];
+  PetscInt           n, offset;
+  const PetscInt    *nodes;
+  const PetscReal   *areas, *normals, *X;
+
+  PetscFunctionBegin;
+  if (zone.type == CONTACT_ZONE_BODIES) {
+    PetscCall(CollectBodiesZoneNodes(cm, z, fixed));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(FEMGetTaggedNodes(d.fem, zone.body, zone.face, &n, &nodes, &areas, &normals));
   PetscCheck(n > 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG, "contact zone %" PetscInt_FMT ": face '%s' of body %" PetscInt_FMT " has no node", z, zone.face, zone.body);
-  PetscCall(FEMGetBodyNodes(d.fem, zone.body, &nb, &X));
+  PetscCall(FEMGetBodyNodes(d.fem, zone.body, NULL, &X));
   PetscCall(FEMGetBodyNodeOffset(d.fem, zone.body, &offset));
-  for (PetscInt i = 0; i < 3 * nb; i++) scale = PetscMax(scale, PetscAbsReal(X[i]));
-  const PetscReal tol = 1e-9 * PetscMax(scale, 1.0);
-  auto            key = [tol](const PetscReal *x) { return std::make_tuple(std::llround(x[0] / tol), std::llround(x[1] / tol), std::llround(x[2] / tol)); };
-  if (zone.type == CONTACT_ZONE_BODIES) {
-    PetscInt         m, nbB;
-    const PetscInt  *nodesB;
-    const PetscReal *aB, *nB;
-    PetscCall(FEMGetTaggedNodes(d.fem, zone.other_body, zone.other_face, &m, &nodesB, &aB, &nB));
-    PetscCall(FEMGetBodyNodes(d.fem, zone.other_body, &nbB, &XB));
-    PetscCall(FEMGetBodyNodeOffset(d.fem, zone.other_body, &offB));
-    for (PetscInt i = 0; i < m; i++) other[key(&XB[3 * nodesB[i]])] = nodesB[i];
-  }
   for (PetscInt i = 0; i < n; i++) {
     ContactNodeInfo info;
     info.zone = z;
@@ -112,31 +265,18 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<Pets
        a node gets no tangential rows and the zone runs the frictionless pipeline */
     info.law  = zone.coef == 0 ? CONTACT_FRICTIONLESS : zone.law;
     info.coef = info.law == CONTACT_TRESCA ? zone.coef * areas[i] : zone.coef;
-    if (zone.type == CONTACT_ZONE_FOUNDATION) {
-      PetscCall(ContactObstacleNodeGeometry_Private(cm, z, info));
-    } else {
-      auto it = other.find(key(info.x));
-      if (it == other.end()) { /* a node of the first face without a partner on the second is not in contact */
-        d.unmatched[z]++;
-        continue;
-      }
-      info.other_body = zone.other_body;
-      info.other_node = it->second;
-      if (fixed.count(offB + info.other_node)) continue;
-      for (int c = 0; c < 3; c++) info.n[c] = normals[3 * i + c];
-      Normalize(info.n);
-      info.gap = 0; /* conforming meshes: coinciding nodes */
-    }
+    PetscCall(ContactObstacleNodeGeometry_Private(cm, z, info));
     /* A node with a Dirichlet component: u is zero there, so a frictionless row may drop that component's term
        and still say N u <= d (a node on a symmetry plane of a quarter model, where the obstacle's normal lies in
-       the plane, keeps its contact). It is left out when every component its row acts on is fixed, when it has
-       friction (a tangent along a fixed direction would be a zero row), and on node-to-node zones. */
+       the plane, keeps its contact). It is left out when every component its row acts on is fixed, and when it
+       has friction (a tangent along a fixed direction would be a zero row); zones between bodies leave out every
+       node with a Dirichlet component (CollectBodiesZoneNodes()). */
     {
       auto      f    = fixed.find(offset + nodes[i]);
       PetscBool keep = PETSC_TRUE;
       if (f != fixed.end()) {
         keep = PETSC_FALSE;
-        if (info.law == CONTACT_FRICTIONLESS && zone.type == CONTACT_ZONE_FOUNDATION)
+        if (info.law == CONTACT_FRICTIONLESS)
           for (int c = 0; c < 3; c++)
             if (!(f->second & (1u << c)) && info.n[c] != 0) keep = PETSC_TRUE;
         info.fixed = f->second;
@@ -188,11 +328,11 @@ PetscErrorCode CreateFETIWithContactRows(ContactModel cm)
         node.push_back(k.node);
         comp.push_back(c);
         coef.push_back(dirs[r][c]);
-        if (k.other_body >= 0) {
+        for (PetscInt v = 0; v < k.nmaster; v++) { /* u_slave - sum_v w_v u_master(v): the master point chi moves with its triangle */
           body.push_back(k.other_body);
-          node.push_back(k.other_node);
+          node.push_back(k.master[v]);
           comp.push_back(c);
-          coef.push_back(-dirs[r][c]);
+          coef.push_back(-k.weight[v] * dirs[r][c]);
         }
       }
       rowptr.push_back((PetscInt)body.size());
@@ -439,15 +579,18 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", (double)d->acceptance_factor);
   PetscCheck(d->refine_max >= 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE, "-contact_refine_max must be >= 0, got %" PetscInt_FMT, d->refine_max);
+  PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_CONTACT_ROWS, 0));
   PetscCall(DirichletNodes(d->fem, fixed));
   PetscCallCXX(d->unmatched.assign(d->zones.size(), 0));
+  PetscCallCXX(d->slave.assign(d->zones.size(), -1));
+  PetscCallCXX(d->search.assign(d->zones.size(), 0));
   for (PetscInt z = 0; z < (PetscInt)d->zones.size(); z++) {
     PetscCall(CollectZoneNodes(cm, z, fixed));
     if (d->unmatched[z])
-      PetscCall(PetscInfo(cm, "contact zone %" PetscInt_FMT ": %" PetscInt_FMT " nodes of the first face have no coinciding node on the second (not in contact)\n", z, d->unmatched[z]));
+      PetscCall(PetscInfo(cm, "contact zone %" PetscInt_FMT ": %" PetscInt_FMT " slave nodes have no master point within the search distance %g (not in contact)\n", z, d->unmatched[z],
+                          (double)d->search[z]));
   }
-  PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG,
-             "the contact zones have no admissible node (all fixed, or no matching nodes between bodies)");
+  PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG, "the contact zones have no admissible node (all held by Dirichlet conditions)");
   /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported
      as converged); named here, before any factorization (contactrigidmotions.cxx) */
   {
@@ -458,7 +601,8 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
       for (int r = 0; r < nrows; r++) {
         PetscReal dir[3];
         for (int c = 0; c < 3; c++) dir[c] = (k.fixed & (1u << c)) ? 0 : dirs[r][c]; /* the row as appended */
-        PetscCallCXX(holding.push_back({k.zone, k.body, k.node, k.other_body, k.other_node, {dir[0], dir[1], dir[2]}}));
+        ContactHoldingRow h{k.zone, k.body, k.node, k.other_body, k.nmaster, {k.master[0], k.master[1], k.master[2]}, {k.weight[0], k.weight[1], k.weight[2]}, {dir[0], dir[1], dir[2]}};
+        PetscCallCXX(holding.push_back(h));
       }
     }
     PetscCall(ContactCheckRigidMotions_Private(cm, d->fem, d->zones, holding));
@@ -467,14 +611,19 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   /* contact needs hundreds of F products: dense K+ blocks on the interface pay for their setup (-feti_kplus_explicit) */
   if (!d->zones.empty()) PetscCall(FETISetKplusExplicit(d->feti, PETSC_TRUE));
   PetscCall(FETISetFromOptions(d->feti));
+  PetscCall(ConeFETIProgressEnd_Private(d->progress));
+  PetscCall(FETISetProgress(d->feti, d->progress.fn, d->progress.ctx));
   PetscCall(FETISetUp(d->feti));
   PetscCall(FETICreateVecs(d->feti, &d->u, &d->lambda, &d->alpha));
   if (!d->zones.empty()) {
+    PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_CONTACT_PROBLEM, 0));
     PetscCall(BuildContactProblem(cm));
+    PetscCall(ContactProblemSetProgress(d->cp, d->progress.fn, d->progress.ctx));
     d->cp->data->kkt_check = PETSC_FALSE; /* the model judges by the mechanical residuals of u and lambda (ContactModelSolve()) */
     PetscCall(ContactProblemSetFromOptions(d->cp));
     PetscCall(ContactProblemSetUp(d->cp));
     PetscCall(ContactProblemGetPipeline(d->cp, &d->pipeline));
+    PetscCall(ConeFETIProgressEnd_Private(d->progress));
   } else d->pipeline = CONTACT_PIPELINE_LINEAR;
   d->setup = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -656,6 +805,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
   PetscCall(ContactModelSetUp(cm));
   d        = cm->data;
   d->stats = ContactStatistics{};
+  PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_SOLVE, 0));
   PetscCall(GetSolverTolerance(cm, &rtol0));
   d->stats.pipeline   = d->pipeline;
   d->stats.acceptance = d->acceptance_factor * rtol0;
@@ -668,6 +818,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     d->solved          = PETSC_TRUE;
     d->stats.converged = PETSC_TRUE;
     PetscCall(PetscStrncpy(d->stats.reason, "no load: u = 0 and l = 0 satisfy every equation and inequality exactly (no solve needed)", sizeof(d->stats.reason)));
+    PetscCall(ConeFETIProgressEnd_Private(d->progress));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   tol = rtol0;
@@ -709,6 +860,35 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     PetscCall(SetSolverTolerance(cm, tol));
   }
   if (tol != rtol0) PetscCall(SetSolverTolerance(cm, rtol0));
+  PetscCall(ConeFETIProgressEnd_Private(d->progress));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactModelSetProgress - A hook told how the setup and the solve progress: contact rows, every phase of
+  `FETISetUp()` (subdomains counted), the contact problem, then the solve with each outer iteration.
+
+  Logically Collective
+
+  Input Parameters:
++ cm  - the model (before `ContactModelSetUp()`)
+. fn  - the hook (NULL: none)
+- ctx - its context
+
+  Notes:
+  Passed on to the model's FETI problem (`FETISetProgress()`) and contact problem (`ContactProblemSetProgress()`).
+  The library prints nothing; see `ConeFETIProgressFn`.
+
+  Level: intermediate
+
+.seealso: `ConeFETIProgressFn`, `ContactSceneSetProgress()`, `FETISetProgress()`, `ContactProblemSetProgress()`
+@*/
+PetscErrorCode ContactModelSetProgress(ContactModel cm, ConeFETIProgressFn fn, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  cm->data->progress.fn  = fn;
+  cm->data->progress.ctx = ctx;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -833,8 +1013,8 @@ PetscErrorCode ContactModelGetStatistics(ContactModel cm, ContactStatistics *sta
 }
 
 /*@C
-  ContactModelGetUnmatchedNodes - The number of nodes of node-to-node zones' first faces that have no
-  node of the second face at the same position, and so are not in contact.
+  ContactModelGetUnmatchedNodes - The number of slave nodes of the zones between bodies that have no point of the master
+  face within the search distance (or none facing them), and so are not contact nodes.
 
   Not Collective (the same on every rank)
 
@@ -842,16 +1022,19 @@ PetscErrorCode ContactModelGetStatistics(ContactModel cm, ContactStatistics *sta
 . cm - the model (set up)
 
   Output Parameter:
-. n - the number, summed over the zones (0 on conforming meshes whose first face lies inside the second)
+. n - the number, summed over the zones (0 when every slave node lies over the master face)
 
   Notes:
-  Node-to-node contact needs conforming meshes: a first face larger than the second has such nodes by
-  design, but a nonzero count on faces meant to match says the meshes do not (different cells, shifted
-  bodies). The conefeti driver prints a note when it is nonzero; `ContactModelView()` gives it per zone.
+  Each slave node x is paired with the closest point of the master face (`ContactZone`, `ContactZoneSlave`). A slave face
+  larger than the master face has such nodes by design (beyond the master's edge; their closest master point lies
+  sideways); a nonzero count on faces meant to touch all over says they do not (shifted bodies, an initial gap above
+  the search distance, the `search_distance` of `ContactZone`). A zone none of whose slave nodes has a master point
+  within the search distance is an error at `ContactModelSetUp()`. The conefeti driver prints a note when the count is
+  nonzero; `ContactModelView()` gives it per zone.
 
   Level: intermediate
 
-.seealso: `ContactModelAddZone()`, `ContactModelView()`
+.seealso: `ContactModelAddZone()`, `ContactModelView()`, `ContactZone`
 @*/
 PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel cm, PetscInt *n)
 {
@@ -908,8 +1091,9 @@ PetscErrorCode ContactModelGetNodes(ContactModel cm, PetscInt *n, const PetscInt
 . cm - the model (set up)
 
   Output Parameters (either may be NULL):
-+ normal - 3 per node: the unit normal n of the node's rows, the first body's outward direction (foundation zones:
-           into the obstacle, `ContactZoneComputeGap()`)
++ normal - 3 per node: the unit normal n of the node's rows, the node's body's outward direction (foundation zones:
+           into the obstacle, `ContactZoneComputeGap()`; zones between bodies: from the slave node toward its master
+           point, see `ContactZone`)
 - gap    - per node: the initial gap d of its row N u <= d (negative: an initial overlap)
 
   Level: intermediate
@@ -929,6 +1113,50 @@ PetscErrorCode ContactModelGetNodeGeometry(ContactModel cm, PetscReal normal[], 
     if (gap) gap[j] = nd.gap;
     if (normal)
       for (int c = 0; c < 3; c++) normal[3 * j + c] = nd.n[c];
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactModelGetNodePartners - What this rank's contact nodes (order of `ContactModelGetNodes()`) are paired with: in a
+  zone between bodies, the master point chi of the slave node and the master nodes whose displacements its rows
+  interpolate.
+
+  Not Collective
+
+  Input Parameter:
+. cm - the model (set up)
+
+  Output Parameters (any may be NULL):
++ body    - per node: the master body (-1 for a foundation zone)
+. nodes   - 3 per node: the master body's node ids, -1 where unused (a master vertex has one, an edge two, a triangle three)
+. weights - 3 per node: their weights (each >= 1e-12, summing to 1; 0 where unused)
+- point   - 3 per node: the master point chi (a foundation zone: the obstacle's closest point, x + gap n)
+
+  Notes:
+  The rows of node k act on u(k) - sum_v weights[v] u(nodes[v]). On conforming meshes every slave node has one master
+  node, at its own position, with weight 1: node to node.
+
+  Level: intermediate
+
+.seealso: `ContactModelGetNodes()`, `ContactModelGetNodeGeometry()`, `ContactZone`
+@*/
+PetscErrorCode ContactModelGetNodePartners(ContactModel cm, PetscInt body[], PetscInt nodes[], PetscReal weights[], PetscReal point[])
+{
+  ContactModelData *d;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  d = cm->data;
+  PetscCheck(d->setup, PetscObjectComm((PetscObject)cm), PETSC_ERR_ORDER, "Call ContactModelSetUp() first");
+  for (size_t j = 0; j < d->local.size(); j++) {
+    const ContactNodeInfo &nd = d->nodes[d->local[j]];
+    if (body) body[j] = nd.other_body;
+    for (int v = 0; v < 3; v++) {
+      if (nodes) nodes[3 * j + v] = v < nd.nmaster ? nd.master[v] : -1;
+      if (weights) weights[3 * j + v] = v < nd.nmaster ? nd.weight[v] : 0;
+      if (point) point[3 * j + v] = nd.other_body >= 0 ? nd.chi[v] : nd.x[v] + nd.gap * nd.n[v];
+    }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -976,10 +1204,17 @@ PetscErrorCode ContactModelView(ContactModel cm, PetscViewer viewer)
       PetscCall(PetscViewerASCIIPrintf(viewer, "zone %zu: body %" PetscInt_FMT " face %s on a rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s %g\n", z, zn.body, zn.face,
                                        (double)zn.point[0], (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], ContactLaws[zn.law],
                                        (double)zn.coef));
-    else
-      PetscCall(PetscViewerASCIIPrintf(
-          viewer, "zone %zu: body %" PetscInt_FMT " face %s against body %" PetscInt_FMT " face %s (node to node), %s %g; %" PetscInt_FMT " nodes of the first face without a partner\n", z, zn.body,
-          zn.face, zn.other_body, zn.other_face, ContactLaws[zn.law], (double)zn.coef, z < d->unmatched.size() ? d->unmatched[z] : 0));
+    else if (!d->setup)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "zone %zu: body %" PetscInt_FMT " face %s against body %" PetscInt_FMT " face %s (node to surface, slave %s), %s %g\n", z, zn.body, zn.face,
+                                       zn.other_body, zn.other_face, ContactZoneSlaves[zn.slave], ContactLaws[zn.law], (double)zn.coef));
+    else {
+      const PetscBool bodyslave = d->slave[z] == zn.body ? PETSC_TRUE : PETSC_FALSE;
+      PetscCall(PetscViewerASCIIPrintf(viewer,
+                                       "zone %zu: body %" PetscInt_FMT " face %s against body %" PetscInt_FMT " face %s (node to surface), %s %g; slave: body %" PetscInt_FMT
+                                       " face %s, search distance %g; %" PetscInt_FMT " slave nodes without a master point within it\n",
+                                       z, zn.body, zn.face, zn.other_body, zn.other_face, ContactLaws[zn.law], (double)zn.coef, d->slave[z], bodyslave ? zn.face : zn.other_face, (double)d->search[z],
+                                       d->unmatched[z]));
+    }
   }
   if (d->cp) PetscCall(ContactProblemView(d->cp, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));

@@ -411,6 +411,36 @@ PetscErrorCode ContactProblemGetStatistics(ContactProblem cp, ContactStatistics 
 }
 
 /*@C
+  ContactProblemSetProgress - A hook told of every outer iteration of `ContactProblemSolve()` (the augmented
+  Lagrangian's, within each successive approximation for MSA): the largest residual on the scale of the
+  solver's relative tolerance, and that tolerance.
+
+  Logically Collective
+
+  Input Parameters:
++ cp  - the problem
+. fn  - the hook (NULL: none)
+- ctx - its context
+
+  Notes:
+  The reports have the phase `CONEFETI_PHASE_SOLVE` and never `done`: whoever runs the solve reports its
+  beginning and end (`ContactModelSolve()`). The hook is a `TaoMonitor` on the problem's solver, installed at the
+  first solve. A `ContactModel` passes its own hook on (`ContactModelSetProgress()`).
+
+  Level: intermediate
+
+.seealso: `ConeFETIProgressFn`, `ContactModelSetProgress()`, `TaoSMALXEGetOuterTolerances()`
+@*/
+PetscErrorCode ContactProblemSetProgress(ContactProblem cp, ConeFETIProgressFn fn, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  cp->data->progress.fn  = fn;
+  cp->data->progress.ctx = ctx;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   ContactProblemGetTao - The smalxe solver the contact solve uses (after `ContactProblemSetUp()`).
 
   Not Collective

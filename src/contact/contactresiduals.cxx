@@ -401,8 +401,9 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   Output Parameters (any may be NULL):
 + pressure - normal contact stress l_n / area
 . traction - 3 per node: tangential stress vector (l_t1 t1 + l_t2 t2) / area; the friction traction on the
-             first body is its opposite
-. slip     - 3 per node: tangential displacement of the first body relative to the foundation or the other body
+             node's body (a zone's slave body between bodies) is its opposite
+. slip     - 3 per node: tangential displacement of the node's body relative to the foundation or, between bodies, to
+             the master point (interpolated with its barycentric weights)
 - status   - separated, stick or slip (the rule of `ContactModelComputeResiduals()`)
 
   Level: intermediate
@@ -442,9 +443,9 @@ PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], 
 }
 
 /*@C
-  ContactModelGetContactForce - The resultant of the contact forces on the first bodies of a zone (or of all
-  zones), from the multipliers: the sum over its contact nodes of -(l_n n + l_t1 t1 + l_t2 t2) (the force the
-  obstacle or the other body exerts, as it enters the equilibrium K u = f - B'l), and the sum of l_n.
+  ContactModelGetContactForce - The resultant of the contact forces on the first bodies of a zone (the `ContactZone`'s
+  body; or of all zones), from the multipliers: the sum over its contact nodes of -(l_n n + l_t1 t1 + l_t2 t2) (the force
+  the obstacle or the other body exerts, as it enters the equilibrium K u = f - B'l), and the sum of l_n.
 
   Collective
 
@@ -460,6 +461,8 @@ PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], 
   For a rigid punch or indenter pressed along one direction, the total force P is the component of force
   along that direction (the normals of a curved obstacle tilt, so the sum of l_n is slightly larger).
   Components of a node fixed by a Dirichlet condition do not enter its rows (`ContactZone`) and not the sum.
+  In a zone between bodies whose slave is the other body (`ContactZoneSlave`), the nodes are the other body's and
+  the force on them is turned around: the sum is still the force on the zone's body (action and reaction).
 
   Level: intermediate
 
@@ -490,9 +493,10 @@ PetscErrorCode ContactModelGetContactForce(ContactModel cm, PetscInt zone, Petsc
     for (size_t j = 0; j < d->local.size(); j++) {
       const ContactNodeInfo &nd = d->nodes[d->local[j]];
       if (zone >= 0 && nd.zone != zone) continue;
+      const PetscReal sign = nd.body == d->zones[nd.zone].body ? 1.0 : -1.0; /* on the zone's body: the reaction of the force on a slave other body */
       sum[3] += v.ln[j];
       for (int c = 0; c < 3; c++)
-        if (!(nd.fixed & (1u << c))) sum[c] -= v.ln[j] * nd.n[c] + v.lt[2 * j] * nd.t1[c] + v.lt[2 * j + 1] * nd.t2[c];
+        if (!(nd.fixed & (1u << c))) sum[c] -= sign * (v.ln[j] * nd.n[c] + v.lt[2 * j] * nd.t1[c] + v.lt[2 * j + 1] * nd.t2[c]);
     }
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sum, 4, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)cm)));

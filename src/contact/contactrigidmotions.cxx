@@ -223,7 +223,8 @@ struct Checker {
           if (g / 3 >= frames[b].offset && g / 3 < frames[b].offset + frames[b].nnodes) offaxis(&frames[b].X[3 * (g / 3 - frames[b].offset)]);
         for (const ContactHoldingRow &r : rows) {
           if (r.body == b) offaxis(&frames[b].X[3 * r.node]);
-          if (r.other_body == b) offaxis(&frames[b].X[3 * r.other_node]);
+          if (r.other_body == b)
+            for (PetscInt v = 0; v < r.nother; v++) offaxis(&frames[b].X[3 * r.other_node[v]]);
         }
         if (held && onaxis) reason += "; every node that holds it lies on that axis";
       }
@@ -323,8 +324,14 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
     RowCoefficients(ck.frames[r.body], &ck.frames[r.body].X[3 * r.node], r.dir, w);
     for (int q = 0; q < 6; q++) ix[q] = 6 * r.body + q;
     if (r.other_body >= 0) {
+      /* the other body's point moves as the weighted sum of its nodes: the row is linear in the node positions */
       const PetscReal minus[3] = {-r.dir[0], -r.dir[1], -r.dir[2]};
-      RowCoefficients(ck.frames[r.other_body], &ck.frames[r.other_body].X[3 * r.other_node], minus, w + 6);
+      for (int q = 0; q < 6; q++) w[6 + q] = 0;
+      for (PetscInt v = 0; v < r.nother; v++) {
+        PetscReal wv[6];
+        RowCoefficients(ck.frames[r.other_body], &ck.frames[r.other_body].X[3 * r.other_node[v]], minus, wv);
+        for (int q = 0; q < 6; q++) w[6 + q] += r.other_weight[v] * wv[q];
+      }
       for (int q = 0; q < 6; q++) ix[6 + q] = 6 * r.other_body + q;
       m = 12;
     }

@@ -591,6 +591,24 @@ static PetscErrorCode CheckKKT(ContactProblem cp, Vec lambda)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* the progress hook's view of an outer iteration: the larger of |gP| and |G l - e| against their tolerances,
+   on the scale of the relative tolerance the solve runs at */
+static PetscErrorCode ProgressMonitor(Tao tao, void *ctx)
+{
+  ContactProblemData &d = *static_cast<ContactProblem>(ctx)->data;
+  PetscInt            its;
+  PetscReal           gp, e, tol_g, tol_e, gttol;
+
+  PetscFunctionBegin;
+  if (!d.progress.fn) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(TaoGetSolutionStatus(tao, &its, NULL, &gp, &e, NULL, NULL));
+  PetscCall(TaoSMALXEGetOuterTolerances(tao, &tol_g, &tol_e));
+  PetscCall(TaoGetTolerances(tao, NULL, NULL, &gttol));
+  const PetscReal ratio = PetscMax(tol_g > 0 ? gp / tol_g : 0, tol_e > 0 ? e / tol_e : 0);
+  PetscCall(ConeFETIProgressIterate_Private(d.progress, d.progressstep, its + 1, ratio * gttol, gttol));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*@C
   ContactProblemSolve - Solve the contact problem: the pipeline its content calls for.
 
@@ -633,6 +651,12 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
   PetscCall(TaoQPResetCounters(d->tao));
   d->stats             = ContactStatistics{};
   d->stats.fixed_point = 0;
+  if (d->progress.fn && !d->progressmonitor) {
+    PetscCall(TaoMonitorSet(d->tao, ProgressMonitor, cp, NULL));
+    d->progressmonitor = PETSC_TRUE;
+  }
+  PetscCall(ConeFETIProgressEnter_Private(d->progress, CONEFETI_PHASE_SOLVE));
+  d->progressstep = 0;
 
   if (d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MSA) {
     PetscReal       change = 1, largest = 1;
@@ -651,6 +675,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
       /* a Tresca solve after the first starts from the previous one's multiplier of G l = e, not only from its l */
       if (outer == 1 && d->msa_recycle) PetscCall(TaoSetRecycleHistory(d->tao, PETSC_TRUE));
       const bool loose = outer == 0 && d->msa_start_rtol > tresca_rtol;
+      d->progressstep  = outer + 1;
       PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, loose ? d->msa_start_rtol : tresca_rtol));
       PetscCall(TaoSolve(d->tao));
       PetscCall(TaoGetConvergedReason(d->tao, &reason));

@@ -124,8 +124,10 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
   ContactSceneSummary     summary;
   ContactPipeline         pipeline;
   ContactCoulombAlgorithm algorithm;
-  char                    output[PETSC_MAX_PATH_LEN] = "", jsonfile[PETSC_MAX_PATH_LEN] = "", description[256], json[4096];
-  PetscBool               hasoutput = PETSC_FALSE, hasjson = PETSC_FALSE, table = PETSC_TRUE, unconverged = PETSC_FALSE, help;
+  char                    output[PETSC_MAX_PATH_LEN] = "", jsonfile[PETSC_MAX_PATH_LEN] = "", description[256], json[16384];
+  PetscBool               hasoutput = PETSC_FALSE, hasjson = PETSC_FALSE, table = PETSC_TRUE, unconverged = PETSC_FALSE, help, quiet = PETSC_FALSE;
+  PetscInt                progress        = DRIVER_PROGRESS_AUTO;
+  const char *const       progressmodes[] = {"auto", "terminal", "log", "none"};
   PetscInt                major, minor, patch;
   MPI_Comm                comm = PETSC_COMM_WORLD;
 
@@ -137,6 +139,10 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
   PetscCall(PetscOptionsBool("-output_unconverged", "Write the output even when the solve did not converge", "ContactSceneWriteOutput", unconverged, &unconverged, NULL));
   PetscCall(PetscOptionsString("-summary_json", "Also write the JSON summary line to this file", "ContactSceneSummaryViewJSON", jsonfile, jsonfile, sizeof(jsonfile), &hasjson));
   PetscCall(PetscOptionsBool("-summary_table", "Print the human-readable table", "ContactSceneSummaryView", table, &table, NULL));
+  PetscCall(PetscOptionsEList("-progress",
+                              "Progress of the setup and the solve: auto (terminal when stdout is one, else log), terminal (one line rewritten), log (one line per phase with its time), none",
+                              "ContactSceneSetProgress", progressmodes, 4, progressmodes[progress], &progress, NULL));
+  PetscCall(PetscOptionsBool("-quiet", "Print no progress (the same as -progress none)", "ContactSceneSetProgress", quiet, &quiet, NULL));
   PetscCall(PetscOptionsBool("-traceback", "On an error, print PETSc's full report (traceback, options, configure line) instead of the message alone", "", traceback, &traceback, NULL));
   PetscOptionsEnd();
   PetscCheck(!hasoutput || output[0], comm, PETSC_ERR_ARG_WRONG, "-output needs a base name: -output results/brick writes results/brick.h5 and results/brick.xmf");
@@ -158,10 +164,13 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
   if (hasoutput) PetscCall(CheckWritable(comm, "-output", std::string(output) + ".xmf.tmp"));
   if (hasjson) PetscCall(CheckWritable(comm, "-summary_json", std::string(jsonfile) + ".tmp"));
   PetscCall(ConeFETIGetVersion(&major, &minor, &patch));
+  PetscCall(DriverProgressSet(scene, quiet ? DRIVER_PROGRESS_NONE : (DriverProgressMode)progress));
   PetscCall(ContactSceneSetUp(scene));
+  PetscCall(DriverProgressClear());
   PetscCall(ContactSceneGetPipelineDescription(scene, &pipeline, &algorithm, description, sizeof(description)));
   PetscCall(PetscPrintf(comm, "conefeti %" PetscInt_FMT ".%" PetscInt_FMT ".%" PetscInt_FMT ": pipeline %s\n", major, minor, patch, description));
   PetscCall(ContactSceneSolve(scene));
+  PetscCall(DriverProgressClear());
   PetscCall(ContactSceneGetSummary(scene, &summary));
   if (table) PetscCall(ContactSceneSummaryView(&summary, NULL));
   PetscCall(ContactSceneSummaryToJSON(&summary, json, sizeof(json)));
@@ -186,6 +195,7 @@ int main(int argc, char **argv)
   MPI_Comm       agree;
   int            status = 0;
 
+  DriverProgressNoteLauncher(); /* before MPI_Init() sets the launcher's variables itself */
   /* MPI before PETSc: a problem found before PetscInitialize() is then reported once, not by every rank */
   if (MPI_Init(&argc, &argv) != MPI_SUCCESS) return 1;
   {
@@ -219,7 +229,10 @@ int main(int argc, char **argv)
   PetscCallMPI(MPI_Comm_dup(PETSC_COMM_WORLD, &agree));
   ierr = Run(traceback, &status);
   if (ierr && (traceback || handler)) PetscCall(ierr); /* PETSc's own end of the report: the options, MPI_Abort() */
-  if (ierr) return DriverErrorReport(ierr, agree);
+  if (ierr) {
+    (void)DriverProgressClear(); /* the error message starts on a clean line */
+    return DriverErrorReport(ierr, agree);
+  }
   PetscCallMPI(MPI_Comm_free(&agree));
   PetscCall(PetscFinalize());
   MPI_Finalize();

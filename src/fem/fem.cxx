@@ -372,7 +372,7 @@ PetscErrorCode FEMTagFacesWithin(FEM fem, PetscInt body, const char tag[], const
 }
 
 /*@C
-  FEMSetDirichlet - Fix displacement components (u = 0) on the tagged faces of a body.
+  FEMSetDirichlet - Fix displacement components (u = 0) on the tagged faces of a body (`FEMSetDisplacement()` with value 0).
 
   Logically Collective
 
@@ -384,7 +384,7 @@ PetscErrorCode FEMTagFacesWithin(FEM fem, PetscInt body, const char tag[], const
 
   Level: beginner
 
-.seealso: `FEMSetDirichletMode()`, `FEMTagFaces()`
+.seealso: `FEMSetDirichletMode()`, `FEMSetDisplacement()`, `FEMTagFaces()`
 @*/
 PetscErrorCode FEMSetDirichlet(FEM fem, PetscInt body, const char tag[], const PetscBool components[3])
 {
@@ -395,7 +395,82 @@ PetscErrorCode FEMSetDirichlet(FEM fem, PetscInt body, const char tag[], const P
   PetscCall(CheckBody(fem, body));
   PetscValidCharPointer(tag, 3);
   if (components) mask = (components[0] ? 1u : 0u) | (components[1] ? 2u : 0u) | (components[2] ? 4u : 0u);
-  PetscCallCXX(fem->impl->bodies[body].dirichlet.push_back({tag, mask}));
+  PetscCallCXX(fem->impl->bodies[body].dirichlet.push_back({tag, mask, {0, 0, 0}}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMSetDisplacement - Prescribe displacement components on the tagged faces of a body: a grip or a punch moved by a given vector.
+
+  Logically Collective
+
+  Input Parameters:
++ fem        - the model
+. body       - the body
+. tag        - a boundary tag (x0, x1, y0, y1, z0, z1, a facet set, or one from `FEMTagFaces()`)
+. components - which components are prescribed (NULL: all three); the others stay free
+- value      - the displacement ux, uy, uz (the entries of components not prescribed are ignored)
+
+  Notes:
+  `FEMSetDirichlet()` is this with value 0. Every prescribed component is a Dirichlet dof, handled as
+  `FEMSetDirichletMode()` says: in Total FETI its row of B gets the right-hand side c = value (B u = c); in the
+  primal mode the value is lifted into the load (f - K u_D, `FETISetSubdomainDirichletValues()`) and u takes it after
+  the primal recovery. Contact leaves out nodes with a prescribed nonzero component.
+
+  Conditions may overlap (a node on the edge of two faces): a node component prescribed by two of them must get the
+  same value from both, otherwise `FEMSetUp()` stops with an error naming both tags and the node. The conditions are
+  numbered per body in the order set (`FEMSetDirichlet()` and `FEMSetDisplacement()` together); `FEMComputeReactions()`
+  reports one resultant per condition in that order.
+
+  Level: beginner
+
+.seealso: `FEMSetDirichlet()`, `FEMSetDirichletMode()`, `FEMComputeReactions()`, `FEMTagFaces()`
+@*/
+PetscErrorCode FEMSetDisplacement(FEM fem, PetscInt body, const char tag[], const PetscBool components[3], const PetscReal value[3])
+{
+  unsigned                 mask = 7;
+  std::array<PetscReal, 3> v{};
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckBody(fem, body));
+  PetscValidCharPointer(tag, 3);
+  PetscAssertPointer(value, 5);
+  if (components) mask = (components[0] ? 1u : 0u) | (components[1] ? 2u : 0u) | (components[2] ? 4u : 0u);
+  for (PetscInt c = 0; c < 3; c++) {
+    if (!(mask & (1u << c))) continue;
+    PetscCheck(!PetscIsInfOrNanReal(value[c]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "FEMSetDisplacement(): body %" PetscInt_FMT ", tag \"%s\": the %c displacement %g is not finite", body, tag,
+               (char)('x' + c), (double)value[c]);
+    v[c] = value[c];
+  }
+  PetscCallCXX(fem->impl->bodies[body].dirichlet.push_back({tag, mask, v}));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetNumDirichlet - The number of Dirichlet conditions of a body (`FEMSetDirichlet()` and `FEMSetDisplacement()` calls).
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model
+- body - the body
+
+  Output Parameter:
+. n - the number of conditions; `FEMComputeReactions()` numbers them in the order they were set
+
+  Level: intermediate
+
+.seealso: `FEMComputeReactions()`, `FEMSetDisplacement()`
+@*/
+PetscErrorCode FEMGetNumDirichlet(FEM fem, PetscInt body, PetscInt *n)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCheck(body >= 0 && body < (PetscInt)fem->impl->bodies.size(), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "FEMGetNumDirichlet(): body %" PetscInt_FMT " does not exist (%zu bodies)", body,
+             fem->impl->bodies.size());
+  PetscAssertPointer(n, 3);
+  *n = (PetscInt)fem->impl->bodies[body].dirichlet.size();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -882,6 +957,39 @@ PetscErrorCode FEMGetTaggedNodes(FEM fem, PetscInt body, const char tag[], Petsc
 }
 
 /*@C
+  FEMGetTaggedTriangles - The boundary triangles of a tag (the same on every rank).
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model, set up
+. body - the body
+- tag  - the tag (x0 ... z1 or one from `FEMTagFaces()`)
+
+  Output Parameters:
++ n         - number of triangles
+- triangles - 3 body node ids per triangle (do not free); every id is among the tag's nodes (`FEMGetTaggedNodes()`)
+
+  Notes:
+  The surface a contact zone between bodies searches for the closest point of each slave node.
+
+  Level: intermediate
+
+.seealso: `FEMGetTaggedNodes()`, `FEMTagFaces()`
+@*/
+PetscErrorCode FEMGetTaggedTriangles(FEM fem, PetscInt body, const char tag[], PetscInt *n, const PetscInt **triangles)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(CheckSetUpBody(fem, body));
+  auto it = fem->impl->bodies[body].taggednodes.find(tag);
+  PetscCheck(it != fem->impl->bodies[body].taggednodes.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "Body %" PetscInt_FMT " has no boundary tag \"%s\"", body, tag);
+  if (n) *n = (PetscInt)(it->second.triangles.size() / 3);
+  if (triangles) *triangles = it->second.triangles.data();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   FEMGetNodeCopies - The copies of a body node in the subdomains: which subdomains hold it and where its dofs are in the FETI primal vector.
 
   Not Collective
@@ -1113,6 +1221,47 @@ PetscErrorCode FEMGetGlobalDirichletDofs(FEM fem, IS *is)
         if (b.dirichletmask[g - b.nodeoffset] & (1u << c)) PetscCallCXX(dofs.push_back(3 * g + c));
   }
   PetscCall(ISCreateGeneral(comm, (PetscInt)dofs.size(), dofs.data(), PETSC_COPY_VALUES, is));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FEMGetDirichletValues - The prescribed displacements of Dirichlet dofs given in the undecomposed numbering.
+
+  Not Collective
+
+  Input Parameters:
++ fem  - the model, set up
+- dofs - global dof indices, each a Dirichlet dof (e.g. from `FEMGetGlobalDirichletDofs()`, or all of them gathered)
+
+  Output Parameter:
+. values - the prescribed displacement of each (0 on clamped dofs), in the order of dofs
+
+  Level: intermediate
+
+.seealso: `FEMGetGlobalDirichletDofs()`, `FEMSetDisplacement()`
+@*/
+PetscErrorCode FEMGetDirichletValues(FEM fem, IS dofs, PetscReal values[])
+{
+  FEM_Impl       &impl = *fem->impl;
+  PetscInt        n;
+  const PetscInt *idx;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscValidHeaderSpecific(dofs, IS_CLASSID, 2);
+  PetscCheck(impl.setupcalled, PETSC_COMM_SELF, PETSC_ERR_ORDER, "Call FEMSetUp() first");
+  PetscCall(ISGetLocalSize(dofs, &n));
+  PetscCall(ISGetIndices(dofs, &idx));
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscInt g = idx[i] / 3, c = idx[i] % 3;
+    PetscInt       b = 0;
+    while (b + 1 < (PetscInt)impl.bodies.size() && impl.bodies[b + 1].nodeoffset <= g) b++;
+    const FEMBody &body = impl.bodies[b];
+    PetscCheck(idx[i] >= 0 && g - body.nodeoffset < body.nnodes && (body.dirichletmask[g - body.nodeoffset] & (1u << c)), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "FEMGetDirichletValues(): dof %" PetscInt_FMT " is not a Dirichlet dof", idx[i]);
+    values[i] = FEMDirichletValue(body, g - body.nodeoffset, c);
+  }
+  PetscCall(ISRestoreIndices(dofs, &idx));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -202,7 +202,7 @@ PetscErrorCode FEMComputeLoadResultant(FEM fem, PetscInt body, const PetscReal p
 
   Output Parameters:
 + K - MPIAIJ matrix of size 3 x (number of nodes of all bodies), block size 3, marked symmetric positive definite
-- f - the load vector (zero at Dirichlet dofs)
+- f - the load vector: zero at clamped dofs; with prescribed displacements u_D lifted (f - K u_D elsewhere, the diagonal entry times u_D at those dofs), so that the solution takes u_D there
 
   Notes:
   Global dof 3 (first node of body b + body node) + component, bodies concatenated (see `FEMGetBodyNodeOffset()`).
@@ -293,16 +293,32 @@ PetscErrorCode FEMAssembleGlobal(FEM fem, Mat *K, Vec *f)
   PetscCall(MatGetDiagonal(*K, diag));
   PetscCall(VecSum(diag, &sum));
   PetscCall(VecDestroy(&diag));
+  std::vector<PetscScalar> values;
+  PetscBool                lift = PETSC_FALSE;
   for (const FEMBody &b : impl.bodies) {
     const PetscInt lo = std::max(first, b.nodeoffset), hi = std::min(last, b.nodeoffset + b.nnodes);
     for (PetscInt g = lo; g < hi; g++)
       for (PetscInt c = 0; c < 3; c++)
-        if (b.dirichletmask[g - b.nodeoffset] & (1u << c)) PetscCallCXX(zero.push_back(3 * g + c));
+        if (b.dirichletmask[g - b.nodeoffset] & (1u << c)) {
+          PetscCallCXX(zero.push_back(3 * g + c));
+          PetscCallCXX(values.push_back(FEMDirichletValue(b, g - b.nodeoffset, c)));
+        }
+    if (!b.dirichletvalue.empty()) lift = PETSC_TRUE;
   }
-  PetscCall(MatZeroRowsColumns(*K, (PetscInt)zero.size(), zero.data(), sum / (3 * nglobal), NULL, NULL));
-  PetscCall(VecSetValues(*f, (PetscInt)zero.size(), zero.data(), std::vector<PetscScalar>(zero.size(), 0.0).data(), INSERT_VALUES));
-  PetscCall(VecAssemblyBegin(*f));
-  PetscCall(VecAssemblyEnd(*f));
+  if (lift) { /* prescribed displacements: f - K u_D on the free rows, diag * u_D on the Dirichlet rows (MatZeroRowsColumns() lifts) */
+    Vec uD;
+    PetscCall(VecDuplicate(*f, &uD));
+    PetscCall(VecSetValues(uD, (PetscInt)zero.size(), zero.data(), values.data(), INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(uD));
+    PetscCall(VecAssemblyEnd(uD));
+    PetscCall(MatZeroRowsColumns(*K, (PetscInt)zero.size(), zero.data(), sum / (3 * nglobal), uD, *f));
+    PetscCall(VecDestroy(&uD));
+  } else {
+    PetscCall(MatZeroRowsColumns(*K, (PetscInt)zero.size(), zero.data(), sum / (3 * nglobal), NULL, NULL));
+    PetscCall(VecSetValues(*f, (PetscInt)zero.size(), zero.data(), std::vector<PetscScalar>(zero.size(), 0.0).data(), INSERT_VALUES));
+    PetscCall(VecAssemblyBegin(*f));
+    PetscCall(VecAssemblyEnd(*f));
+  }
   PetscCall(MatSetOption(*K, MAT_SPD, PETSC_TRUE));
   PetscCall(PetscLogEventEnd(FEM_Assembly, fem, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

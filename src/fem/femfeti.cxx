@@ -101,7 +101,7 @@ static PetscErrorCode BuildRows(FEM fem, const std::vector<ExtraRow> &extra, std
         if (b.dirichletmask[n] & (1u << comp)) {
           /* a row per copy, except for copies removed from the primal (subdomains the Dirichlet dofs hold firmly) */
           for (PetscInt j = 0; j < k; j++)
-            if (impl.dirichletrows[impl.copies.Subdomains(e)[j]]) PetscCallCXX(rows.push_back({FETI_ROW_DIRICHLET, {{dofs[j] + comp, 1.0}}, 0.0, -1}));
+            if (impl.dirichletrows[impl.copies.Subdomains(e)[j]]) PetscCallCXX(rows.push_back({FETI_ROW_DIRICHLET, {{dofs[j] + comp, 1.0}}, FEMDirichletValue(b, n, comp), -1}));
         } else {
           for (PetscInt j = 1; j < k; j++) {
             LocalRow        row{FETI_ROW_GLUING, {}, 0.0, -1};
@@ -141,8 +141,10 @@ static PetscErrorCode BuildRows(FEM fem, const std::vector<ExtraRow> &extra, std
 
   Notes:
   Gluing uses, at a node held by k subdomains, k - 1 orthonormal (Helmert) rows per free component;
-  in Total FETI a Dirichlet component gets one identity row per copy and no gluing rows. In the primal
-  mode the Dirichlet dofs are handed to `FETISetSubdomainDirichletDofs()` and get no rows at all, except in
+  in Total FETI a Dirichlet component gets one identity row per copy and no gluing rows, its right-hand side c the
+  prescribed value (`FEMSetDisplacement()`; 0 when clamped). In the primal
+  mode the Dirichlet dofs are handed to `FETISetSubdomainDirichletDofs()` (and nonzero values to
+  `FETISetSubdomainDirichletValues()`, which lifts them into the load) and get no rows at all, except in
   subdomains they hold weakly: the smallest RMS value on the subdomain's Dirichlet dofs over its RMS value
   overall of a unit combination of its rigid-body modes (about 0.43 for a cube clamped on a whole face, 0
   for one touching Gamma_u at a node or along a line, about a/H for a patch of size a) below
@@ -259,6 +261,16 @@ PetscErrorCode FEMCreateFETIWithRows(FEM fem, PetscInt nextra, const FETIRowKind
       PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)dirichlet.size(), dirichlet.data(), PETSC_COPY_VALUES, &is));
       PetscCall(FETISetSubdomainDirichletDofs(*feti, s, is));
       PetscCall(ISDestroy(&is));
+      if (!dirichlet.empty() && !b.dirichletvalue.empty()) { /* prescribed displacements: FETI lifts them */
+        Vec uD;
+        PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * (PetscInt)sd.nodes.size(), &uD));
+        PetscCall(VecGetArray(uD, &a));
+        for (size_t l = 0; l < sd.nodes.size(); l++)
+          for (PetscInt c = 0; c < 3; c++) a[3 * l + c] = FEMDirichletValue(b, sd.nodes[l], c);
+        PetscCall(VecRestoreArray(uD, &a));
+        PetscCall(FETISetSubdomainDirichletValues(*feti, s, uD));
+        PetscCall(VecDestroy(&uD));
+      }
     }
     PetscCall(VecDestroy(&coords));
   }

@@ -201,6 +201,7 @@ PetscErrorCode FEMBuildTags(PetscInt body, FEMBody &b)
       }
     }
     FEMTaggedNodes &tn = b.taggednodes[entry.first];
+    for (PetscInt t : entry.second) PetscCallCXX(tn.triangles.insert(tn.triangles.end(), b.boundary[t].v.begin(), b.boundary[t].v.end()));
     for (const auto &na : acc) {
       const PetscReal len = std::sqrt(na.second[1] * na.second[1] + na.second[2] * na.second[2] + na.second[3] * na.second[3]);
       PetscCallCXX(tn.nodes.push_back(na.first));
@@ -208,13 +209,41 @@ PetscErrorCode FEMBuildTags(PetscInt body, FEMBody &b)
       for (PetscInt d = 0; d < 3; d++) PetscCallCXX(tn.normals.push_back(len > 0 ? na.second[1 + d] / len : 0.0));
     }
   }
+  /* The Dirichlet mask and values. A node component prescribed by two conditions (a node on the edge between two
+     supports) must get the same value from both: a clamped face next to a displaced one shares its edge nodes,
+     and which value would win is not the user's choice to leave open. */
   PetscCallCXX(b.dirichletmask.assign(b.nnodes, 0));
-  for (const FEMDirichletSpec &ds : b.dirichlet) {
-    auto it = b.tags.find(ds.name);
-    PetscCheck(it != b.tags.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FEMSetDirichlet(): body %" PetscInt_FMT " has no boundary tag \"%s\" (it has: %s)", body, ds.name.c_str(),
-               TagList(b).c_str());
-    for (PetscInt t : it->second)
-      for (PetscInt n : b.boundary[t].v) b.dirichletmask[n] |= (unsigned char)ds.components;
+  PetscCallCXX(b.dirichletvalue.clear());
+  for (const FEMDirichletSpec &ds : b.dirichlet)
+    for (PetscInt c = 0; c < 3; c++)
+      if ((ds.components & (1u << c)) && ds.value[c] != 0.0 && b.dirichletvalue.empty()) PetscCallCXX(b.dirichletvalue.assign(3 * (size_t)b.nnodes, 0.0));
+  {
+    std::vector<int> owner; /* 3 per node: the condition that prescribed it first, for the message */
+    if (b.dirichlet.size() > 1) PetscCallCXX(owner.assign(3 * (size_t)b.nnodes, -1));
+    for (size_t k = 0; k < b.dirichlet.size(); k++) {
+      const FEMDirichletSpec &ds = b.dirichlet[k];
+      auto                    it = b.tags.find(ds.name);
+      PetscCheck(it != b.tags.end(), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FEMSetDirichlet(): body %" PetscInt_FMT " has no boundary tag \"%s\" (it has: %s)", body, ds.name.c_str(),
+                 TagList(b).c_str());
+      for (PetscInt t : it->second)
+        for (PetscInt n : b.boundary[t].v)
+          for (PetscInt c = 0; c < 3; c++) {
+            if (!(ds.components & (1u << c))) continue;
+            const PetscReal old = FEMDirichletValue(b, n, c);
+            if (b.dirichletmask[n] & (1u << c)) {
+              const FEMDirichletSpec &first = b.dirichlet[owner.empty() || owner[3 * (size_t)n + c] < 0 ? k : owner[3 * (size_t)n + c]];
+              PetscCheck(old == ds.value[c], PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
+                         "FEMSetDisplacement(): body %" PetscInt_FMT ", node %" PetscInt_FMT " at (%g, %g, %g): its %c displacement is prescribed as %g by \"%s\" and as %g by \"%s\" (a node "
+                         "component prescribed twice must get one value)",
+                         body, n, (double)b.coords[3 * n], (double)b.coords[3 * n + 1], (double)b.coords[3 * n + 2], (char)('x' + c), (double)old, first.name.c_str(), (double)ds.value[c],
+                         ds.name.c_str());
+              continue;
+            }
+            b.dirichletmask[n] |= (unsigned char)(1u << c);
+            if (!b.dirichletvalue.empty()) b.dirichletvalue[3 * (size_t)n + c] = ds.value[c];
+            if (!owner.empty()) owner[3 * (size_t)n + c] = (int)k;
+          }
+    }
   }
   for (const FEMTractionSpec &ts : b.tractions)
     PetscCheck(b.tags.count(ts.name), PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FEMSetTraction(): body %" PetscInt_FMT " has no boundary tag \"%s\" (it has: %s)", body, ts.name.c_str(),

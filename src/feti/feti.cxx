@@ -226,8 +226,9 @@ PetscErrorCode FETISetSubdomainCoordinates(FETI feti, PetscInt s, Vec coords)
 - R    - sequential matrix n_s x k (any type convertible to MATSEQDENSE); k = 0 means K_s is nonsingular
 
   Notes:
-  The columns are orthonormalized. With Dirichlet dofs kept in the primal, only the combinations
-  vanishing on them are kept. The basis is checked against K_s (-feti_check).
+  The columns are orthonormalized, unless they already are to 1e-12 (then they are kept to the bit, so that
+  a problem read back with `FETILoad()` is the one written). With Dirichlet dofs kept in the primal, only the
+  combinations vanishing on them are kept. The basis is checked against K_s (-feti_check).
 
   Level: intermediate
 
@@ -273,6 +274,40 @@ PetscErrorCode FETISetSubdomainDirichletDofs(FETI feti, PetscInt s, IS is)
   PetscCall(PetscObjectReference((PetscObject)is));
   PetscCall(ISDestroy(&feti->impl->sub[s].dirichlet));
   feti->impl->sub[s].dirichlet = is;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetSubdomainDirichletValues - Give the prescribed (nonzero) values of the Dirichlet dofs a subdomain keeps in the primal.
+
+  Not Collective
+
+  Input Parameters:
++ feti - the FETI problem
+. s    - local subdomain index
+- uD   - sequential vector of the subdomain's length n_s; its entries at the dofs of `FETISetSubdomainDirichletDofs()` are the
+         prescribed displacements, the others are ignored (NULL: zero, the default)
+
+  Notes:
+  The values are lifted: `FETISetUp()` takes f_s - K_s u_D as the subdomain's load (K_s whole, before its
+  Dirichlet rows and columns are removed), so that the problem on the free dofs is K u = f - K u_D, and
+  `FETIRecoverPrimal()` puts u_D at those dofs. `FETIGetLoad()` returns the lifted load, which is what
+  `FETIApplyK()` (zero on the Dirichlet dofs) balances. `FETIWrite()` writes the lifted problem: read back, it has
+  the same multipliers and free dofs, and zeros at the Dirichlet dofs.
+
+  Level: intermediate
+
+.seealso: `FETISetSubdomainDirichletDofs()`, `FETIRecoverPrimal()`, `FEMSetDisplacement()`
+@*/
+PetscErrorCode FETISetSubdomainDirichletValues(FETI feti, PetscInt s, Vec uD)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscCall(CheckLocal(feti, s));
+  if (uD) PetscValidHeaderSpecific(uD, VEC_CLASSID, 3);
+  if (uD) PetscCall(PetscObjectReference((PetscObject)uD));
+  PetscCall(VecDestroy(&feti->impl->sub[s].uD));
+  feti->impl->sub[s].uD = uD;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -450,6 +485,36 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscCheck(impl.nfixingcandidates >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_fixing_nodes %" PetscInt_FMT " must be non-negative", impl.nfixingcandidates);
   PetscCall(FETICreateKSP(feti));
   PetscCall(KSPSetFromOptions(impl.ksp));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETISetProgress - A hook told how the setup and the linear solve progress: the phases of `FETISetUp()` (kernels,
+  memory estimate, coarse problem, factorization of subdomain k of n, explicit (K+)_bb of subdomain k of n,
+  operators) and the iterations of `FETISolveLinear()`.
+
+  Logically Collective
+
+  Input Parameters:
++ feti - the FETI problem
+. fn   - the hook (NULL: none)
+- ctx  - its context
+
+  Notes:
+  The library prints nothing; the hook decides (the conefeti program prints one line, docs/output.md). It is
+  called on every rank with that rank's subdomain counts. A `ContactModel` passes its own hook on
+  (`ContactModelSetProgress()`).
+
+  Level: intermediate
+
+.seealso: `ConeFETIProgressFn`, `ConeFETIProgressInfo`, `FETISetUp()`, `ContactModelSetProgress()`
+@*/
+PetscErrorCode FETISetProgress(FETI feti, ConeFETIProgressFn fn, void *ctx)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  feti->impl->progress.fn  = fn;
+  feti->impl->progress.ctx = ctx;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -863,6 +928,7 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCheck(minlocal >= 1, comm, PETSC_ERR_ARG_WRONGSTATE, "Every rank needs at least one subdomain (FETISetSubdomains()); some rank has none: use more subdomains than the %d ranks", size);
   PetscCheck(impl.B, comm, PETSC_ERR_ARG_WRONGSTATE, "Call FETISetConstraints() before FETISetUp()");
   PetscCall(PetscLogEventBegin(FETI_SetUp, feti, 0, 0, 0));
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_KERNELS, nlocal));
 
   /* primal layout: this rank's subdomains, contiguous */
   impl.nlocalprimal = 0;
@@ -889,9 +955,16 @@ PetscErrorCode FETISetUp(FETI feti)
   if (impl.kplusexplicit) PetscCall(FETISetUpBoundaryMask(feti)); /* the subdomain factorizations may keep a Schur complement on it */
   /* kernels first: the coarse problem is assembled and factored before the subdomain factors exist, so
      that the memory its assembly needs for a moment is reused by them rather than stacked on them */
-  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
+  for (PetscInt s = 0; s < nlocal; s++) {
+    PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
+    PetscCall(ConeFETIProgressStep_Private(impl.progress, s + 1));
+  }
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   /* before anything large: the factors and explicit blocks must fit (the blocks are dropped when only they do not) */
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_MEMORY, 0));
   PetscCall(FETICheckMemory(feti));
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_COARSE, 0));
 
   /* coarse layout */
   impl.nlocalcoarse = 0;
@@ -916,13 +989,39 @@ PetscErrorCode FETISetUp(FETI feti)
       const PetscScalar *a;
       if (!sd.f) {
         for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = 0;
-        continue;
+      } else {
+        PetscCall(VecGetArrayRead(sd.f, &a));
+        for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = a[i];
+        PetscCall(VecRestoreArrayRead(sd.f, &a));
+        PetscCall(VecDestroy(&sd.f));
       }
-      PetscCall(VecGetArrayRead(sd.f, &a));
-      for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = a[i];
-      PetscCall(VecRestoreArrayRead(sd.f, &a));
-      for (PetscInt d : sd.dirichletdofs) fa[sd.localoffset + d] = 0; /* no work on fixed dofs */
-      PetscCall(VecDestroy(&sd.f));
+      sd.dirichletvalues.clear();
+      if (sd.uD && !sd.dirichletdofs.empty()) { /* lifting: f - K u_D with K_s still whole (FETISetSubdomainDirichletValues()) */
+        Vec          w, Kw;
+        PetscScalar *wa;
+        PetscInt     n;
+        PetscCall(VecGetSize(sd.uD, &n));
+        PetscCheck(n == sd.n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomainDirichletValues(): subdomain %" PetscInt_FMT ": %" PetscInt_FMT " values for %" PetscInt_FMT " dofs",
+                   impl.firstsub + (PetscInt)(&sd - impl.sub.data()), n, sd.n);
+        PetscCall(VecDuplicate(sd.uD, &w));
+        PetscCall(VecDuplicate(sd.uD, &Kw));
+        PetscCall(VecGetArray(w, &wa));
+        PetscCall(VecGetArrayRead(sd.uD, &a));
+        for (PetscInt i = 0; i < sd.n; i++) wa[i] = 0;
+        PetscCallCXX(sd.dirichletvalues.resize(sd.dirichletdofs.size()));
+        for (size_t k = 0; k < sd.dirichletdofs.size(); k++) wa[sd.dirichletdofs[k]] = sd.dirichletvalues[k] = a[sd.dirichletdofs[k]];
+        PetscCall(VecRestoreArrayRead(sd.uD, &a));
+        PetscCall(VecRestoreArray(w, &wa));
+        PetscCall(MatMult(sd.K, w, Kw));
+        PetscCall(VecGetArrayRead(Kw, &a));
+        for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] -= a[i];
+        PetscCall(VecRestoreArrayRead(Kw, &a));
+        PetscCall(VecDestroy(&w));
+        PetscCall(VecDestroy(&Kw));
+        if (std::all_of(sd.dirichletvalues.begin(), sd.dirichletvalues.end(), [](PetscScalar v) { return v == 0.0; })) sd.dirichletvalues.clear();
+      }
+      PetscCall(VecDestroy(&sd.uD));
+      for (PetscInt d : sd.dirichletdofs) fa[sd.localoffset + d] = 0; /* no work on prescribed dofs */
     }
     PetscCall(VecRestoreArray(impl.f, &fa));
   }
@@ -958,13 +1057,22 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCall(FETIRowSumCreate(impl.B, PETSC_TRUE, impl.Btsum));
   PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
   if (impl.ncoarse) PetscCall(SetUpCoarse(feti));
-  for (PetscInt s = 0; s < nlocal; s++) PetscCall(FETISubdomainSetUpFactorization(feti, impl.sub[s], impl.firstsub + s));
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_FACTORIZATION, nlocal));
+  for (PetscInt s = 0; s < nlocal; s++) {
+    PetscCall(FETISubdomainSetUpFactorization(feti, impl.sub[s], impl.firstsub + s));
+    PetscCall(ConeFETIProgressStep_Private(impl.progress, s + 1));
+  }
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   if (impl.kplusexplicit) {
     PetscCall(PetscLogEventBegin(FETI_Factorization, feti, 0, 0, 0));
-    PetscCall(FETISetUpExplicitKplus(feti));
+    PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_EXPLICIT, nlocal));
+    PetscCall(FETISetUpExplicitKplus(feti)); /* counts the subdomains */
+    PetscCall(ConeFETIProgressEnd_Private(impl.progress));
     PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
   }
 
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_OPERATORS, 0));
   PetscCall(FETICreateOperators_Private(feti));
   impl.setupcalled = PETSC_TRUE;
 
@@ -983,6 +1091,7 @@ PetscErrorCode FETISetUp(FETI feti)
     PetscCall(FETIApplyCoarseInverse(feti, impl.e, impl.wc2));
     PetscCall(FETIApplyGt(feti, impl.wc2, impl.lambdatilde));
   } else PetscCall(VecSet(impl.lambdatilde, 0.0));
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   PetscCall(PetscLogEventEnd(FETI_SetUp, feti, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)feti, NULL, "-feti_view"));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -271,13 +271,15 @@ PetscErrorCode FETISetUpExplicitKplus(FETI feti)
   for (size_t s = 0; s < impl.sub.size(); s++) {
     FETISubdomain &sd    = impl.sub[s];
     PetscBool      mumps = PETSC_FALSE, interior;
-    if (sd.schurfactor || sd.kplusimplicit) continue; /* built with the subdomain's factorization, or not at all (F uses the factor) */
+    if (s) PetscCall(ConeFETIProgressStep_Private(impl.progress, (PetscInt)s)); /* the ones before are done */
+    if (sd.schurfactor || sd.kplusimplicit) continue;                           /* built with the subdomain's factorization, or not at all (F uses the factor) */
     PetscCall(BoundaryDofs(sd, mask, sd.kb));
     PetscCall(HasInterior(sd, sd.kb, &interior));
     if (impl.kplusschur && interior) PetscCall(MatGetFactorAvailable(sd.Kreg, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &mumps));
     if (mumps) PetscCall(SubdomainExplicitKplusBySchur(feti, sd, impl.firstsub + (PetscInt)s));
     else PetscCall(SubdomainExplicitKplusBySolves(sd));
   }
+  PetscCall(ConeFETIProgressStep_Private(impl.progress, (PetscInt)impl.sub.size()));
   PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

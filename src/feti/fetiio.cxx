@@ -1,9 +1,13 @@
 /* Interchange: a FETI problem as a sequence of standard PETSc binary objects (docs/feti-interchange.md).
 
-     IS   header       [1211216 ("FETI"), version 1, number of subdomains, has coordinates 0/1]
+     IS   header       [1211216 ("FETI"), version 2, number of subdomains, has coordinates 0/1, rows of B,
+                        contact nodes in the pairing (-1: no pairing stored)]
      IS   sizes        dofs of each subdomain (primal vector = subdomains concatenated in this order)
      IS   kernels      kernel dimension of each subdomain (coarse vector = kernels concatenated)
      IS   dirichlet    global primal indices of dofs kept at zero in the primal (may be empty)
+     IS   pairing      per contact node: normal row, first and second tangential row (-1: none), law
+                        (0 frictionless, 1 Tresca, 2 Coulomb)
+     Vec  coefficients per contact node: slip bound (Tresca) or friction coefficient (Coulomb), 0 frictionless
      Mat  K            block-diagonal stiffness, primal x primal (AIJ), zero rows/columns at those dofs
      Vec  f            primal load
      Mat  B            constraints, multipliers x primal (AIJ)
@@ -12,14 +16,18 @@
      Mat  R            block-diagonal kernel basis, primal x coarse (AIJ)
      Vec  coordinates  3 per node in the primal layout (only when the header says so)
 
-   Any code that writes these objects with PETSc (MatView/VecView/ISView, or PetscBinaryIO.py) can be
-   solved here; the subdomains are redistributed over the reading ranks. */
+   Version 1 (still read) has the header's first four entries and neither pairing nor coefficients: its
+   contact rows carry their kind only. The pairing comes before B so that the reader can spread the rows
+   of B over the ranks without cutting a contact node (its rows must live on one rank: a cone is one block
+   of the solver's set). Any code that writes these objects with PETSc (MatView/VecView/ISView, or
+   PetscBinaryIO.py) can be solved here; the subdomains are redistributed over the reading ranks. */
 #include <conefeti/private/fetiimpl.h>
+#include <conefeti/private/fetiinterchange.h>
 
 #include <algorithm>
 
 #define FETI_FILE_MAGIC   1211216
-#define FETI_FILE_VERSION 1
+#define FETI_FILE_VERSION 2 /* written; 1 and 2 are read */
 
 /* An IS holding the given local integers */
 static PetscErrorCode ViewInts(MPI_Comm comm, const std::vector<PetscInt> &v, PetscViewer viewer)
@@ -63,11 +71,14 @@ static PetscErrorCode AssembleBlockDiagonalK(FETI feti, Mat *K)
   PetscFunctionBegin;
   for (size_t s = 0; s < impl.sub.size(); s++) {
     FETISubdomain &sd = impl.sub[s];
+    /* K_V = Kreg without its regularizing diagonal, plus the correction (K_V's entries in the fixing rows and columns):
+       the diagonal is zeroed before the correction is added, not subtracted after, so that every entry is K_V's to the
+       bit and a reader regularizes exactly as the writer did */
     PetscCall(MatConvert(sd.Kreg, MATSEQAIJ, MAT_INITIAL_MATRIX, &KV[s]));
-    if (sd.correction) PetscCall(MatAXPY(KV[s], 1.0, sd.correction, DIFFERENT_NONZERO_PATTERN));
-    for (PetscInt r : sd.removed) PetscCall(MatSetValue(KV[s], r, r, -sd.regdiag, ADD_VALUES));
+    for (PetscInt r : sd.removed) PetscCall(MatSetValue(KV[s], r, r, 0.0, INSERT_VALUES));
     PetscCall(MatAssemblyBegin(KV[s], MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(KV[s], MAT_FINAL_ASSEMBLY));
+    if (sd.correction) PetscCall(MatAXPY(KV[s], 1.0, sd.correction, DIFFERENT_NONZERO_PATTERN));
     for (PetscInt i = 0; i < sd.n; i++) {
       PetscInt ncols;
       PetscCall(MatGetRow(KV[s], i, &ncols, NULL, NULL));
@@ -99,55 +110,79 @@ static PetscErrorCode AssembleBlockDiagonalK(FETI feti, Mat *K)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/*@C
-  FETIWrite - Write the FETI problem (block-diagonal K, f, B with row kinds, c, R, coordinates) to a PETSc binary viewer.
+/* The name of the viewer's file, for the error messages */
+static PetscErrorCode FileName(PetscViewer viewer, const char **name)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscViewerFileGetName(viewer, name));
+  if (!*name) *name = "(unnamed)";
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
-  Collective
-
-  Input Parameters:
-+ feti   - the FETI problem, set up
-- viewer - a binary viewer (`PetscViewerBinaryOpen()`)
-
-  Notes:
-  The file is a sequence of standard PETSc objects, readable by any PETSc program or by
-  PetscBinaryIO.py; the format is documented in docs/feti-interchange.md. K is written as the
-  operator on the primal space (what `FETIApplyK()` applies), R as the kernel basis actually used.
-  Reading it back with `FETILoad()`, on any number of ranks, gives the same problem.
-
-  Level: intermediate
-
-.seealso: `FETILoad()`, `FETISetUp()`
-@*/
-PetscErrorCode FETIWrite(FETI feti, PetscViewer viewer)
+PetscErrorCode FETIWriteWithPairing_Private(FETI feti, PetscViewer viewer, const FETIContactPairing *pairing)
 {
   FETI_Impl            &impl = *feti->impl;
   MPI_Comm              comm = PetscObjectComm((PetscObject)feti);
   PetscMPIInt           rank;
-  PetscInt              hascoords = 1, hasall;
-  std::vector<PetscInt> header, sizes, kernels, dirichlet, kinds(impl.kinds.begin(), impl.kinds.end());
+  PetscInt              hascoords = 1, hasall, nrows, npairing = 0, hascontact = 0;
+  std::vector<PetscInt> header, sizes, kernels, dirichlet, pairs, kinds(impl.kinds.begin(), impl.kinds.end());
   Mat                   K;
-  Vec                   c, coords;
+  Vec                   c, coords, coef;
   PetscBool             isbinary;
+  const char           *file;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
-  PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FETISetUp() before FETIWrite()");
+  PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FETISetUp() before writing the FETI problem");
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERBINARY, &isbinary));
-  PetscCheck(isbinary, comm, PETSC_ERR_ARG_WRONG, "FETIWrite() needs a binary viewer (PetscViewerBinaryOpen())");
+  PetscCheck(isbinary, comm, PETSC_ERR_ARG_WRONG, "Writing a FETI problem needs a binary viewer (PetscViewerBinaryOpen())");
+  PetscCall(FileName(viewer, &file));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscCall(MatGetSize(impl.B, &nrows, NULL));
   for (FETISubdomain &sd : impl.sub) {
     PetscCallCXX(sizes.push_back(sd.n));
     PetscCallCXX(kernels.push_back(sd.nkernel));
     for (PetscInt d : sd.dirichletdofs) PetscCallCXX(dirichlet.push_back(sd.offset + d));
     if (!sd.coords) hascoords = 0;
   }
+  for (FETIRowKind k : impl.kinds)
+    if (k == FETI_ROW_CONTACT_NORMAL || k == FETI_ROW_CONTACT_TANGENTIAL) hascontact = 1;
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hascontact, 1, MPIU_INT, MPI_MAX, comm));
   PetscCall(MPIU_Allreduce(&hascoords, &hasall, 1, MPIU_INT, MPI_MIN, comm));
-  if (rank == 0) header = {FETI_FILE_MAGIC, FETI_FILE_VERSION, impl.nglobalsub, hasall};
+  if (pairing) {
+    const PetscInt n = (PetscInt)pairing->normal.size();
+    PetscCheck((PetscInt)pairing->t1.size() == n && (PetscInt)pairing->t2.size() == n && (PetscInt)pairing->law.size() == n && (PetscInt)pairing->coef.size() == n, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "contact pairing with arrays of different lengths");
+    /* the writer checks what it can see alone (indices, laws); the reader checks the rest against the row kinds */
+    for (PetscInt k = 0; k < n; k++) {
+      const PetscInt row[3] = {pairing->normal[k], pairing->t1[k], pairing->t2[k]};
+      PetscCheck(row[0] >= 0 && row[0] < nrows, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                 "%s: contact node %" PetscInt_FMT " of this rank has normal row %" PetscInt_FMT ", B has rows 0 .. %" PetscInt_FMT, file, k, row[0], nrows - 1);
+      for (PetscInt q = 1; q < 3; q++)
+        PetscCheck(row[q] >= -1 && row[q] < nrows, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                   "%s: contact node %" PetscInt_FMT " of this rank has tangential row %" PetscInt_FMT ", B has rows 0 .. %" PetscInt_FMT, file, k, row[q], nrows - 1);
+      PetscCheck(pairing->law[k] >= 0 && pairing->law[k] <= 2, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "%s: contact node %" PetscInt_FMT " of this rank has law %" PetscInt_FMT " (0, 1 or 2)", file,
+                 k, pairing->law[k]);
+      PetscCallCXX(pairs.insert(pairs.end(), {row[0], row[1], row[2], pairing->law[k]}));
+    }
+    PetscCall(MPIU_Allreduce(&n, &npairing, 1, MPIU_INT, MPI_SUM, comm));
+  } else npairing = hascontact ? -1 : 0; /* contact rows without a pairing: the file says so */
+  if (rank == 0) header = {FETI_FILE_MAGIC, FETI_FILE_VERSION, impl.nglobalsub, hasall, nrows, npairing};
   PetscCall(ViewInts(comm, header, viewer));
   PetscCall(ViewInts(comm, sizes, viewer));
   PetscCall(ViewInts(comm, kernels, viewer));
   PetscCall(ViewInts(comm, dirichlet, viewer));
+  PetscCall(ViewInts(comm, pairs, viewer));
+  PetscCall(VecCreateMPI(comm, pairing ? (PetscInt)pairing->coef.size() : 0, PETSC_DETERMINE, &coef));
+  if (pairing) {
+    PetscScalar *a;
+    PetscCall(VecGetArray(coef, &a));
+    for (size_t k = 0; k < pairing->coef.size(); k++) a[k] = pairing->coef[k];
+    PetscCall(VecRestoreArray(coef, &a));
+  }
+  PetscCall(VecView(coef, viewer));
+  PetscCall(VecDestroy(&coef));
   PetscCall(AssembleBlockDiagonalK(feti, &K));
   PetscCall(MatView(K, viewer));
   PetscCall(MatDestroy(&K));
@@ -174,6 +209,36 @@ PetscErrorCode FETIWrite(FETI feti, PetscViewer viewer)
     PetscCall(VecView(coords, viewer));
     PetscCall(VecDestroy(&coords));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETIWrite - Write the FETI problem (block-diagonal K, f, B with row kinds, c, R, coordinates) to a PETSc binary viewer.
+
+  Collective
+
+  Input Parameters:
++ feti   - the FETI problem, set up
+- viewer - a binary viewer (`PetscViewerBinaryOpen()`)
+
+  Notes:
+  The file is a sequence of standard PETSc objects, readable by any PETSc program or by
+  PetscBinaryIO.py; the format (version 2) is documented in docs/feti-interchange.md. K is written as the
+  operator on the primal space (what `FETIApplyK()` applies), R as the kernel basis actually used.
+  Reading it back with `FETILoad()`, on any number of ranks, gives the same problem.
+
+  The FETI object does not know which contact rows form one contact node, nor their law: a problem with
+  contact rows written here is marked as carrying no contact pairing. `FETIWriteContact()` writes the
+  same file with the pairing of a `ContactProblem`, which `FETILoadContact()` reads back.
+
+  Level: intermediate
+
+.seealso: `FETILoad()`, `FETISetUp()`, `FETIWriteContact()`
+@*/
+PetscErrorCode FETIWrite(FETI feti, PetscViewer viewer)
+{
+  PetscFunctionBegin;
+  PetscCall(FETIWriteWithPairing_Private(feti, viewer, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -234,61 +299,168 @@ static PetscErrorCode SplitVec(Vec v, const std::vector<PetscInt> &offsets, cons
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/*@C
-  FETILoad - Read a FETI problem written by `FETIWrite()` (or by another code in the same format) into an empty FETI object.
+/* A read that fails (the file ends early, or holds another object than the format says) becomes an error
+   naming the file and the item, on every rank: PETSc's binary viewer reads on rank 0 and shares the outcome
+   (the tests cut files inside an object's header and inside its data, on 1 and 2 ranks). */
+#define FETIReadItem(call, item)                                                                                                                                                   \
+  do {                                                                                                                                                                             \
+    PetscErrorCode ierr_;                                                                                                                                                          \
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));                                                                                                               \
+    ierr_ = (call);                                                                                                                                                                \
+    PetscCall(PetscPopErrorHandler());                                                                                                                                             \
+    PetscCheck(!ierr_, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: cannot read the %s: the file is truncated or is not a FETI interchange file (docs/feti-interchange.md)", file, item); \
+  } while (0)
 
-  Collective
+/* The rows of B this rank owns: an even split, each cut moved forward past any contact node whose rows it would separate */
+static PetscErrorCode PairingRowLayout(MPI_Comm comm, PetscInt nrows, const FETIContactPairing &pairing, PetscInt *nlocalrows)
+{
+  PetscMPIInt           size, rank;
+  std::vector<PetscInt> inside(nrows + 2, 0), cut;
 
-  Input Parameters:
-+ feti   - a FETI object from `FETICreate()`
-- viewer - a binary viewer (`PetscViewerBinaryOpen()` with `FILE_MODE_READ`)
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  for (size_t k = 0; k < pairing.normal.size(); k++) {
+    PetscInt lo = pairing.normal[k], hi = lo;
+    for (PetscInt t : {pairing.t1[k], pairing.t2[k]})
+      if (t >= 0) lo = PetscMin(lo, t), hi = PetscMax(hi, t);
+    inside[lo + 1]++; /* a cut before row r separates the node when lo < r <= hi */
+    inside[hi + 1]--;
+  }
+  for (PetscInt r = 1; r <= nrows; r++) inside[r] += inside[r - 1];
+  PetscCallCXX(cut.assign(size + 1, nrows));
+  cut[0] = 0;
+  for (PetscMPIInt p = 1; p < size; p++) {
+    PetscInt r = PetscMax((PetscInt)(((PetscInt64)nrows * p) / size), cut[p - 1]);
+    while (r < nrows && inside[r] > 0) r++;
+    cut[p] = r;
+  }
+  *nlocalrows = cut[rank + 1] - cut[rank];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
-  Notes:
-  The subdomains are spread over the ranks of feti's communicator in contiguous ranges (there
-  must be at least as many subdomains as ranks). The kernels stored in the file are used (as
-  `FETISetSubdomainKernel()`), the coordinates, if present, place the fixing nodes. Call
-  `FETISetFromOptions()` and `FETISetUp()` afterwards.
+/* The pairing against the rows of B and their kinds: indices in range, the right kinds, tangential rows for the
+   friction laws only, each contact row in exactly one node */
+static PetscErrorCode CheckPairing(MPI_Comm comm, const char *file, PetscInt nrows, const FETIContactPairing &pairing, const std::vector<PetscInt> *kinds)
+{
+  std::vector<PetscInt> owner(nrows, -1);
+  const char           *laws[] = {"frictionless", "Tresca", "Coulomb"};
 
-  Level: intermediate
+  PetscFunctionBegin;
+  for (size_t k = 0; k < pairing.normal.size(); k++) {
+    const PetscInt  l = pairing.law[k], row[3] = {pairing.normal[k], pairing.t1[k], pairing.t2[k]};
+    const PetscReal c = pairing.coef[k];
+    PetscCheck(l >= 0 && l <= 2, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: contact node %d has law %" PetscInt_FMT ": the laws are 0 (frictionless), 1 (Tresca), 2 (Coulomb)", file, (int)k, l);
+    PetscCheck(row[0] >= 0 && row[0] < nrows, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: contact node %d has normal row %" PetscInt_FMT ", out of the rows 0 .. %" PetscInt_FMT " of B", file, (int)k,
+               row[0], nrows - 1);
+    for (PetscInt q = 1; q < 3; q++) {
+      if (l == 0) PetscCheck(row[q] == -1, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: contact node %d is frictionless but has tangential row %" PetscInt_FMT " (must be -1)", file, (int)k, row[q]);
+      else
+        PetscCheck(row[q] >= 0 && row[q] < nrows, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: contact node %d (%s) has tangential row %" PetscInt_FMT ", out of the rows 0 .. %" PetscInt_FMT " of B", file,
+                   (int)k, laws[l], row[q], nrows - 1);
+    }
+    PetscCheck(c >= 0 && !PetscIsInfOrNanReal(c), comm, PETSC_ERR_FILE_UNEXPECTED, "%s: contact node %d has coefficient %g (must be finite and >= 0)", file, (int)k, (double)c);
+    for (PetscInt q = 0; q < 3; q++) {
+      if (row[q] < 0) continue;
+      PetscCheck(owner[row[q]] < 0, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: row %" PetscInt_FMT " of B belongs to contact nodes %d and %d", file, row[q], (int)owner[row[q]], (int)k);
+      owner[row[q]] = (PetscInt)k;
+      if (kinds)
+        PetscCheck((*kinds)[row[q]] == (q ? FETI_ROW_CONTACT_TANGENTIAL : FETI_ROW_CONTACT_NORMAL), comm, PETSC_ERR_FILE_UNEXPECTED,
+                   "%s: row %" PetscInt_FMT " of B is the %s row of contact node %d but its kind is %" PetscInt_FMT, file, row[q], q ? "tangential" : "normal", (int)k, (*kinds)[row[q]]);
+    }
+  }
+  if (kinds)
+    for (PetscInt r = 0; r < nrows; r++) {
+      const PetscInt kind = (*kinds)[r];
+      PetscCheck(kind >= FETI_ROW_GLUING && kind <= FETI_ROW_CONTACT_TANGENTIAL, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: row %" PetscInt_FMT " of B has kind %" PetscInt_FMT " (0 .. 3)", file, r, kind);
+      PetscCheck(owner[r] >= 0 || (kind != FETI_ROW_CONTACT_NORMAL && kind != FETI_ROW_CONTACT_TANGENTIAL), comm, PETSC_ERR_FILE_UNEXPECTED,
+                 "%s: row %" PetscInt_FMT " of B is a contact %s row of no contact node in the pairing", file, r, kind == FETI_ROW_CONTACT_NORMAL ? "normal" : "tangential");
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
-.seealso: `FETIWrite()`, `FETICreate()`
-@*/
-PetscErrorCode FETILoad(FETI feti, PetscViewer viewer)
+PetscErrorCode FETILoadWithPairing_Private(FETI feti, PetscViewer viewer, FETIContactPairing *pairing, PetscBool *given)
 {
   MPI_Comm              comm = PetscObjectComm((PetscObject)feti);
   PetscMPIInt           size, rank;
-  std::vector<PetscInt> header, sizes, kernels, dirichlet, kinds, offsets, localsizes;
+  std::vector<PetscInt> header, sizes, kernels, dirichlet, kinds, offsets, localsizes, pairs;
   PetscInt              nsub, first, nlocal, nlocalprimal = 0, nlocalcoarse = 0, nprimal = 0, ncoarse = 0, primalstart = 0;
+  PetscInt              version = 0, nrows = PETSC_DETERMINE, nlocalrows = PETSC_DECIDE, npairing = -1;
   Mat                   K, B, R;
   Vec                   f, c, coords = NULL;
   std::vector<Mat>      Ks;
   std::vector<Vec>      fs, xs;
   PetscBool             isbinary;
+  FETIContactPairing    p;
+  const char           *file;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERBINARY, &isbinary));
-  PetscCheck(isbinary, comm, PETSC_ERR_ARG_WRONG, "FETILoad() needs a binary viewer (PetscViewerBinaryOpen())");
+  PetscCheck(isbinary, comm, PETSC_ERR_ARG_WRONG, "Reading a FETI problem needs a binary viewer (PetscViewerBinaryOpen())");
+  PetscCall(FileName(viewer, &file));
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  PetscCall(LoadInts(comm, viewer, header));
-  PetscCheck(header.size() == 4 && header[0] == FETI_FILE_MAGIC, comm, PETSC_ERR_FILE_UNEXPECTED, "FETILoad(): the file does not start with a FETI header (docs/feti-interchange.md)");
-  PetscCheck(header[1] == FETI_FILE_VERSION, comm, PETSC_ERR_FILE_UNEXPECTED, "FETILoad(): file format version %" PetscInt_FMT ", this library reads version %d", header[1], FETI_FILE_VERSION);
+  FETIReadItem(LoadInts(comm, viewer, header), "header");
+  PetscCheck(header.size() >= 2 && header[0] == FETI_FILE_MAGIC, comm, PETSC_ERR_FILE_UNEXPECTED, "%s does not start with a FETI header (docs/feti-interchange.md)", file);
+  version = header[1];
+  PetscCheck(version == 1 || version == 2, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: FETI interchange format version %" PetscInt_FMT "; this library reads versions 1 and 2", file, version);
+  PetscCheck((PetscInt)header.size() == (version == 1 ? 4 : 6), comm, PETSC_ERR_FILE_UNEXPECTED, "%s: the header of a version %" PetscInt_FMT " file has %d entries, not %d", file, version,
+             version == 1 ? 4 : 6, (int)header.size());
   nsub = header[2];
-  PetscCall(LoadInts(comm, viewer, sizes));
-  PetscCall(LoadInts(comm, viewer, kernels));
-  PetscCall(LoadInts(comm, viewer, dirichlet));
-  PetscCheck((PetscInt)sizes.size() == nsub && (PetscInt)kernels.size() == nsub, comm, PETSC_ERR_FILE_UNEXPECTED,
-             "FETILoad(): %" PetscInt_FMT " subdomains announced, %d sizes and %d kernel dimensions found", nsub, (int)sizes.size(), (int)kernels.size());
+  if (version >= 2) {
+    nrows    = header[4];
+    npairing = header[5];
+    PetscCheck(nrows >= 0 && npairing >= -1, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: the header announces %" PetscInt_FMT " rows of B and %" PetscInt_FMT " contact nodes", file, nrows, npairing);
+  }
+  FETIReadItem(LoadInts(comm, viewer, sizes), "subdomain sizes");
+  FETIReadItem(LoadInts(comm, viewer, kernels), "kernel dimensions");
+  FETIReadItem(LoadInts(comm, viewer, dirichlet), "Dirichlet dofs");
+  PetscCheck((PetscInt)sizes.size() == nsub && (PetscInt)kernels.size() == nsub, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %" PetscInt_FMT " subdomains announced, %d sizes and %d kernel dimensions found",
+             file, nsub, (int)sizes.size(), (int)kernels.size());
   PetscCheck(nsub >= size, comm, PETSC_ERR_ARG_SIZ, "FETILoad(): %" PetscInt_FMT " subdomains for %d MPI ranks: every rank needs at least one subdomain", nsub, size);
-  first  = (nsub * rank) / size;
-  nlocal = (nsub * (rank + 1)) / size - first;
   for (PetscInt s = 0; s < nsub; s++) {
-    if (s < first) primalstart += sizes[s];
+    PetscCheck(sizes[s] > 0 && sizes[s] % 3 == 0 && kernels[s] >= 0 && kernels[s] <= sizes[s], comm, PETSC_ERR_FILE_UNEXPECTED,
+               "%s: subdomain %" PetscInt_FMT " has %" PetscInt_FMT " dofs and kernel dimension %" PetscInt_FMT, file, s, sizes[s], kernels[s]);
+    if (s < (nsub * rank) / size) primalstart += sizes[s];
     nprimal += sizes[s];
     ncoarse += kernels[s];
   }
+  for (PetscInt g : dirichlet)
+    PetscCheck(g >= 0 && g < nprimal, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: Dirichlet dof %" PetscInt_FMT " out of the primal dofs 0 .. %" PetscInt_FMT, file, g, nprimal - 1);
+  if (version >= 2) {
+    Vec                coef, all;
+    VecScatter         sc;
+    const PetscScalar *a;
+    const PetscInt     np = PetscMax(npairing, 0);
+    FETIReadItem(LoadInts(comm, viewer, pairs), "contact pairing");
+    PetscCheck((PetscInt)pairs.size() == 4 * np, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: the contact pairing has %d entries; %" PetscInt_FMT " contact nodes need %" PetscInt_FMT, file,
+               (int)pairs.size(), np, 4 * np);
+    PetscCall(VecCreate(comm, &coef));
+    PetscCall(VecSetSizes(coef, PETSC_DECIDE, np));
+    PetscCall(VecSetType(coef, VECSTANDARD));
+    FETIReadItem(VecLoad(coef, viewer), "contact coefficients");
+    PetscCall(VecScatterCreateToAll(coef, &sc, &all));
+    PetscCall(VecScatterBegin(sc, coef, all, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(sc, coef, all, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(all, &a));
+    for (PetscInt k = 0; k < np; k++) {
+      PetscCallCXX(p.normal.push_back(pairs[4 * k]));
+      PetscCallCXX(p.t1.push_back(pairs[4 * k + 1]));
+      PetscCallCXX(p.t2.push_back(pairs[4 * k + 2]));
+      PetscCallCXX(p.law.push_back(pairs[4 * k + 3]));
+      PetscCallCXX(p.coef.push_back(PetscRealPart(a[k])));
+    }
+    PetscCall(VecRestoreArrayRead(all, &a));
+    PetscCall(VecScatterDestroy(&sc));
+    PetscCall(VecDestroy(&all));
+    PetscCall(VecDestroy(&coef));
+    PetscCall(CheckPairing(comm, file, nrows, p, NULL)); /* before its indices place the rows of B */
+    PetscCall(PairingRowLayout(comm, nrows, p, &nlocalrows));
+  }
+  first  = (nsub * rank) / size;
+  nlocal = (nsub * (rank + 1)) / size - first;
   for (PetscInt s = first; s < first + nlocal; s++) {
     PetscCallCXX(offsets.push_back(nlocalprimal));
     PetscCallCXX(localsizes.push_back(sizes[s]));
@@ -299,25 +471,28 @@ PetscErrorCode FETILoad(FETI feti, PetscViewer viewer)
   PetscCall(MatCreate(comm, &K));
   PetscCall(MatSetSizes(K, nlocalprimal, nlocalprimal, nprimal, nprimal));
   PetscCall(MatSetType(K, MATAIJ));
-  PetscCall(MatLoad(K, viewer));
+  FETIReadItem(MatLoad(K, viewer), "stiffness K");
   PetscCall(VecCreate(comm, &f));
   PetscCall(VecSetSizes(f, nlocalprimal, nprimal));
   PetscCall(VecSetType(f, VECSTANDARD));
-  PetscCall(VecLoad(f, viewer));
+  FETIReadItem(VecLoad(f, viewer), "load f");
   PetscCall(MatCreate(comm, &B));
-  PetscCall(MatSetSizes(B, PETSC_DECIDE, nlocalprimal, PETSC_DETERMINE, nprimal));
+  PetscCall(MatSetSizes(B, nlocalrows, nlocalprimal, nrows, nprimal));
   PetscCall(MatSetType(B, MATAIJ));
-  PetscCall(MatLoad(B, viewer));
+  FETIReadItem(MatLoad(B, viewer), "constraint matrix B");
+  PetscCall(MatGetSize(B, &nrows, NULL));
   PetscCall(MatCreateVecs(B, NULL, &c));
-  PetscCall(VecLoad(c, viewer));
-  PetscCall(LoadInts(comm, viewer, kinds));
+  FETIReadItem(VecLoad(c, viewer), "right-hand side c");
+  FETIReadItem(LoadInts(comm, viewer, kinds), "row kinds");
+  PetscCheck((PetscInt)kinds.size() == nrows, comm, PETSC_ERR_FILE_UNEXPECTED, "%s: %d row kinds for %" PetscInt_FMT " rows of B", file, (int)kinds.size(), nrows);
+  if (npairing >= 0) PetscCall(CheckPairing(comm, file, nrows, p, &kinds));
   PetscCall(MatCreate(comm, &R));
   PetscCall(MatSetSizes(R, nlocalprimal, nlocalcoarse, nprimal, ncoarse));
   PetscCall(MatSetType(R, MATAIJ));
-  PetscCall(MatLoad(R, viewer));
+  FETIReadItem(MatLoad(R, viewer), "kernel basis R");
   if (header[3]) {
     PetscCall(VecDuplicate(f, &coords));
-    PetscCall(VecLoad(coords, viewer));
+    FETIReadItem(VecLoad(coords, viewer), "coordinates");
   }
 
   /* per-subdomain pieces */
@@ -356,15 +531,43 @@ PetscErrorCode FETILoad(FETI feti, PetscViewer viewer)
     PetscCall(VecDestroy(&coords));
   }
   {
-    PetscInt                 rstart, rend, nrows;
+    PetscInt                 rstart, rend;
     std::vector<FETIRowKind> k;
     PetscCall(MatGetOwnershipRange(B, &rstart, &rend));
-    PetscCall(MatGetSize(B, &nrows, NULL));
-    PetscCheck((PetscInt)kinds.size() == nrows, comm, PETSC_ERR_FILE_UNEXPECTED, "FETILoad(): %d row kinds for %" PetscInt_FMT " rows of B", (int)kinds.size(), nrows);
     for (PetscInt r = rstart; r < rend; r++) PetscCallCXX(k.push_back((FETIRowKind)kinds[r]));
     PetscCall(FETISetConstraints(feti, B, c, k.data()));
   }
   PetscCall(MatDestroy(&B));
   PetscCall(VecDestroy(&c));
+  if (given) *given = npairing >= 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (pairing) PetscCallCXX(*pairing = std::move(p));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  FETILoad - Read a FETI problem written by `FETIWrite()` (or by another code in the same format) into an empty FETI object.
+
+  Collective
+
+  Input Parameters:
++ feti   - a FETI object from `FETICreate()`
+- viewer - a binary viewer (`PetscViewerBinaryOpen()` with `FILE_MODE_READ`)
+
+  Notes:
+  Reads the format's versions 1 and 2 (docs/feti-interchange.md). The subdomains are spread over the ranks
+  of feti's communicator in contiguous ranges (there must be at least as many subdomains as ranks), the rows
+  of B evenly, without cutting a contact node of the file's pairing (version 2). The kernels stored in the
+  file are used (as `FETISetSubdomainKernel()`), the coordinates, if present, place the fixing nodes. Call
+  `FETISetFromOptions()` and `FETISetUp()` afterwards. A file that is truncated, of another version, or whose
+  indices are out of range gives an error naming it. The contact pairing itself is read by `FETILoadContact()`.
+
+  Level: intermediate
+
+.seealso: `FETIWrite()`, `FETICreate()`, `FETILoadContact()`
+@*/
+PetscErrorCode FETILoad(FETI feti, PetscViewer viewer)
+{
+  PetscFunctionBegin;
+  PetscCall(FETILoadWithPairing_Private(feti, viewer, NULL, NULL));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

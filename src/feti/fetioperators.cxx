@@ -621,7 +621,7 @@ PetscErrorCode FETIGetConstraints(FETI feti, Mat *B, Vec *c, const FETIRowKind *
 }
 
 /*@C
-  FETIGetLoad - The global primal load vector f (zero at Dirichlet dofs kept in the primal).
+  FETIGetLoad - The global primal load vector f (zero at Dirichlet dofs kept in the primal; with their prescribed values lifted, f - K u_D: `FETISetSubdomainDirichletValues()`).
 
   Not Collective
 

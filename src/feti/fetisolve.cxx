@@ -109,7 +109,7 @@ PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
 }
 
 /*@C
-  FETIRecoverPrimal - The primal solution u = K+(f - B' lambda) + R alpha.
+  FETIRecoverPrimal - The primal solution u = K+(f - B' lambda) + R alpha (and the prescribed values of `FETISetSubdomainDirichletValues()` at the Dirichlet dofs kept in the primal).
 
   Collective
 
@@ -148,7 +148,29 @@ PetscErrorCode FETIRecoverPrimal(FETI feti, Vec lambda, Vec alpha, Vec u)
   PetscCall(VecAYPX(impl.wp1, -1.0, impl.f));
   PetscCall(FETIApplyKplus(feti, impl.wp1, u));
   if (impl.ncoarse) PetscCall(MatMultAdd(impl.R, alpha, u, u));
+  { /* prescribed values of Dirichlet dofs kept in the primal (K+ and R vanish there) */
+    PetscScalar *ua;
+    PetscCall(VecGetArray(u, &ua));
+    for (FETISubdomain &sd : impl.sub)
+      for (size_t k = 0; k < sd.dirichletvalues.size(); k++) ua[sd.localoffset + sd.dirichletdofs[k]] = sd.dirichletvalues[k];
+    PetscCall(VecRestoreArray(u, &ua));
+  }
   PetscCall(PetscLogEventEnd(FETI_PrimalRecovery, feti, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* the progress hook's view of the projected CG: iteration k, the residual relative to the first one (the
+   KSP's default test with a zero initial guess), against -feti_ksp_rtol */
+static PetscErrorCode ProgressMonitor(KSP ksp, PetscInt k, PetscReal rnorm, void *ctx)
+{
+  FETI_Impl &impl = *static_cast<FETI>(ctx)->impl;
+  PetscReal  rtol;
+
+  PetscFunctionBegin;
+  if (k == 0) impl.progressrnorm0 = rnorm;
+  if (k == 0 || !impl.progress.fn) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(KSPGetTolerances(ksp, &rtol, NULL, NULL, NULL));
+  PetscCall(ConeFETIProgressIterate_Private(impl.progress, 0, k, impl.progressrnorm0 > 0 ? rnorm / impl.progressrnorm0 : rnorm, rtol));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -186,6 +208,11 @@ PetscErrorCode FETISolveLinear(FETI feti, Vec lambda, Vec u)
   PetscCall(FETISetUp(feti));
   PetscCall(FETIGetKSP(feti, &ksp));
   PetscCall(KSPSetOperators(ksp, impl.PFP, impl.PFP));
+  if (impl.progress.fn && !impl.progressmonitor) {
+    PetscCall(KSPMonitorSet(ksp, ProgressMonitor, feti, NULL));
+    impl.progressmonitor = PETSC_TRUE;
+  }
+  PetscCall(ConeFETIProgressEnter_Private(impl.progress, CONEFETI_PHASE_SOLVE));
   PetscCall(MatMult(impl.F, impl.lambdatilde, impl.rhs));
   PetscCall(VecAYPX(impl.rhs, -1.0, impl.h));
   PetscCall(FETIApplyP(feti, impl.rhs, impl.rhs));

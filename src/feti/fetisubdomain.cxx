@@ -77,7 +77,16 @@ static PetscErrorCode KernelFromInput(FETI feti, FETISubdomain &sd, PetscInt s)
     PetscCall(FETIRigidBodyModes(sd.coords, sd.n, sd.R));
     sd.nkernel = 6;
   }
-  PetscCall(FETIOrthonormalizeColumns(sd.n, &sd.nkernel, sd.R, 1e-8));
+  /* a kernel given with orthonormal columns (as FETIWrite() writes the basis in use) is kept to the bit, so that a
+     problem read back from a file is the same problem to the last bit; another one is orthonormalized */
+  PetscBool orthonormal = sd.Ruser ? PETSC_TRUE : PETSC_FALSE;
+  for (PetscInt p = 0; p < sd.nkernel && orthonormal; p++)
+    for (PetscInt q = 0; q <= p && orthonormal; q++) {
+      PetscScalar dot = 0;
+      for (PetscInt i = 0; i < sd.n; i++) dot += sd.R[(size_t)p * sd.n + i] * PetscConj(sd.R[(size_t)q * sd.n + i]);
+      if (PetscAbsScalar(dot - (p == q ? 1.0 : 0.0)) > 1e-12) orthonormal = PETSC_FALSE;
+    }
+  if (!orthonormal) PetscCall(FETIOrthonormalizeColumns(sd.n, &sd.nkernel, sd.R, 1e-8));
   PetscCall(FETIKernelVanishingOn(sd.n, &sd.nkernel, sd.R, sd.dirichletdofs, feti->impl->kerneltol));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -358,6 +367,7 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(VecDestroy(&sd.coords));
   PetscCall(MatDestroy(&sd.Ruser));
   PetscCall(ISDestroy(&sd.dirichlet));
+  PetscCall(VecDestroy(&sd.uD));
   PetscCall(MatDestroy(&sd.Kreg));
   PetscCall(MatDestroy(&sd.correction));
   PetscCall(KSPDestroy(&sd.ksp));

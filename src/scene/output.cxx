@@ -191,8 +191,8 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
   PetscInt               nc = 0, cfirst = 0;
   const PetscInt        *cbody = NULL, *cnode = NULL;
   const PetscReal       *ccoords = NULL, *carea = NULL;
-  std::vector<PetscReal> pressure, traction, slip, cnormal, cgap;
-  std::vector<PetscInt>  status, cconn;
+  std::vector<PetscReal> pressure, traction, slip, cnormal, cgap, mweight, mpoint;
+  std::vector<PetscInt>  status, cconn, mbody, mnodes;
   ContactProblem         cp;
   PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
   if (cp) {
@@ -206,6 +206,11 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
     cnormal.resize(3 * nc);
     cgap.resize(nc);
     PetscCall(ContactModelGetNodeGeometry(impl.cm, cnormal.data(), cgap.data()));
+    mbody.resize(nc);
+    mnodes.resize(3 * nc);
+    mweight.resize(3 * nc);
+    mpoint.resize(3 * nc);
+    PetscCall(ContactModelGetNodePartners(impl.cm, mbody.data(), mnodes.data(), mweight.data(), mpoint.data()));
     status.resize(nc);
     for (PetscInt i = 0; i < nc; i++) status[i] = (PetscInt)st[i];
   }
@@ -274,6 +279,10 @@ PetscErrorCode WriteHDF5(ContactScene scene, const char *path, Layout &layout)
     PetscCall(ViewReal(v, comm, "area", 1, area));
     PetscCall(ViewReal(v, comm, "normal", 3, cnormal));
     PetscCall(ViewReal(v, comm, "gap", 1, cgap));
+    PetscCall(ViewInt(v, comm, "master_body", 1, mbody));
+    PetscCall(ViewInt(v, comm, "master_nodes", 3, mnodes));
+    PetscCall(ViewReal(v, comm, "master_weights", 3, mweight));
+    PetscCall(ViewReal(v, comm, "master_point", 3, mpoint));
     PetscCall(PetscViewerHDF5PopGroup(v));
   }
   PetscCall(PetscViewerDestroy(&closer.v));
@@ -440,7 +449,7 @@ PetscErrorCode WriteAll(ContactScene scene, const std::string &h5, const std::st
 
 /* the bytes of the datasets (docs/output.md), a lower bound of the HDF5 file's size: 6 reals per node;
    6 integers and 1 real per tetrahedron; 11 reals and 4 integers per contact node */
-double DataBytes(const Layout &L) { return 8.0 * (6.0 * L.nnodes + L.nelements + 15.0 * L.ncontact) + (double)sizeof(PetscInt) * (6.0 * L.nelements + 4.0 * L.ncontact); }
+double DataBytes(const Layout &L) { return 8.0 * (6.0 * L.nnodes + L.nelements + 21.0 * L.ncontact) + (double)sizeof(PetscInt) * (6.0 * L.nelements + 8.0 * L.ncontact); }
 
 /* 85.3 GB, 20.5 kB: a size for a message */
 std::string Bytes(double b)

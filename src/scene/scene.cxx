@@ -380,8 +380,50 @@ PetscErrorCode ReadBody(const Reader &r, PetscInt b, PetscBool exists, SceneBody
         SceneSupport sp;
         PetscCall(ParseSelector(comm, r.Full(s + keys[k]), t, sp.selector));
         sp.mask = k == 0 ? 7u : (1u << (k - 1));
+        sp.kind = keys[k];
         body.supports.push_back(sp);
       }
+    }
+  }
+  /* displaced faces (grips, punches): face k moved by a given vector, all components (_value) or some (_x, _y, _z) */
+  for (PetscInt k = 0; k < MaxList; k++) {
+    const std::string        stem = ConeFETIFormat("%sdisplace%d_", s.c_str(), (int)k), sf = stem + "face", sv = stem + "value";
+    const std::string        sc[3] = {stem + "x", stem + "y", stem + "z"};
+    PetscBool                has, any, setv, setc[3];
+    std::vector<std::string> list;
+    std::array<PetscReal, 3> value{};
+    unsigned                 mask = 0;
+    PetscCall(r.Has(sf, &has));
+    PetscCall(AnySet(r, stem, {"face", "value", "x", "y", "z"}, &any));
+    if (!any && !(r.help && k == 0)) break;
+    PetscCall(r.Strings(sf, "Faces (or parts) moved by displacement <k>: FACE[/COND...],... (a grip or a punch)", "face selectors FACE[/COND...]", list, &set));
+    PetscCall(r.Reals(sv, "Displacement <k> ux,uy,uz of those faces (every component prescribed)", "3 numbers ux,uy,uz", 3, 3, value.data(), NULL, &setv));
+    for (PetscInt c = 0; c < 3; c++) {
+      const char *help[3] = {"Displacement <k>: only the x component prescribed (y, z free unless given)", "Displacement <k>: only the y component prescribed",
+                             "Displacement <k>: only the z component prescribed"};
+      PetscCall(r.Real(sc[c], help[c], "a displacement component", &value[c], &setc[c]));
+      if (setc[c]) mask |= 1u << c;
+    }
+    if (!exists || !any) continue;
+    PetscCheck(has, comm, PETSC_ERR_ARG_WRONG, "displacement %d of body %d needs %s (the faces it moves)", (int)k, (int)b, r.Full(sf).c_str());
+    PetscCheck(setv || mask, comm, PETSC_ERR_ARG_WRONG, "displacement %d of body %d needs %s ux,uy,uz, or the components it prescribes: %s, %s, %s", (int)k, (int)b, r.Full(sv).c_str(),
+               r.Full(sc[0]).c_str(), r.Full(sc[1]).c_str(), r.Full(sc[2]).c_str());
+    PetscCheck(!(setv && mask), comm, PETSC_ERR_ARG_WRONG, "displacement %d of body %d: %s prescribes every component, so %s cannot be given with it (use %s, %s, %s alone to leave components free)",
+               (int)k, (int)b, r.Full(sv).c_str(),
+               r.Full(sc[setc[0]   ? 0
+                         : setc[1] ? 1
+                                   : 2])
+                   .c_str(),
+               r.Full(sc[0]).c_str(), r.Full(sc[1]).c_str(), r.Full(sc[2]).c_str());
+    if (setv) mask = 7u;
+    for (const std::string &t : list) {
+      SceneSupport sp;
+      PetscCall(ParseSelector(comm, r.Full(sf), t, sp.selector));
+      sp.mask     = mask;
+      sp.value    = value;
+      sp.displace = k;
+      sp.kind     = ConeFETIFormat("displace%d", (int)k);
+      body.supports.push_back(sp);
     }
   }
   /* tractions: per whole face, then on parts of faces */
@@ -419,7 +461,7 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   const std::string s    = ConeFETIFormat("-scene_zone%d_", (int)z);
   const MPI_Comm    comm = r.comm;
   ContactZone      &zone = spec.zone;
-  PetscBool         set, setface, setpoint, setnormal, setother, setotherface, setlaw, setF, setg, setshape, setcenter, setaxis, setradius;
+  PetscBool         set, setface, setpoint, setnormal, setother, setotherface, setlaw, setF, setg, setshape, setcenter, setaxis, setradius, setslave, setsearch;
   std::string       face, other;
   PetscReal         F = 0, g = 0;
 
@@ -439,7 +481,12 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   PetscCall(r.Reals(s + "axis", "Foundation, cylinder: the axis direction", "3 numbers ax,ay,az", 3, 3, zone.axis, NULL, &setaxis));
   PetscCall(r.Real(s + "radius", "Foundation, sphere or cylinder: the radius > 0", "a radius > 0", &zone.radius, &setradius));
   PetscCall(r.Int(s + "other_body", "Bodies: the other body", "a body index", &zone.other_body, &setother));
-  PetscCall(r.String(s + "other_face", "Bodies: the other body's face (its nodes must coincide with the first face's)", "a face selector", other, &setotherface));
+  PetscCall(r.String(s + "other_face", "Bodies: the other body's face (any mesh: node to surface)", "a face selector", other, &setotherface));
+  PetscCall(r.Enum(s + "slave",
+                   "Bodies: the slave face, whose nodes are paired with the closest point of the other (master) face: finer (smaller mean edge; a tie: _face), body (_face) or other (_other_face)",
+                   ContactZoneSlaves, (PetscEnum *)&zone.slave, &setslave));
+  PetscCall(r.Real(s + "search_distance", "Bodies: slave nodes without a master point within this distance are not contact nodes (default: the master face's longest triangle edge)", "a distance > 0",
+                   &zone.search_distance, &setsearch));
   PetscCall(r.Enum(s + "law", "Contact law: frictionless, tresca (given slip bound) or coulomb (friction coefficient)", ContactLaws, (PetscEnum *)&zone.law, &setlaw));
   PetscCall(r.Real(s + "friction", "Coulomb: the friction coefficient F >= 0", "a friction coefficient F >= 0", &F, &setF));
   PetscCall(r.Real(s + "slip_bound", "Tresca: the slip bound, a tangential stress (force per area) >= 0", "a slip bound (stress) >= 0", &g, &setg));
@@ -452,6 +499,8 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   if (zone.type == CONTACT_ZONE_FOUNDATION) {
     PetscCheck(!setother && !setotherface, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is a foundation zone: %s and %s belong to -scene_zone%d_type bodies", (int)z, r.Full(s + "other_body").c_str(),
                r.Full(s + "other_face").c_str(), (int)z);
+    PetscCheck(!setslave && !setsearch, comm, PETSC_ERR_ARG_WRONG, "contact zone %d is a foundation zone: %s belongs to -scene_zone%d_type bodies", (int)z,
+               r.Full(s + (setslave ? "slave" : "search_distance")).c_str(), (int)z);
     const char *shape = ContactObstacleShapes[zone.shape];
     if (zone.shape == CONTACT_OBSTACLE_PLANE) {
       PetscCheck(!setcenter && !setaxis && !setradius, comm, PETSC_ERR_ARG_WRONG, "foundation zone %d is a plane: %s belongs to %s sphere or cylinder", (int)z,
@@ -491,6 +540,8 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
                "%s %" PetscInt_FMT ": must be a body of the scene (0..%" PetscInt_FMT ") other than %s %" PetscInt_FMT, r.Full(s + "other_body").c_str(), zone.other_body, nbodies - 1,
                r.Full(s + "body").c_str(), zone.body);
     PetscCall(ParseSelector(comm, r.Full(s + "other_face"), other, spec.other));
+    PetscCheck(!setsearch || (zone.search_distance > 0 && zone.search_distance < PETSC_MAX_REAL), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %g: the search distance must be finite and > 0",
+               r.Full(s + "search_distance").c_str(), (double)zone.search_distance);
   }
   switch (zone.law) {
   case CONTACT_FRICTIONLESS:
@@ -925,6 +976,8 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 . -scene_body<b>_decomposition <structured,metis> - how the body is cut into subdomains
 . -scene_body<b>_subdomains <px,py,pz or n>  - subdomains (structured: per axis; metis: a count)
 . -scene_body<b>_fix <sel,...>               - faces (or parts) with u = 0; _fix_x, _fix_y, _fix_z fix one component
+. -scene_body<b>_displace<k>_face <sel,...>  - faces (or parts) moved by displacement k (k = 0, 1, ...)
+. -scene_body<b>_displace<k>_value <ux,uy,uz> - displacement k, every component; or only some: _displace<k>_x <ux>, _y, _z
 . -scene_body<b>_traction_<face> <tx,ty,tz>  - traction on a whole face x0 x1 y0 y1 z0 z1
 . -scene_body<b>_traction<k>_face <sel>      - traction k on part of a face, with -scene_body<b>_traction<k>_value <tx,ty,tz>
 . -scene_body<b>_force <fx,fy,fz>            - volume force density (none when not given)
@@ -935,6 +988,8 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 . -scene_zone<z>_center <x,y,z>, _radius <R> - foundation, sphere: center and radius; cylinder: a point of the axis and radius
 . -scene_zone<z>_axis <ax,ay,az>             - foundation, cylinder: the axis direction
 . -scene_zone<z>_other_body, _other_face     - bodies: the other body and its face
+. -scene_zone<z>_slave <finer,body,other>    - bodies: the slave face, paired node to surface with the other (master) face
+. -scene_zone<z>_search_distance <d>         - bodies: slave nodes farther than d from the master face are not contact nodes (default: its longest edge)
 - -scene_zone<z>_law <frictionless,tresca,coulomb> - with -scene_zone<z>_slip_bound <g> (Tresca, a stress) or -scene_zone<z>_friction <F> (Coulomb)
 
   Notes:
@@ -1080,6 +1135,10 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
   }
   PetscCall(PetscLogEventBegin(CONTACTSCENE_SetUp, scene, 0, 0, 0));
   PetscCall(PetscTime(&t0));
+  for (PetscLogDouble &t : impl.time_phases) t = 0;
+  impl.progress.fn  = ContactSceneProgress_Private; /* sceneprogress.cxx */
+  impl.progress.ctx = scene;
+  PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_MESH, 0));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
   PetscCall(FEMCreate(comm, &impl.fem));
   PetscCall(FEMSetOptionsPrefix(impl.fem, prefix));
@@ -1119,7 +1178,7 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
     }
     for (const SceneSupport &sp : body.supports) {
       const PetscBool comps[3] = {(sp.mask & 1u) ? PETSC_TRUE : PETSC_FALSE, (sp.mask & 2u) ? PETSC_TRUE : PETSC_FALSE, (sp.mask & 4u) ? PETSC_TRUE : PETSC_FALSE};
-      PetscCall(FEMSetDirichlet(impl.fem, id, sp.selector.tag.c_str(), comps));
+      PetscCall(FEMSetDisplacement(impl.fem, id, sp.selector.tag.c_str(), comps, sp.value.data()));
     }
     for (const SceneTraction &t : body.tractions) PetscCall(FEMSetTraction(impl.fem, id, t.selector.tag.c_str(), t.value.data()));
     if (body.hasforce) PetscCall(FEMSetBodyForce(impl.fem, id, ConstantForce, body.force.data()));
@@ -1148,7 +1207,9 @@ PetscErrorCode ContactSceneSetUp(ContactScene scene)
                  sel->text.c_str(), (int)b, (double)body.lower[0], (double)body.upper[0], (double)body.lower[1], (double)body.upper[1], (double)body.lower[2], (double)body.upper[2]);
     }
   }
+  PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   PetscCall(ContactModelCreate(impl.fem, &impl.cm));
+  PetscCall(ContactModelSetProgress(impl.cm, ContactSceneProgress_Private, scene));
   for (SceneZoneSpec &z : impl.zones) {
     PetscCall(PetscStrncpy(z.zone.face, z.face.tag.c_str(), sizeof(z.zone.face)));
     if (z.zone.type == CONTACT_ZONE_BODIES) PetscCall(PetscStrncpy(z.zone.other_face, z.other.tag.c_str(), sizeof(z.zone.other_face)));
@@ -1251,8 +1312,14 @@ PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
       else text += ConeFETIFormat(", METIS %d subdomains", (int)body.parts[0]);
     }
     text += "\n";
-    for (const SceneSupport &sp : body.supports)
-      text += ConeFETIFormat("    support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : "");
+    for (const SceneSupport &sp : body.supports) {
+      if (sp.displace < 0) text += ConeFETIFormat("    support %s: u%s%s%s = 0\n", sp.selector.text.c_str(), (sp.mask & 1u) ? "x" : "", (sp.mask & 2u) ? "y" : "", (sp.mask & 4u) ? "z" : "");
+      else {
+        text += ConeFETIFormat("    displacement %d on %s:", (int)sp.displace, sp.selector.text.c_str());
+        for (PetscInt c = 0; c < 3; c++) text += (sp.mask & (1u << c)) ? ConeFETIFormat(" u%c = %g", (char)('x' + c), (double)sp.value[c]) : ConeFETIFormat(" u%c free", (char)('x' + c));
+        text += "\n";
+      }
+    }
     for (const SceneTraction &t : body.tractions) text += ConeFETIFormat("    traction on %s: (%g, %g, %g)\n", t.selector.text.c_str(), (double)t.value[0], (double)t.value[1], (double)t.value[2]);
     if (body.hasforce) text += ConeFETIFormat("    volume force (%g, %g, %g)\n", (double)body.force[0], (double)body.force[1], (double)body.force[2]);
   }
@@ -1271,8 +1338,9 @@ PetscErrorCode ContactSceneView(ContactScene scene, PetscViewer viewer)
       text += ConeFETIFormat("  zone %d: body %d face %s on the rigid plane through (%g, %g, %g) with normal (%g, %g, %g), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(),
                              (double)zn.point[0], (double)zn.point[1], (double)zn.point[2], (double)zn.normal[0], (double)zn.normal[1], (double)zn.normal[2], law.c_str());
     else
-      text += ConeFETIFormat("  zone %d: body %d face %s against body %d face %s (node to node), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(), (int)zn.other_body,
-                             impl.zones[z].other.text.c_str(), law.c_str());
+      text += ConeFETIFormat("  zone %d: body %d face %s against body %d face %s (node to surface, slave %s, search distance %s), %s\n", (int)z, (int)zn.body, impl.zones[z].face.text.c_str(),
+                             (int)zn.other_body, impl.zones[z].other.text.c_str(), ContactZoneSlaves[zn.slave],
+                             zn.search_distance > 0 ? ConeFETIFormat("%g", (double)zn.search_distance).c_str() : "the master's longest edge", law.c_str());
   }
   for (size_t start = 0, end; start < text.size(); start = end + 1) { /* line by line: the viewer's tab applies to each */
     end = text.find('\n', start);

@@ -5,6 +5,7 @@
 #include <conefeti/sys.h>
 #include <conefeti/io.h>
 #include <conefeti/compat.h>
+#include <conefeti/private/progress.h>
 
 #include <array>
 #include <memory>
@@ -30,9 +31,13 @@ struct SceneSelector {
   std::string                 tag; /* the FEM boundary tag it becomes */
 };
 
+/* A Dirichlet condition: a clamped face (-scene_body<b>_fix, _fix_x, ...) or a displaced one (_displace<k>_*) */
 struct SceneSupport {
-  SceneSelector selector;
-  unsigned      mask; /* bit c: component c fixed */
+  SceneSelector            selector;
+  unsigned                 mask;          /* bit c: component c prescribed */
+  std::array<PetscReal, 3> value{};       /* the prescribed displacement (0 for _fix) */
+  PetscInt                 displace = -1; /* k of -scene_body<b>_displace<k>_*, or -1 for _fix */
+  std::string              kind;          /* "fix", "fix_x", ..., "displace<k>": the option's stem, for the summary */
 };
 
 struct SceneTraction {
@@ -72,7 +77,16 @@ struct Scene_Impl {
   FEM                                         fem        = nullptr;
   ContactModel                                cm         = nullptr;
   PetscLogDouble                              time_setup = 0, time_solve = 0;
+  /* progress (sceneprogress.cxx): the caller's hook, the scene's own reports (the mesh phase), and the
+     duration of each phase on this rank, which the summary reports */
+  ConeFETIProgressFn progressfn  = nullptr;
+  void              *progressctx = nullptr;
+  ConeFETIProgress   progress;
+  PetscLogDouble     time_phases[CONEFETI_PHASE_COUNT] = {};
 };
+
+/* the hook the scene sets on itself and its ContactModel: records the phase durations, then calls the caller's */
+PETSC_INTERN PetscErrorCode ContactSceneProgress_Private(const ConeFETIProgressInfo *, void *);
 
 struct _SceneOps {
   PetscErrorCode (*unused)(void);

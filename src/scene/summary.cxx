@@ -2,6 +2,7 @@
    mechanical residuals; printed as a human table and as one JSON line (docs/output.md). */
 #include "sceneimpl.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -206,6 +207,8 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   PetscCall(PetscStrncpy(s->failed_check, st.failed_check, sizeof(s->failed_check)));
   s->time_setup = impl.time_setup;
   s->time_solve = impl.time_solve;
+  for (int ph = 0; ph < CONEFETI_PHASE_COUNT; ph++) s->time_phases[ph] = impl.time_phases[ph];
+  PetscCallMPI(MPI_Bcast(s->time_phases, CONEFETI_PHASE_COUNT, MPIU_REAL, 0, comm)); /* rank 0's, as the table's times */
   PetscCall(ContactModelGetContactProblem(impl.cm, &cp));
   if (cp) {
     Tao tao;
@@ -218,6 +221,35 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   s->max_nu = -1;
   for (const SceneBody &b : impl.bodies) s->max_nu = PetscMax(s->max_nu, b.nu);
   if (cp) PetscCall(ContactModelGetContactForce(impl.cm, -1, s->contact_force, &s->normal_force));
+  /* the reaction of every clamped or displaced face, and the loads they balance with the contact forces */
+  {
+    Vec                    u;
+    PetscInt               total = 0;
+    std::vector<PetscReal> reaction;
+    for (const SceneBody &b : impl.bodies) total += (PetscInt)b.supports.size();
+    PetscCallCXX(reaction.resize(3 * (size_t)total));
+    PetscCall(ContactModelGetSolution(impl.cm, NULL, &u));
+    PetscCall(FEMComputeReactions(impl.fem, feti, u, lambda, reaction.data()));
+    s->nsupports = total;
+    PetscInt k   = 0;
+    for (size_t b = 0; b < impl.bodies.size(); b++) {
+      const PetscReal origin[3] = {0, 0, 0};
+      PetscReal       load[3];
+      PetscCall(FEMComputeLoadResultant(impl.fem, (PetscInt)b, origin, load, NULL, NULL));
+      for (int c = 0; c < 3; c++) s->applied_load[c] += load[c];
+      for (const SceneSupport &sp : impl.bodies[b].supports) {
+        for (int c = 0; c < 3; c++) s->reaction[c] += reaction[3 * k + c];
+        if (k < CONTACTSCENE_MAX_SUPPORTS) {
+          ContactSceneSupportForce &f = s->supports[k];
+          f.body                      = (PetscInt)b;
+          PetscCall(PetscStrncpy(f.option, sp.kind.c_str(), sizeof(f.option)));
+          PetscCall(PetscStrncpy(f.face, sp.selector.text.c_str(), sizeof(f.face)));
+          for (int c = 0; c < 3; c++) f.force[c] = reaction[3 * k + c];
+        }
+        k++;
+      }
+    }
+  }
   /* the mechanical residuals, from u and lambda */
   PetscCall(ContactModelComputeResiduals(impl.cm, &s->residuals));
   s->contact_nodes = s->residuals.counts[0] + s->residuals.counts[1] + s->residuals.counts[2];
@@ -268,6 +300,19 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                    "multipliers: %" PetscInt_FMT " gluing + %" PetscInt_FMT " Dirichlet + %" PetscInt_FMT " normal + %" PetscInt_FMT " tangential; FETI primal dimension %" PetscInt_FMT
                                    "; ||F|| estimate: %" PetscInt_FMT " products (not in n_A)\n",
                                    s->m_gluing, s->m_dirichlet, s->m_normal, s->m_tangential, s->n_primal, s->n_A_estimate));
+  {
+    /* the setup time broken down by phase (those that ran), then the solve: where a long run spends it */
+    std::string line = "times [s]:";
+    for (int ph = 0; ph < CONEFETI_PHASE_COUNT; ph++) {
+      char buf[64];
+      if (!(s->time_phases[ph] > 0)) continue;
+      std::string name = ConeFETIPhases[ph];
+      std::replace(name.begin(), name.end(), '_', ' ');
+      snprintf(buf, sizeof(buf), "%s%s %.3f", ph == CONEFETI_PHASE_SOLVE ? "; " : (line.back() == ':' ? " " : ", "), name.c_str(), (double)s->time_phases[ph]);
+      line += buf;
+    }
+    PetscCall(PetscViewerASCIIPrintf(viewer, "%s\n", line.c_str()));
+  }
   if (s->pipeline != CONTACT_PIPELINE_LINEAR)
     PetscCall(PetscViewerASCIIPrintf(viewer, "contact nodes: %" PetscInt_FMT " = %" PetscInt_FMT " separated + %" PetscInt_FMT " stick + %" PetscInt_FMT " slip\n", s->contact_nodes, r.counts[0],
                                      r.counts[1], r.counts[2]));
@@ -296,10 +341,22 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
   if (s->pipeline != CONTACT_PIPELINE_LINEAR)
     PetscCall(PetscViewerASCIIPrintf(viewer, "contact force on the bodies: (%.6e, %.6e, %.6e); sum of the normal forces %.6e\n", (double)s->contact_force[0], (double)s->contact_force[1],
                                      (double)s->contact_force[2], (double)s->normal_force));
+  for (PetscInt k = 0; k < PetscMin(s->nsupports, (PetscInt)CONTACTSCENE_MAX_SUPPORTS); k++) {
+    const ContactSceneSupportForce &f = s->supports[k];
+    PetscCall(PetscViewerASCIIPrintf(viewer, "reaction of body %" PetscInt_FMT " %s %s: (%.6e, %.6e, %.6e)\n", f.body, f.option, f.face, (double)f.force[0], (double)f.force[1], (double)f.force[2]));
+  }
+  if (s->nsupports > CONTACTSCENE_MAX_SUPPORTS)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "(%" PetscInt_FMT " more supports: only their sum below)\n", s->nsupports - (PetscInt)CONTACTSCENE_MAX_SUPPORTS));
+  if (s->nsupports)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "forces on the bodies: reactions (%.6e, %.6e, %.6e) + loads (%.6e, %.6e, %.6e)%s\n", (double)s->reaction[0], (double)s->reaction[1],
+                                     (double)s->reaction[2], (double)s->applied_load[0], (double)s->applied_load[1], (double)s->applied_load[2],
+                                     s->pipeline != CONTACT_PIPELINE_LINEAR ? " + contact force above" : ""));
   if (s->unmatched_nodes)
-    PetscCall(PetscViewerASCIIPrintf(
-        viewer, "note: %" PetscInt_FMT " nodes of node-to-node zone faces have no node of the other face at the same position and are not in contact (meshes that do not conform?)\n",
-        s->unmatched_nodes));
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "note: %" PetscInt_FMT
+                                     " slave nodes of zones between bodies have no point of the master face within the search distance and are not contact nodes (faces that overlap only in part, or "
+                                     "a gap above -scene_zone<z>_search_distance; -scene_view shows them per zone)\n",
+                                     s->unmatched_nodes));
   /* P1 tetrahedra lock as nu -> 0.5: the displacements come out too small, and K_s and F get ill-conditioned
      (more products); the solve itself stays correct for the discrete problem */
   if (s->max_nu > 0.45)
@@ -429,10 +486,15 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Real(out, "norm_F", s->norm_F);
   Real(out, "time_setup", s->time_setup);
   Real(out, "time_solve", s->time_solve);
+  Key(out, "time_phases");
+  out += "{";
+  for (int ph = 0; ph < CONEFETI_PHASE_COUNT; ph++) Real(out, ConeFETIPhases[ph], s->time_phases[ph]);
+  out += "}";
   Int(out, "contact_nodes", s->contact_nodes);
   Int(out, "separated", r.counts[0]);
   Int(out, "stick", r.counts[1]);
   Int(out, "slip", r.counts[2]);
+  Int(out, "unmatched_nodes", s->unmatched_nodes);
   Key(out, "contact_force");
   out += "[";
   for (int c = 0; c < 3; c++) {
@@ -443,6 +505,34 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   }
   out += "]";
   Real(out, "normal_force", s->normal_force);
+  {
+    auto Vector = [&out](const char *key, const PetscReal v[3]) {
+      Key(out, key);
+      out += "[";
+      for (int c = 0; c < 3; c++) {
+        char buf[64];
+        if (c) out += ",";
+        snprintf(buf, sizeof(buf), "%.6e", (double)v[c]);
+        out += std::isfinite((double)v[c]) ? buf : "null";
+      }
+      out += "]";
+    };
+    Key(out, "supports");
+    out += "[";
+    for (PetscInt k = 0; k < PetscMin(s->nsupports, (PetscInt)CONTACTSCENE_MAX_SUPPORTS); k++) {
+      const ContactSceneSupportForce &f = s->supports[k];
+      out += k ? ",{" : "{";
+      Int(out, "body", f.body);
+      Str(out, "option", f.option);
+      Str(out, "face", f.face);
+      Vector("force", f.force);
+      out += "}";
+    }
+    out += "]";
+    Int(out, "nsupports", s->nsupports);
+    Vector("reaction", s->reaction);
+    Vector("applied_load", s->applied_load);
+  }
   Real(out, "acceptance", s->acceptance);
   Str(out, "failed_check", s->failed_check[0] ? s->failed_check : NULL);
   Int(out, "refinements", s->refinements);
@@ -483,7 +573,7 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
 @*/
 PetscErrorCode ContactSceneSummaryViewJSON(const ContactSceneSummary *s, PetscViewer viewer)
 {
-  char json[4096];
+  char json[16384];
 
   PetscFunctionBegin;
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(PETSC_COMM_WORLD, &viewer));

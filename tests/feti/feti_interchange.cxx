@@ -3,8 +3,11 @@
    again: the multipliers and the primal solution agree to 1e-10 and the iteration counts differ by
    at most one. FETILoad() distributes the rows of B differently, so the products with B' sum in
    another order; at -feti_ksp_rtol 1e-12 that rounding can move the last iteration across the
-   tolerance (it does with OpenBLAS's auto-detected kernels on this project's machine: 27 and 28). */
+   tolerance (it does with OpenBLAS's auto-detected kernels on this project's machine: 27 and 28).
+   With -as_version1 the file is rewritten in format version 1 (tests/feti/fetifile.h) before it is read:
+   files written before version 2 still read and give the same solution. */
 #include "scene.h"
+#include "fetifile.h"
 
 static PetscErrorCode Solve(FETI feti, Vec *lambda, Vec *u, PetscInt *its)
 {
@@ -28,17 +31,28 @@ int main(int argc, char **argv)
   PetscInt    its1, its2, n1, n2;
   PetscReal   dl, du, nl, nu;
   PetscViewer viewer;
-  char        file[PETSC_MAX_PATH_LEN] = "feti_interchange.bin";
+  char        file[PETSC_MAX_PATH_LEN] = "feti_interchange.bin", v1[PETSC_MAX_PATH_LEN + 4];
+  PetscBool   asv1                     = PETSC_FALSE;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "FETI interchange round trip"));
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscOptionsGetString(NULL, NULL, "-file", file, sizeof(file), NULL));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-as_version1", &asv1, NULL));
   PetscCall(CreateTestScene(PETSC_COMM_WORLD, &fem));
   PetscCall(FEMCreateFETI(fem, &feti));
   PetscCall(Solve(feti, &l1, &u1, &its1));
   PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_WRITE, &viewer));
   PetscCall(FETIWrite(feti, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
+  if (asv1) {
+    PetscMPIInt rank;
+    PetscCall(PetscSNPrintf(v1, sizeof(v1), "%s.v1", file));
+    PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+    if (rank == 0) PetscCall(FETIFileRewrite(file, v1, "v1"));
+    PetscCallMPI(MPI_Barrier(PETSC_COMM_WORLD));
+    PetscCall(PetscStrncpy(file, v1, sizeof(file)));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "reading %s (format version 1)\n", file));
+  }
 
   PetscCall(FETICreate(PETSC_COMM_WORLD, &loaded));
   PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_READ, &viewer));

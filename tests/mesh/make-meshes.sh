@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # usage: make-meshes.sh SOURCE_DIR OUT_DIR
 # The mesh files of the tests/mesh tests, made at test time (none is committed): the generator's box in the
-# four Gmsh encodings (write-box-msh.py), broken files for the error tests, and meshes/block-hole.geo meshed by gmsh.
+# four Gmsh encodings (write-box-msh.py), broken files for the error tests, and meshes/block-hole.geo, two-volumes.geo and block-unstructured.geo meshed by gmsh.
 set -euo pipefail
 src=$1; out=$2
 mkdir -p "$out"
@@ -17,4 +17,5 @@ head -c 1500 "$out/box-4.1.msh" >"$out/truncated.msh"
 head -c 3000 "$out/box-4.1-binary.msh" >"$out/truncated-binary.msh"
 gmsh -3 "$src/meshes/block-hole.geo" -o "$out/block-hole.msh" >"$out/block-hole.log" 2>&1 || { cat "$out/block-hole.log"; exit 1; }
 gmsh -3 "$src/meshes/two-volumes.geo" -o "$out/two-volumes.msh" >"$out/two-volumes.log" 2>&1 || { cat "$out/two-volumes.log"; exit 1; }
+gmsh -3 "$src/meshes/block-unstructured.geo" -o "$out/block-unstructured.msh" >"$out/block-unstructured.log" 2>&1 || { cat "$out/block-unstructured.log"; exit 1; }
 echo "make-meshes.sh: meshes in $out"

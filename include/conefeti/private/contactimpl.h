@@ -3,6 +3,7 @@
 
 #include <conefeti/contact.h>
 #include <conefeti/compat.h>
+#include <conefeti/private/progress.h>
 #include <petsc/private/petscimpl.h>
 #include <vector>
 
@@ -57,6 +58,10 @@ struct ContactProblemData {
   PetscBool kkt_check         = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
 
   ContactStatistics stats = {};
+
+  ConeFETIProgress progress;                      /* ContactProblemSetProgress(): outer iterations of the solve */
+  PetscBool        progressmonitor = PETSC_FALSE; /* its TaoMonitor is on tao */
+  PetscInt         progressstep    = 0;           /* the MSA step running (0: not MSA) */
 };
 
 struct _p_ContactProblem {
@@ -75,10 +80,12 @@ PETSC_INTERN void      ContactPolygonTangentialMotion(PetscInt, const PetscReal[
 PETSC_INTERN PetscReal ContactPolygonGauge(PetscInt, const PetscReal[2], PetscReal);
 
 /* A contact row of B that can hold bodies (contactrigidmotions.cxx): the displacement component along dir
-   at node `node` of `body`, minus the one at `other_node` of `other_body` (-1: a rigid foundation).
-   Normal rows, and tangential rows that can carry a force (friction coefficient or slip bound > 0). */
+   at node `node` of `body`, minus the one at the point sum_v other_weight[v] X(other_node[v]) of `other_body`
+   (-1: a rigid foundation; nother = 0). Normal rows, and tangential rows that can carry a force (friction
+   coefficient or slip bound > 0). */
 struct ContactHoldingRow {
-  PetscInt  zone, body, node, other_body, other_node;
+  PetscInt  zone, body, node, other_body, nother, other_node[3];
+  PetscReal other_weight[3];
   PetscReal dir[3];
 };
 PETSC_INTERN PetscErrorCode ContactCheckRigidMotions_Private(ContactModel, FEM, const std::vector<ContactZone> &, const std::vector<ContactHoldingRow> &);

@@ -4,9 +4,14 @@
 #include <conefeti/private/contactimpl.h>
 #include <vector>
 
-/* one contact node: where it is, its rows' directions and gap, its law */
+/* one contact node: where it is, its rows' directions and gap, its law. Between bodies it is a node of the slave
+   face (body, node) paired with the point chi = sum_i weight[i] X(master[i]) of the master face (other_body): its rows
+   act on u(body, node) - sum_i weight[i] u(other_body, master[i]). A weight below 1e-12 is dropped (the others
+   renormalized), so that a slave node on a master node has one master node of weight 1: node to node. */
 struct ContactNodeInfo {
-  PetscInt   zone, body, node, other_body = -1, other_node = -1;
+  PetscInt   zone, body, node, other_body = -1;
+  PetscInt   nmaster = 0, master[3] = {-1, -1, -1};
+  PetscReal  weight[3] = {0, 0, 0}, chi[3] = {0, 0, 0};
   PetscReal  x[3], area, n[3], t1[3], t2[3], gap;
   ContactLaw law;
   PetscReal  coef; /* Tresca: bound as a nodal force; Coulomb: F */
@@ -19,7 +24,9 @@ struct ContactModelData {
   std::vector<ContactZone>     zones;
   std::vector<ContactNodeInfo> nodes;     /* all contact nodes, the same on every rank */
   std::vector<PetscInt>        rows;      /* multiplier index of each contact row (node k's rows start at nodes[k].first_row) */
-  std::vector<PetscInt>        unmatched; /* per zone: nodes of a node-to-node zone's first face without a partner */
+  std::vector<PetscInt>        unmatched; /* per zone between bodies: slave nodes without a master point within the search distance */
+  std::vector<PetscInt>        slave;     /* per zone between bodies: the slave body (the zone's body or other body); -1 for foundation zones */
+  std::vector<PetscReal>       search;    /* per zone between bodies: the search distance used */
   FETI                         feti   = nullptr;
   ContactProblem               cp     = nullptr;
   Vec                          lambda = nullptr, u = nullptr, alpha = nullptr;
@@ -43,6 +50,7 @@ struct ContactModelData {
   std::vector<PetscInt>  lbody, lnode;
   std::vector<PetscReal> lcoords, larea;
   PetscBool              setup = PETSC_FALSE, solved = PETSC_FALSE;
+  ConeFETIProgress       progress; /* ContactModelSetProgress(); passed on to the FETI problem and the contact problem */
 };
 
 struct _ContactModelOps {
@@ -58,3 +66,38 @@ PETSC_INTERN PetscErrorCode ContactObstacleNodeGeometry_Private(ContactModel, Pe
 
 /* "<check> of body b is <value> (<what it means>)" for the check c of r */
 PETSC_INTERN PetscErrorCode ContactResidualsDescribe_Private(const ContactResiduals *, ContactCheck, char[], size_t);
+
+/* The closest point of a triangle surface (contactsearch.cxx) */
+struct ContactSurfacePoint {
+  PetscInt  triangle = -1;                                  /* index of the closest triangle; -1: none within the search distance */
+  PetscReal chi[3] = {0, 0, 0}, w[3] = {0, 0, 0}, dist = 0; /* the point, its barycentric weights on the triangle's vertices, its distance */
+};
+
+/* closest point chi of x on the triangle (a, b, c), chi = w[0] a + w[1] b + w[2] c: a vertex (one weight exactly 1), an
+   edge (one weight exactly 0) or the interior (a degenerate triangle: the nearest point of its edges) */
+PETSC_INTERN void ContactTriangleClosestPoint(const PetscReal[3], const PetscReal[3], const PetscReal[3], const PetscReal[3], PetscReal[3], PetscReal[3]);
+
+/* a surface of triangles (vertex ids into coordinates X, both borrowed) in a uniform grid of buckets */
+class ContactSurfaceSearch {
+public:
+  PetscReal longest_edge = 0, mean_edge = 0; /* of the surface's triangles */
+
+  PetscErrorCode SetUp(PetscInt ntri, const PetscInt tri[], const PetscReal X[]);
+  /* the closest point of the surface within dmax of x (p.triangle = -1 if none); ties: the smaller triangle index */
+  PetscErrorCode Closest(const PetscReal x[3], PetscReal dmax, ContactSurfacePoint &p);
+  /* the closest point at any distance, by testing every triangle */
+  PetscErrorCode Nearest(const PetscReal x[3], ContactSurfacePoint &p) const;
+
+private:
+  PetscInt               ntri = 0;
+  const PetscInt        *tri  = nullptr;
+  const PetscReal       *X    = nullptr;
+  std::vector<PetscReal> box; /* 6 per triangle: lower and upper corner of its bounding box */
+  PetscReal              origin[3] = {0, 0, 0}, h = 1;
+  PetscInt               n[3] = {1, 1, 1};
+  std::vector<PetscInt>  start, cells; /* CSR: the triangles of bucket c are cells[start[c] .. start[c+1]) */
+  std::vector<PetscInt>  stamp;        /* the last query that tested each triangle */
+  PetscInt               query = 0;
+
+  void Range(const PetscReal lo[3], const PetscReal hi[3], PetscInt r[6]) const;
+};

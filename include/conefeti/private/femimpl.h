@@ -25,9 +25,10 @@ struct FEMBoundaryTriangle {
 };
 
 struct FEMTaggedNodes {
-  std::vector<PetscInt>  nodes;   /* sorted body node ids */
-  std::vector<PetscReal> areas;   /* lumped nodal area: sum over the tagged triangles of area/3 */
-  std::vector<PetscReal> normals; /* 3 per node: area-weighted average outward unit normal */
+  std::vector<PetscInt>  nodes;     /* sorted body node ids */
+  std::vector<PetscReal> areas;     /* lumped nodal area: sum over the tagged triangles of area/3 */
+  std::vector<PetscReal> normals;   /* 3 per node: area-weighted average outward unit normal */
+  std::vector<PetscInt>  triangles; /* 3 body node ids per tagged triangle (boundary order) */
 };
 
 struct FEMUserTag {
@@ -38,8 +39,9 @@ struct FEMUserTag {
 };
 
 struct FEMDirichletSpec {
-  std::string name;
-  unsigned    components; /* bit c set: component c is fixed */
+  std::string              name;
+  unsigned                 components; /* bit c set: component c is prescribed */
+  std::array<PetscReal, 3> value;      /* the prescribed displacement of those components (0: clamped) */
 };
 
 struct FEMTractionSpec {
@@ -77,10 +79,11 @@ struct FEMBody {
   std::vector<FEMBoundaryTriangle>             boundary;
   std::map<std::string, std::vector<PetscInt>> tags; /* tag -> indices into boundary */
   std::map<std::string, FEMTaggedNodes>        taggednodes;
-  std::vector<PetscInt>                        part;          /* element -> subdomain index within the body */
-  std::vector<unsigned char>                   dirichletmask; /* node -> fixed component bits */
-  std::vector<unsigned char>                   onboundary;    /* node -> 1 when on the body's boundary */
-  std::vector<unsigned char>                   oninterface;   /* node -> 1 when elements of two subdomains share it */
+  std::vector<PetscInt>                        part;           /* element -> subdomain index within the body */
+  std::vector<unsigned char>                   dirichletmask;  /* node -> prescribed component bits */
+  std::vector<PetscReal>                       dirichletvalue; /* 3 per node: the prescribed displacement; empty when every prescribed value is 0 */
+  std::vector<unsigned char>                   onboundary;     /* node -> 1 when on the body's boundary */
+  std::vector<unsigned char>                   oninterface;    /* node -> 1 when elements of two subdomains share it */
 };
 
 /* One subdomain owned by this rank */
@@ -168,6 +171,9 @@ PETSC_INTERN PetscErrorCode FEMTriangleLoad(const PetscReal[9], PetscReal, FEMVe
 /* Decomposition (femdecompose.cxx) */
 PETSC_INTERN PetscErrorCode FEMDecomposeBody(MPI_Comm, FEMBody &);
 PETSC_INTERN PetscErrorCode FEMBuildLocalSubdomains(FEM);
+
+/* The prescribed displacement of a body node's component (0 when it is clamped or free) */
+static inline PetscReal FEMDirichletValue(const FEMBody &b, PetscInt n, PetscInt c) { return b.dirichletvalue.empty() ? 0.0 : b.dirichletvalue[3 * (size_t)n + c]; }
 
 /* Subdomain assembly (femassemble.cxx) */
 PETSC_INTERN PetscErrorCode FEMAssembleSubdomain(FEM, const FEMSubdomain &, Mat *, Vec *);

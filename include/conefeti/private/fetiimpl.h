@@ -4,6 +4,7 @@
 #include <petsc/private/petscimpl.h>
 #include <conefeti/sys.h>
 #include <conefeti/feti.h>
+#include <conefeti/private/progress.h>
 #include <conefeti/compat.h>
 
 #include <vector>
@@ -15,7 +16,8 @@ struct FETISubdomain {
   Vec f         = nullptr;
   Vec coords    = nullptr;
   Mat Ruser     = nullptr;
-  IS  dirichlet = nullptr; /* dofs kept at zero in the primal */
+  IS  dirichlet = nullptr; /* dofs kept in the primal at a prescribed value (zero unless given) */
+  Vec uD        = nullptr; /* the prescribed values (length n, read at the Dirichlet dofs), or NULL: zero */
 
   /* setup */
   PetscInt                 n = 0, offset = 0, localoffset = 0; /* dofs, first global primal dof, first dof in the rank's local array */
@@ -23,6 +25,7 @@ struct FETISubdomain {
   std::vector<PetscScalar> R;                                  /* n x nkernel orthonormal kernel basis, column-major */
   std::vector<PetscInt>    fixing;                             /* dofs removed to regularize (sorted) */
   std::vector<PetscInt>    dirichletdofs;                      /* sorted */
+  std::vector<PetscScalar> dirichletvalues;                    /* u at dirichletdofs after recovery; empty: all zero */
   std::vector<PetscInt>    removed;                            /* fixing and Dirichlet dofs, sorted */
   Mat                      Kreg       = nullptr;               /* K with removed rows/columns replaced by identity*diag */
   Mat                      correction = nullptr;               /* K_V - Kreg restricted to rows/cols of removed dofs (SeqAIJ) */
@@ -112,6 +115,10 @@ struct FETI_Impl {
   Vec wp1 = nullptr, wp2 = nullptr, wd1 = nullptr, wd2 = nullptr, wc1 = nullptr, wc2 = nullptr;
   Vec wp3 = nullptr, wd3 = nullptr;                       /* for G and G' (R'B' x, B R x) and their callers, which may hold wp1, wp2 or wd2 */
   Vec rhs = nullptr, residual = nullptr, alpha = nullptr; /* FETISolveLinear(), FETIComputeAlpha(), FETIRecoverPrimal() */
+
+  ConeFETIProgress progress;                      /* FETISetProgress() */
+  PetscBool        progressmonitor = PETSC_FALSE; /* its KSP monitor is on the KSP of FETISolveLinear() */
+  PetscReal        progressrnorm0  = 0;           /* that monitor's first residual norm */
 };
 
 struct _FETIOps {

@@ -1213,16 +1213,27 @@ PetscErrorCode ResetWork(TaoSMALXE *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-const char *const kComposed[] = {"TaoQPSetConstraints_C",     "TaoQPGetConstraints_C",
-                                 "TaoQPSetLinearTerm_C",      "TaoQPSetNormEstimate_C",
-                                 "TaoQPGetNormEstimate_C",    "TaoQPGetCounters_C",
-                                 "TaoQPResetCounters_C",      "TaoSMALXESetEqualityConstraints_C",
-                                 "TaoSMALXESetProjector_C",   "TaoSMALXEGetSubsolver_C",
-                                 "TaoSMALXESetBlocks_C",      "TaoSMALXEGetBlockSubsolver_C",
-                                 "TaoSMALXESetPreSolve_C",    "TaoSMALXEGetEqualityMultiplier_C",
-                                 "TaoSMALXEGetFeasibility_C", "TaoSMALXESetConsistencyCheck_C",
-                                 "TaoSMALXEGetStagnated_C",   "TaoSMALXEGetStalled_C",
-                                 "TaoSMALXESetAnderson_C",    "TaoSMALXESetPenaltyPreconditioner_C"};
+const char *const kComposed[] = {"TaoQPSetConstraints_C",
+                                 "TaoQPGetConstraints_C",
+                                 "TaoQPSetLinearTerm_C",
+                                 "TaoQPSetNormEstimate_C",
+                                 "TaoQPGetNormEstimate_C",
+                                 "TaoQPGetCounters_C",
+                                 "TaoQPResetCounters_C",
+                                 "TaoSMALXESetEqualityConstraints_C",
+                                 "TaoSMALXESetProjector_C",
+                                 "TaoSMALXEGetSubsolver_C",
+                                 "TaoSMALXESetBlocks_C",
+                                 "TaoSMALXEGetBlockSubsolver_C",
+                                 "TaoSMALXESetPreSolve_C",
+                                 "TaoSMALXEGetEqualityMultiplier_C",
+                                 "TaoSMALXEGetFeasibility_C",
+                                 "TaoSMALXESetConsistencyCheck_C",
+                                 "TaoSMALXEGetOuterTolerances_C",
+                                 "TaoSMALXEGetStagnated_C",
+                                 "TaoSMALXEGetStalled_C",
+                                 "TaoSMALXESetAnderson_C",
+                                 "TaoSMALXESetPenaltyPreconditioner_C"};
 
 PetscErrorCode TaoDestroy_SMALXE(Tao tao)
 {
@@ -1463,6 +1474,17 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *tol_e)
+{
+  PetscReal g, e;
+
+  PetscFunctionBegin;
+  PetscCall(Tolerances(tao, Get(tao), &g, &e));
+  if (tol_g) *tol_g = g;
+  if (tol_e) *tol_e = e;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 /*MC
@@ -1559,6 +1581,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPreSolve_C", SetPreSolve_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetEqualityMultiplier_C", GetEqualityMultiplier_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetFeasibility_C", GetFeasibility_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetOuterTolerances_C", GetOuterTolerances_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetConsistencyCheck_C", SetConsistencyCheck_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStagnated_C", GetStagnated_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStalled_C", GetStalled_SMALXE));

@@ -217,6 +217,35 @@ PetscErrorCode TaoSMALXEGetFeasibility(Tao tao, PetscReal *e)
 }
 
 /*@C
+  TaoSMALXEGetOuterTolerances - The absolute tolerances the outer loop stops on in the current (or last) solve:
+  |gP| <= tol_g and |C x - d| <= tol_e.
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver (inside a solve, e.g. in a `TaoMonitor` routine, or after one)
+
+  Output Parameters:
++ tol_g - the tolerance on the projected gradient (or NULL)
+- tol_e - the tolerance on the equality residual (or NULL)
+
+  Notes:
+  Both come from the relative tolerance (-tao_gttol) and the size of the linear term, so a monitor can put the
+  residuals on the scale of the relative tolerance: max(|gP| / tol_g, |C x - d| / tol_e) times gttol.
+
+  Level: advanced
+
+.seealso: `TAOSMALXE`, `TaoSMALXEGetFeasibility()`
+@*/
+PetscErrorCode TaoSMALXEGetOuterTolerances(Tao tao, PetscReal *tol_g, PetscReal *tol_e)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscUseMethod(tao, "TaoSMALXEGetOuterTolerances_C", (Tao, PetscReal *, PetscReal *), (tao, tol_g, tol_e));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   TaoSMALXESetConsistencyCheck - A function that can veto convergence: when the tolerances hold,
   smalxe asks fn whether the iterate is also consistent with whatever the pre-solve hook keeps in
   step with it (e.g. disk radii F lambda_n of a Coulomb problem), and iterates on if not.
