@@ -18,8 +18,10 @@
 #   solutions     docs/figures/solution-brick.png, solution-twobodies.png, solution-indentation.png,
 #                 solution-hemisphere.png (build/conefeti -output,
 #                 scripts/render-solution.py)                                         0.5 min measured
-#   validation    docs/validation.md and docs/figures/hertz-*.png: Hertz on three or four meshes per case
-#                 (scripts/bench-hertz.py) and scale on real geometry (scripts/bench-geometry-scale.py) 12 min measured
+#   validation    docs/validation.md and docs/figures/hertz-*.png, cattaneo-*.png: Hertz on three or four meshes per
+#                 case (scripts/bench-hertz.py), two elastic bodies against Hertz and Cattaneo-Mindlin
+#                 (scripts/bench-cattaneo.py, about 20 min more) and scale on real geometry
+#                 (scripts/bench-geometry-scale.py) 12 min measured before the two-body cases
 #   peers         docs/peers.md, docs/peers.png: PETSc's own solvers on the same problem
 #                 (scripts/bench-peers.py)                                             35 min page
 #   table3        docs/table3.md: the seed paper's Table 3, disks against friction polygons k = 2, 4
@@ -113,6 +115,8 @@ if want validation; then
   scripts/bench-hertz.py --build "$build" --case box --sizes 10,20,30 --write docs/validation.md --plot docs/figures/hertz-box.png
   scripts/bench-hertz.py --build "$build" --case indentation --sizes 0.04,0.02,0.01 --write docs/validation.md --plot docs/figures/hertz-indentation.png
   scripts/bench-hertz.py --build "$build" --case hemisphere --sizes 0.04,0.02,0.01,0.007 --write docs/validation.md --plot docs/figures/hertz-hemisphere.png
+  scripts/bench-cattaneo.py --build "$build" --case hertz --sizes 0.02,0.014,0.01 --write docs/validation.md --plot-dir docs/figures
+  scripts/bench-cattaneo.py --build "$build" --case mindlin --sizes 0.02,0.014,0.01 --write docs/validation.md --plot-dir docs/figures
   scripts/bench-geometry-scale.py --build "$build" --write docs/validation.md
 fi
 
