@@ -3,9 +3,10 @@
 
 Each scene is a valid conefeti command line (docs/scenes.md) drawn from a seeded generator:
 
-* 1 to 3 elastic boxes: one body on a rigid foundation plane; a block on a slab, node to node with
-  conforming meshes (the same cell size on the touching faces, the block's sides on the slab's node
-  lines); a third body on the block or beside it on the slab.
+* 1 to 3 elastic boxes: one body on a rigid foundation plane; a block on a slab (the block's sides on
+  the slab's node lines), with conforming meshes (node to node) or, in 4 of 10 blocks, its own cell size
+  across the contact face (node to surface: "nonmatching" in the run's line); a third body on the block
+  or beside it on the slab.
 * supports: none (a body held only by contact), clamped faces (`_fix`), rollers (`_fix_x/_y/_z`), a
   clamped part of the contact face (the brick's layout); never the whole contact face.
 * loads: pressure and shear on the top face, with the shear below, near or well beyond what friction
@@ -132,7 +133,7 @@ class Frame:
             if self.mirror and axis == 2:
                 op = {"<": ">", ">": "<", "<=": ">=", ">=": "<="}[op]
                 value = -value
-            text += "/" + "xyz"[self.perm[axis]] + op + fmt(value)
+            text += "/" + "xyz"[self.perm[axis]] + op + fmt(num(value, 10))  # conditions apply to centroids, half a cell away
         return text
 
 
@@ -314,7 +315,15 @@ def try_generate(max_ranks):
         # at least one cell of overlap: a block that touches the slab along an edge only is not meant
         hi_i = [random_state.randint(max(lo_i[d] + 1, 1), max(min(lo_i[d] + 4, lb.cells[d] + (1 if over else 0)), 1)) for d in range(2)]
         lower = [lb.lower[0] + lo_i[0] * lb.h[0], lb.lower[1] + lo_i[1] * lb.h[1], lb.upper[2]]
-        b = Body(lower, [lb.h[0], lb.h[1], hz], [hi_i[0] - lo_i[0], hi_i[1] - lo_i[1], n_cells_z])
+        cells = [hi_i[0] - lo_i[0], hi_i[1] - lo_i[1]]
+        h = [lb.h[0], lb.h[1]]
+        if random_state.random() < 0.4:  # non-matching: the block's own cell size across the contact face
+            for d in range(2):
+                c = max(1, cells[d] + random_state.choice([-1, 1, 2]))
+                h[d] = cells[d] * lb.h[d] / c
+                cells[d] = c
+        b = Body(lower, [h[0], h[1], hz], [cells[0], cells[1], n_cells_z])
+        b.upper[:2] = [lb.lower[d] + hi_i[d] * lb.h[d] for d in range(2)]  # on the slab's node lines, exactly
         bodies.append(b)
         bi = len(bodies) - 1
         # the part of the lower body's top under the block (the rest has no partner anyway)
@@ -332,6 +341,7 @@ def try_generate(max_ranks):
         else:
             z = Zone(type="bodies", body=li, face=under, other_body=bi, other_face=Sel(2, 0), law=name, coef=coef, area=overlap)
         z.upper, z.lower = bi, li
+        z.nonmatching = h != [lb.h[0], lb.h[1]]
         zones.append(z)
         return b, z
 
@@ -517,7 +527,7 @@ def command(scene, name):
 def describe(scene):
     laws = ",".join(z.law + (f"({fmt(z.coef)})" if z.coef is not None else "") for z in scene["zones"])
     gaps = ",".join(z.gapkind for z in scene["zones"] if z.type == "foundation")
-    return f"{scene['kind']}/{scene['support']} {laws}" + (f" gap={gaps}" if gaps else "") + (" load=0" if scene["zero_load"] else "") + (" noeq" if scene["no_equilibrium"] else "")
+    return f"{scene['kind']}/{scene['support']} {laws}" + (f" gap={gaps}" if gaps else "") + (" load=0" if scene["zero_load"] else "") + (" noeq" if scene["no_equilibrium"] else "") + (" nonmatching" if any(getattr(z, "nonmatching", False) for z in scene["zones"]) else "")
 
 
 # ----------------------------------------------------------------------------------------------

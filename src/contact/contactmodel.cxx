@@ -211,11 +211,29 @@ PetscErrorCode CollectBodiesZoneNodes(ContactModel cm, PetscInt z, const std::ma
       continue;
     }
     found++;
-    /* a node whose own or whose master nodes' displacements are (partly) prescribed is left out, as node to node */
-    PetscBool held = fixed.count(S.offset + info.node) ? PETSC_TRUE : PETSC_FALSE;
-    for (PetscInt v = 0; v < info.nmaster; v++)
-      if (fixed.count(M.offset + info.master[v])) held = PETSC_TRUE;
-    if (held) continue;
+    /* Dirichlet components of the slave node or its master nodes: where they are zero, u_c = 0 and a frictionless
+       row may drop those terms and still say N u <= d (a slab clamped or on rollers next to the contact face keeps
+       its contact), as foundation zones do. The node is left out when one of them is fixed in all three components
+       (or moved: DirichletNodes() marks a nonzero prescribed value so), when it has friction (a tangent along a
+       fixed direction would be a zero row), or when no term along the normal is left. */
+    {
+      auto      f = fixed.find(S.offset + info.node);
+      unsigned  mask[4];
+      PetscBool held = PETSC_FALSE, along = PETSC_FALSE;
+      mask[0] = f == fixed.end() ? 0u : f->second;
+      for (PetscInt v = 0; v < info.nmaster; v++) {
+        auto g      = fixed.find(M.offset + info.master[v]);
+        mask[1 + v] = g == fixed.end() ? 0u : g->second;
+      }
+      for (PetscInt v = 0; v <= info.nmaster; v++) {
+        if (mask[v] && (mask[v] == 7u || info.law != CONTACT_FRICTIONLESS)) held = PETSC_TRUE;
+        for (int c = 0; c < 3; c++)
+          if (!(mask[v] & (1u << c)) && info.n[c] != 0) along = PETSC_TRUE;
+      }
+      if (held || !along) continue;
+      info.fixed = mask[0];
+      for (PetscInt v = 0; v < info.nmaster; v++) info.master_fixed[v] = mask[1 + v];
+    }
     Tangents(info.n, info.t1, info.t2);
     PetscCallCXX(d.nodes.push_back(info));
   }
@@ -269,8 +287,8 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<Pets
     /* A node with a Dirichlet component: u is zero there, so a frictionless row may drop that component's term
        and still say N u <= d (a node on a symmetry plane of a quarter model, where the obstacle's normal lies in
        the plane, keeps its contact). It is left out when every component its row acts on is fixed, and when it
-       has friction (a tangent along a fixed direction would be a zero row); zones between bodies leave out every
-       node with a Dirichlet component (CollectBodiesZoneNodes()). */
+       has friction (a tangent along a fixed direction would be a zero row); zones between bodies apply the same rule
+       to the slave node and its master nodes (CollectBodiesZoneNodes()). */
     {
       auto      f    = fixed.find(offset + nodes[i]);
       PetscBool keep = PETSC_TRUE;
@@ -323,12 +341,14 @@ PetscErrorCode CreateFETIWithContactRows(ContactModel cm)
     for (int r = 0; r < nrows; r++) {
       kinds.push_back(r == 0 ? FETI_ROW_CONTACT_NORMAL : FETI_ROW_CONTACT_TANGENTIAL);
       for (int c = 0; c < 3; c++) {
-        if (k.fixed & (1u << c)) continue; /* u_c = 0 at the node: the term carries nothing (CollectZoneNodes()) */
-        body.push_back(k.body);
-        node.push_back(k.node);
-        comp.push_back(c);
-        coef.push_back(dirs[r][c]);
-        for (PetscInt v = 0; v < k.nmaster; v++) { /* u_slave - sum_v w_v u_master(v): the master point chi moves with its triangle */
+        if (!(k.fixed & (1u << c))) { /* u_c = 0 at a fixed node: the term carries nothing (CollectZoneNodes()) */
+          body.push_back(k.body);
+          node.push_back(k.node);
+          comp.push_back(c);
+          coef.push_back(dirs[r][c]);
+        }
+        for (PetscInt v = 0; v < k.nmaster; v++) {     /* u_slave - sum_v w_v u_master(v): the master point chi moves with its triangle */
+          if (k.master_fixed[v] & (1u << c)) continue; /* u_c = 0 at that master node */
           body.push_back(k.other_body);
           node.push_back(k.master[v]);
           comp.push_back(c);
