@@ -139,13 +139,13 @@ def plot(case, x, path):
     fig.savefig(path, dpi=110)
 
 
-def write_section(path, case, text):
-    """replace the text between <!-- bench-hertz:case --> and <!-- /bench-hertz:case --> in path"""
+def write_section(path, case, text, script="bench-hertz"):
+    """replace the text between <!-- script:case --> and <!-- /script:case --> in path (also bench-cattaneo.py's)"""
     with open(path) as f:
         doc = f.read()
-    start, end = "<!-- bench-hertz:%s -->" % case, "<!-- /bench-hertz:%s -->" % case
+    start, end = "<!-- %s:%s -->" % (script, case), "<!-- /%s:%s -->" % (script, case)
     if start not in doc or end not in doc:
-        sys.exit("bench-hertz.py: %s has no %s ... %s markers" % (path, start, end))
+        sys.exit("%s.py: %s has no %s ... %s markers" % (script, path, start, end))
     doc = re.sub(re.escape(start) + ".*?" + re.escape(end), lambda m: start + "\n" + text + "\n" + end, doc, flags=re.S)
     with open(path, "w") as f:
         f.write(doc)
