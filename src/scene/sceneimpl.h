@@ -74,9 +74,9 @@ struct Scene_Impl {
   std::vector<SceneZoneSpec>                  zones;
   std::vector<std::unique_ptr<SceneSelector>> predicates; /* contexts of the FEM tag predicates (stable addresses) */
   PetscBool                                   fromoptions = PETSC_FALSE, femsetup = PETSC_FALSE, setup = PETSC_FALSE, solved = PETSC_FALSE;
-  FEM                                         fem      = nullptr;
-  ContactModel                                cm       = nullptr;
-  PetscLogDouble                              time_fem = 0, time_setup = 0, time_solve = 0; /* time_setup includes time_fem */
+  FEM                                         fem        = nullptr;
+  ContactModel                                cm         = nullptr;
+  PetscLogDouble                              time_setup = 0, time_solve = 0; /* time_setup includes the mesh phase (time_phases) */
   /* progress (sceneprogress.cxx): the caller's hook, the scene's own reports (the mesh phase), and the
      duration of each phase on this rank, which the summary reports */
   ConeFETIProgressFn progressfn  = nullptr;
