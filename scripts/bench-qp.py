@@ -13,14 +13,16 @@ with factor / 10 (down to 1e-4). bqpip starts from factor 10 (its own residual c
 above a tight tolerance). The factor used is printed in the tables.
 
 With --defaults it compares instead the defaults of mprgp/mpgp, which follow the Hessian (an assembled one
-gets ICC in face, the projected CG expansion and Gamma 2: src/qp/impls/mpgp/mpgpdefaults.cxx), with the old
+gets ICC in face, the projected CG expansion and Gamma 2 unless the set has cone blocks:
+src/qp/impls/mpgp/mpgpdefaults.cxx), with the old
 defaults (no preconditioner, Dostal's expansion, Gamma 1, now given as options) and with TAO's bound solvers,
 on the obstacle and the journal bearing at 100^2 and 316^2 unknowns and on the disks, and then old against
 new defaults on the random ill-conditioned QPs of tests/qp (qp_known_solution), whose Hessian is a MATSHELL
 (the defaults do not change there) or the same matrix stored as AIJ (-matrix aij).
 
 Usage:  scripts/bench-qp.sh [--quick] [--defaults] [--out DIR] [--sizes small,large] [--problems obstacle,bearing,disks]
-                           [--rtol 1e-6] [--timeout 180] [--tao-timeout 60]
+                           [--rtol 1e-6] [--timeout 180] [--tao-timeout 60] [--seeds 12345,1,2,3,4,5,6] [--jobs 2]
+(--problems '' with --defaults: the random QPs only.)
 Prints markdown tables; the raw JSON lines go to DIR/results.jsonl (default build/bench-qp).
 """
 import re
@@ -177,11 +179,13 @@ def fmt_row(label, rec, err, qref):
         rec["reason"] + ("; " + err.replace("|", "/") if err else ""))
 
 
-def random_known(kind, solver, cond, matrix, old, timeout):
-    """One run of tests/qp's qp_known_solution; returns (its, products or None, note)."""
+def random_known(kind, solver, cond, matrix, old, timeout, seed=12345):
+    """One run of tests/qp's qp_known_solution; returns (its, products or None, note, command)."""
     t = solver[4:]
     cmd = [os.path.join(ROOT, "build", "tests", "qp", "qp_known_solution"), "-kind", kind, "-solver", solver, "-cond", cond, "-units", "50", "-rtol", "1e-9", "-tol", "1",
            "-tao_max_it", "100000", "-matrix", matrix]
+    if seed != 12345:
+        cmd += ["-seed", str(seed)]
     if old:
         cmd += ["-tao_%s_pc_type" % t, "none", "-tao_%s_expansion_projcg" % t, "0", "-tao_%s_gamma" % t, "1"]
     env = dict(os.environ, PETSC_OPTIONS="", OMP_NUM_THREADS="1")
@@ -196,22 +200,44 @@ def random_known(kind, solver, cond, matrix, old, timeout):
     return int(m.group(1)), int(m.group(2)), "", cmd
 
 
-def random_table(timeout):
+def random_table(timeout, seeds, jobs):
+    """Old against new defaults on the random QPs: the benchmark's seed (12345, tests/qp's) with the shell and the
+    AIJ Hessian, and the AIJ Hessian over further seeds (the same layout and spectrum, another random matrix,
+    solution and multipliers), whose spread says what a change on one seed is worth. A shell Hessian's defaults
+    do not depend on the seed (they are the old ones), so only the AIJ rows are repeated."""
+    from concurrent.futures import ThreadPoolExecutor
+    extra = [s for s in seeds if s != 12345]
+    runs = []
+    for kind, solver, cond in RANDOM_CASES:
+        for matrix in ("shell", "aij"):
+            for seed in [12345] + (extra if matrix == "aij" else []):
+                for old in (True, False):
+                    runs.append((kind, solver, cond, matrix, old, seed))
+    with ThreadPoolExecutor(max(1, jobs)) as ex:
+        res = dict(zip(runs, ex.map(lambda r: random_known(r[0], r[1], r[2], r[3], r[4], timeout, r[5]), runs)))
     print("\n### random ill-conditioned QPs (tests/qp, qp_known_solution, 300 unknowns, |gP| <= 1e-9 |b|): old defaults against the defaults\n")
-    print("| kind | solver | cond | Hessian | products, old defaults | products, defaults | change |")
-    print("|---|---|---|---|---|---|---|")
+    print("Seed 12345 (tests/qp's) with both Hessians; the AIJ Hessian also over the seeds %s: the change per seed, and the spread of the\nold defaults' products over all %d seeds.\n" % (",".join(map(str, extra)) or "-", len(extra) + 1))
+    print("| kind | solver | cond | Hessian | products, old defaults | products, defaults | change | change over the seeds: median (min .. max) | old defaults over the seeds (min .. max) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     cmds = []
     for kind, solver, cond in RANDOM_CASES:
         for matrix in ("shell", "aij"):
-            r_old = random_known(kind, solver, cond, matrix, True, timeout)
-            r_new = random_known(kind, solver, cond, matrix, False, timeout)
+            r_old, r_new = res[(kind, solver, cond, matrix, True, 12345)], res[(kind, solver, cond, matrix, False, 12345)]
             cmds.append(" ".join(os.path.relpath(c, ROOT) if c.startswith(ROOT) else c for c in r_new[3]))
             a = "%d" % r_old[1] if r_old[1] is not None else r_old[2]
             b = "%d" % r_new[1] if r_new[1] is not None else r_new[2]
             ch = "%+.0f %%" % (100.0 * (r_new[1] - r_old[1]) / r_old[1]) if r_old[1] and r_new[1] is not None else "-"
-            print("| %s | %s | %s | %s | %s | %s | %s |" % (kind, solver[4:], cond, matrix, a, b, ch))
-            sys.stdout.flush()
-    print("\nCommands (the old defaults add -tao_<type>_pc_type none -tao_<type>_expansion_projcg 0 -tao_<type>_gamma 1):\n")
+            over, spread = "-", "-"
+            if matrix == "aij" and extra:
+                pairs = [(res[(kind, solver, cond, matrix, True, s)][1], res[(kind, solver, cond, matrix, False, s)][1]) for s in [12345] + extra]
+                chs = sorted(100.0 * (n - o) / o for o, n in pairs if o and n is not None)
+                olds = [o for o, _ in pairs if o]
+                if chs:
+                    over = "%+.0f %% (%+.0f .. %+.0f %%)%s" % (chs[len(chs) // 2], chs[0], chs[-1], "" if len(chs) == len(pairs) else ", %d failed" % (len(pairs) - len(chs)))
+                if olds:
+                    spread = "%d .. %d" % (min(olds), max(olds))
+            print("| %s | %s | %s | %s | %s | %s | %s | %s | %s |" % (kind, solver[4:], cond, matrix, a, b, ch, over, spread))
+    print("\nCommands (the old defaults add -tao_<type>_pc_type none -tao_<type>_expansion_projcg 0 -tao_<type>_gamma 1; other seeds add -seed S):\n")
     for c in cmds:
         print("    " + c)
 
@@ -225,6 +251,8 @@ def main():
     ap.add_argument("--tao-timeout", type=int, default=60, help="seconds per run of a TAO solver (keeps the whole benchmark under 15 minutes)")
     ap.add_argument("--quick", action="store_true", help="small sizes only")
     ap.add_argument("--defaults", action="store_true", help="the defaults chosen from the Hessian against the old defaults and TAO's bound solvers, and the random QPs of tests/qp")
+    ap.add_argument("--seeds", default="12345,1,2,3,4,5,6", help="--defaults: seeds of the random QPs (12345 is tests/qp's; the others show the spread)")
+    ap.add_argument("--jobs", type=int, default=2, help="--defaults: random QPs run at once (their product counts do not depend on the load)")
     ap.add_argument("--out", default=os.path.join(ROOT, "build", "bench-qp"))
     args = ap.parse_args()
     sizes = ["small"] if args.quick else args.sizes.split(",")
@@ -234,7 +262,7 @@ def main():
         print("QP benchmark: target |gP| <= %g |b|, measured by the programs; %s, %d cores, %s" % (args.rtol, platform.node(), os.cpu_count(), time.strftime("%Y-%m-%d %H:%M")))
         print("Load average at start: %.2f %.2f %.2f" % os.getloadavg())
         table = PROBLEMS_DEFAULTS if args.defaults else PROBLEMS
-        for pname in args.problems.split(","):
+        for pname in [p for p in args.problems.split(",") if p]:
             prog, base0, solvers, sz = table[pname]
             for size in sizes:
                 nopt, repeat = sz[size]
@@ -266,7 +294,7 @@ def main():
                 for label, rec, err, cmd in rows:
                     print("    %s %s" % (prog, cmd))
         if args.defaults:
-            random_table(args.timeout)
+            random_table(args.timeout, [int(x) for x in args.seeds.split(",")], args.jobs)
         print("\nTotal wall time of the benchmark: %.0f s" % (time.time() - t_start))
 
 

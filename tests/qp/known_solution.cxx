@@ -10,6 +10,8 @@
      -blocks      tao_smalxe: inner solves as a Gauss-Seidel sweep over two blocks (disk entries, the rest)
      -equality_routines  tao_smalxe: give C x = d through TAO's equality-constraint routines
      -tol <t>     asserted bound on |x - x*| / |x*|
+     -seed <s>    seed of the generator (default 12345): another random matrix, solution and multipliers with the
+                  same layout and spectrum (the benchmark's spread over seeds)
      -matrix shell|dense|aij  how A is stored (default shell, whose products are the same on any number of
                   ranks): an assembled A (aij) lets TAO mprgp/mpgp choose a preconditioner in face by default
      -prefix <p>  options prefix of the Tao or KSP (as the contact layer gives smalxe contact_): its
@@ -75,7 +77,7 @@ int main(int argc, char **argv)
 {
   KnownQP     qp;
   char        kind[64] = "bounds", solver[64] = "tao_mpgp", prefix[64] = "", matrix[64] = "shell";
-  PetscInt    units = 20, m = 0, its = 0;
+  PetscInt    units = 20, m = 0, its = 0, seed = 12345;
   PetscReal   cond = 100, scale = 1, rtol = 1e-10, tol = 1e-6, err, dist, xnorm, xsnorm, gpnorm, bound, bnorm;
   Vec         x, g, gp;
   QPCounters  counters;
@@ -88,6 +90,7 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetString(NULL, NULL, "-solver", solver, sizeof(solver), NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-units", &units, NULL));
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-equality", &m, NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-seed", &seed, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-cond", &cond, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-scale", &scale, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-rtol", &rtol, NULL));
@@ -100,7 +103,7 @@ int main(int argc, char **argv)
   {
     const std::string mt(matrix);
     PetscCheck(mt == "shell" || mt == "dense" || mt == "aij", PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "-matrix %s: must be shell, dense or aij", matrix);
-    PetscCall(KnownQPCreate(PETSC_COMM_WORLD, kind, units, cond, scale, m, &qp, PETSC_INFINITY, mt == "shell" ? PETSC_TRUE : PETSC_FALSE));
+    PetscCall(KnownQPCreate(PETSC_COMM_WORLD, kind, units, cond, scale, m, &qp, PETSC_INFINITY, mt == "shell" ? PETSC_TRUE : PETSC_FALSE, (uint64_t)seed));
     if (mt == "aij") PetscCall(MatConvert(qp.A, MATAIJ, MAT_INPLACE_MATRIX, &qp.A));
   }
   PetscCall(VecDuplicate(qp.xstar, &x));

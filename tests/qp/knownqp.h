@@ -243,11 +243,11 @@ static inline std::vector<double> RandomOrthogonal(PetscInt n, PetscInt k, TestR
 /* units: number of 6-entry units; A and b are scaled by `scale` (the solution is not); m: number of
    equality rows (0: none), rows of C orthonormal. */
 static inline PetscErrorCode KnownQPCreate(MPI_Comm comm, const std::string &kind, PetscInt units, PetscReal cond, PetscReal scale, PetscInt m, KnownQP *qp, PetscReal bound_cap = PETSC_INFINITY,
-                                           PetscBool shell = PETSC_TRUE)
+                                           PetscBool shell = PETSC_TRUE, uint64_t seed = 12345)
 {
   UnitLayout            L;
   PetscInt              N = 6 * units, nlocal, rstart, ulocal = PETSC_DECIDE, mlocal = PETSC_DECIDE;
-  TestRandom            rnd(12345);
+  TestRandom            rnd(seed);
   std::vector<double>   x(N), nvec(N), lo(N, PETSC_NINFINITY), hi(N, PETSC_INFINITY);
   std::vector<PetscInt> disks, cones;
   std::vector<double>   centers, radii, mus;

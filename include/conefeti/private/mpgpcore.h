@@ -95,17 +95,20 @@ PETSC_INTERN PetscErrorCode QPNormSettingsApply(QPNormSettings *, Mat, const cha
 /* At the start of a solve: TAO's gatol, gttol and grtol (or with an equality catol and crtol) are finite and >= 0. */
 PETSC_INTERN PetscErrorCode TaoQPCheckTolerances_Private(Tao, PetscBool);
 
-/* The defaults of the TAO types that depend on the Hessian (mpgpdefaults.cxx): as PETSc's KSP picks its PC
-   from the matrix, an assembled sparse Hessian gets a preconditioner in face (ICC, block Jacobi with ICC on
-   several ranks), the projected CG expansion and Gamma 2; any other (a MATSHELL such as FETI's dual operator,
-   a dense matrix) keeps no preconditioner, Dostal's expansion and Gamma 1. */
+/* The defaults of the TAO types that depend on the Hessian and the set (mpgpdefaults.cxx): as PETSc's KSP picks
+   its PC from the matrix, an assembled sparse Hessian gets a preconditioner in face (ICC, block Jacobi with ICC
+   on several ranks), the projected CG expansion and Gamma 2, unless the set has cone blocks; any other Hessian
+   (a MATSHELL such as FETI's dual operator, a dense matrix) or a set with cones keeps no preconditioner,
+   Dostal's expansion and Gamma 1. */
 struct MPGPHessianDefaults {
   PetscBool assembled    = PETSC_FALSE; /* ICC is available for the (rank-local diagonal block of the) preconditioning matrix */
+  PetscBool cones        = PETSC_FALSE; /* the set has cone blocks (on some rank) */
   PCType    pc           = PCNONE;      /* PCICC, PCBJACOBI (with ICC in its blocks) or PCNONE */
   PetscBool projcg       = PETSC_FALSE;
   PetscReal gamma        = 1.0;
   char      mat_type[64] = ""; /* the preconditioning matrix's type, for the view */
 };
-PETSC_INTERN PetscErrorCode MPGPHessianDefaultsGet(Mat, MPGPHessianDefaults *);
-/* "because the Hessian is assembled (seqaij)" or "because the Hessian is not an assembled sparse matrix (shell)" */
+PETSC_INTERN PetscErrorCode MPGPHessianDefaultsGet(Mat, SeparableSet, MPGPHessianDefaults *);
+/* "because the Hessian is assembled (seqaij)", "because the Hessian is not an assembled sparse matrix (shell)" or
+   "because the set has cone blocks ..." */
 PETSC_INTERN PetscErrorCode MPGPHessianDefaultsReason(const MPGPHessianDefaults *, char *, size_t);

@@ -249,8 +249,8 @@ PetscErrorCode TaoMPGPBlockICC(TAO_MPGP *qp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The PC type, the expansion and Gamma that the user did not choose follow the preconditioning matrix P
-   (MPGPHessianDefaultsGet()). A PC whose type is no longer the one given here was set by the user (or by
+/* The PC type, the expansion and Gamma that the user did not choose follow the preconditioning matrix P and the
+   set (MPGPHessianDefaultsGet()). A PC whose type is no longer the one given here was set by the user (or by
    the caller, e.g. smalxe's penalty preconditioner) through TaoQPGetPC(), and is kept. */
 PetscErrorCode TaoMPGPApplyHessianDefaults(Tao tao, TAO_MPGP *qp, Mat P)
 {
@@ -258,7 +258,7 @@ PetscErrorCode TaoMPGPApplyHessianDefaults(Tao tao, TAO_MPGP *qp, Mat P)
   PetscBool same;
 
   PetscFunctionBegin;
-  PetscCall(MPGPHessianDefaultsGet(P, &qp->defaults));
+  PetscCall(MPGPHessianDefaultsGet(P, qp->set, &qp->defaults));
   qp->solved = PETSC_TRUE;
   if (!qp->gamma_given) qp->core.gamma = qp->defaults.gamma;
   if (!qp->projcg_given) qp->core.projcg = qp->defaults.projcg;
@@ -421,7 +421,7 @@ PetscErrorCode TaoSetFromOptions_MPGP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptio
    defaults from the Hessian (with the reason). */
 PetscErrorCode TaoMPGPViewChoices(TAO_MPGP *qp, PetscViewer viewer)
 {
-  char        why[160], chosen[200];
+  char        why[256], chosen[300];
   const char *pctype = PCNONE;
   PetscBool   blocks;
 
@@ -659,7 +659,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
   over a separable convex set: bounds, 2D disks, 3D second-order cones, free entries.
 
   Options Database Keys:
-+ -tao_mpgp_gamma <1 or 2>      - proportioning parameter Gamma (default from the Hessian, as for mprgp)
++ -tao_mpgp_gamma <1 or 2>      - proportioning parameter Gamma (default from the Hessian, as for mprgp; 1 when the set has cones)
 . -tao_mpgp_alpha <1.95>        - fixed step length in units of 1/||A||, in (0, 2]
 . -tao_mpgp_norm <value>        - ||A|| given, not estimated
 . -tao_mpgp_norm_method <slepc> - slepc or power
@@ -668,13 +668,15 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_arc <1>            - CG steps also move a disk block on its circle along the circle while alpha |g.nu|/r <= this; 0 turns arc steps off
 . -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
 . -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
-. -tao_mpgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian, as for mprgp)
-. -tao_mpgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries and interior blocks (default from the Hessian, as for mprgp)
+. -tao_mpgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian, as for mprgp; off when the set has cones)
+. -tao_mpgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries and interior blocks (default from the Hessian, as for mprgp; none when the set has cones)
 - -tao_mpgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:
   The set is given by `TaoQPSetConstraints()` (a `SeparableSet`); otherwise by the variable bounds
-  as described by -tao_mpgp_block_type. Otherwise as `TAOMPRGP`. Arc steps are conefeti's addition:
+  as described by -tao_mpgp_block_type. Otherwise as `TAOMPRGP`, except that a set with cone blocks keeps no
+  PC, Dostal's expansion and Gamma 1 whatever the Hessian (a cone block on its surface moves by projected
+  gradient steps only, so such solves are nearly all proportioning steps: src/qp/impls/mpgp/mpgpdefaults.cxx). Arc steps are conefeti's addition:
   docs/algorithms.md, 'MPRGP and MPGP'.
 
   References:
