@@ -346,7 +346,11 @@ PetscErrorCode FEMCreateFETIWithRows(FEM fem, PetscInt nextra, const FETIRowKind
     std::vector<PetscInt>    dnnz(nowned), onnz(nowned), extrarows(nextra, -1), primalstart(size + 1, 0);
     std::vector<FETIRowKind> kinds(nowned);
     /* every rank's first primal dof: the preallocation of a row counts its entries against its owner's columns */
-    for (PetscMPIInt q = 0; q <= size; q++) primalstart[q] = impl.subprimaloffset[(impl.nsubdomains * q) / size];
+    {
+      const PetscInt mine = impl.subprimaloffset[impl.firstlocal];
+      PetscCallMPI(MPI_Allgather(&mine, 1, MPIU_INT, primalstart.data(), 1, MPIU_INT, comm));
+      primalstart[size] = impl.subprimaloffset[impl.nsubdomains];
+    }
     PetscCall(VecCreateMPI(comm, 3 * nowned, PETSC_DETERMINE, &meta)); /* B's row layout, three numbers per row */
     for (PetscInt r = 0; r < nrows; r++) {
       const PetscMPIInt q    = dest[r];
