@@ -674,6 +674,7 @@ PetscErrorCode FEMSetOptionsPrefix(FEM fem, const char prefix[])
 . -fem_subdomains <px,py,pz or n>         - subdomain counts (structured: per axis; METIS: total per body)
 . -fem_dirichlet <multipliers,primal>     - Total FETI (Dirichlet by multipliers) or Dirichlet kept in the primal
 . -fem_dirichlet_min_hold <0.25>          - primal mode: a subdomain whose Dirichlet dofs hold its rigid motions less firmly than this (see `FEMCreateFETI()`) gets them as multipliers (0: never)
+. -fem_balance_multipliers <true>         - spread B's rows (the multipliers) evenly over the ranks instead of keeping them with the rank of their lowest subdomain (see `FEMCreateFETI()`)
 . -fem_matrix_type <sbaij,aij>            - storage of the subdomain stiffness matrices (SBAIJ, the default, is half of AIJ; CHOLMOD factors a transient AIJ copy)
 . -fem_E <E>                              - Young's modulus of every body without `FEMSetMaterial()`
 . -fem_nu <nu>                            - Poisson's ratio of every body without `FEMSetMaterial()`
@@ -702,6 +703,8 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
                              (PetscEnum *)&impl.dirichletmode, NULL));
   PetscCall(PetscOptionsReal("-fem_dirichlet_min_hold", "Primal mode: a subdomain whose Dirichlet dofs hold its rigid motions less firmly than this gets them as multipliers (0: never)",
                              "FEMCreateFETI", impl.dirichlethold, &impl.dirichlethold, NULL));
+  PetscCall(PetscOptionsBool("-fem_balance_multipliers", "Spread B's rows (the multipliers) evenly over the ranks instead of keeping them on the rank of their lowest subdomain", "FEMCreateFETI",
+                             impl.balancerows, &impl.balancerows, NULL));
   PetscCall(PetscOptionsString("-fem_matrix_type", "Subdomain stiffness storage: sbaij or aij", "FEMCreateFETI", mattype, mattype, sizeof(mattype), NULL));
   PetscCall(PetscOptionsReal("-fem_E", "Young's modulus of bodies without FEMSetMaterial()", "FEMSetMaterial", E, &E, &setE));
   PetscCall(PetscOptionsReal("-fem_nu", "Poisson's ratio of bodies without FEMSetMaterial()", "FEMSetMaterial", nu, &nu, &setnu));

@@ -73,12 +73,14 @@ static PetscErrorCode GatherExtraRows(FEM fem, PetscInt nrows, const FETIRowKind
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode BuildRows(FEM fem, const std::vector<ExtraRow> &extra, std::vector<LocalRow> &rows)
+/* The rows of the local subdomains, subdomain by subdomain; persub: how many each subdomain anchors */
+static PetscErrorCode BuildRows(FEM fem, const std::vector<ExtraRow> &extra, std::vector<LocalRow> &rows, std::vector<PetscInt> &persub)
 {
   FEM_Impl                          &impl = *fem->impl;
   std::vector<std::vector<PetscInt>> extrabyanchor(impl.nlocal);
 
   PetscFunctionBegin;
+  PetscCallCXX(persub.assign(impl.nlocal, 0));
   for (size_t a = 0; a < extra.size(); a++) {
     const ExtraRow &r      = extra[a];
     PetscInt        anchor = PETSC_MAX_INT;
@@ -90,8 +92,9 @@ static PetscErrorCode BuildRows(FEM fem, const std::vector<ExtraRow> &extra, std
     if (anchor >= impl.firstlocal && anchor < impl.firstlocal + impl.nlocal) PetscCallCXX(extrabyanchor[anchor - impl.firstlocal].push_back((PetscInt)a));
   }
   for (PetscInt s = 0; s < impl.nlocal; s++) {
-    const FEMSubdomain &sd = impl.local[s];
-    const FEMBody      &b  = impl.bodies[sd.body];
+    const FEMSubdomain &sd    = impl.local[s];
+    const FEMBody      &b     = impl.bodies[sd.body];
+    const size_t        first = rows.size();
     for (PetscInt n : sd.nodes) {
       const PetscInt e = impl.copies.Find(sd.body, n);
       if (e < 0 || impl.copies.Subdomains(e)[0] != sd.id) continue; /* rows live with the lowest copy */
@@ -123,6 +126,55 @@ static PetscErrorCode BuildRows(FEM fem, const std::vector<ExtraRow> &extra, std
       }
       PetscCallCXX(rows.push_back(row));
     }
+    persub[s] = (PetscInt)(rows.size() - first);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* How many of B's rows each rank owns (nowned) and, per row built here, the rank that owns it (dest).
+   The rows keep their global order (by lowest subdomain); only the cuts between the ranks move. Kept with the
+   rank of their lowest subdomain, the rows are uneven: the rows between two ranks' subdomains and every contact
+   row of a zone that lies in one rank's subdomains fall to one rank (on the brick at 2 ranks 38055 against
+   25836), and the dual vector operations of the QP solver, a sizeable part of its time, follow the rows. With
+   -fem_balance_multipliers each rank gets about its share of the rows, cut only between the row groups of two
+   subdomains (so a contact node's rows, anchored at one subdomain, never straddle two ranks). */
+static PetscErrorCode LayoutRows(FEM fem, const std::vector<PetscInt> &persub, PetscInt firstrow, std::vector<PetscMPIInt> &dest, PetscInt *nowned)
+{
+  FEM_Impl             &impl = *fem->impl;
+  MPI_Comm              comm = PetscObjectComm((PetscObject)fem);
+  PetscMPIInt           size, rank;
+  std::vector<PetscInt> counts(impl.nsubdomains, 0), cut;
+  PetscInt              total = 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  PetscInt nlocalrows = 0;
+  for (PetscInt s = 0; s < impl.nlocal; s++) nlocalrows += persub[s];
+  PetscCallCXX(dest.assign(nlocalrows, rank));
+  *nowned = nlocalrows;
+  if (size == 1 || !impl.balancerows) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt s = 0; s < impl.nlocal; s++) counts[impl.firstlocal + s] = persub[s];
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts.data(), (PetscMPIInt)impl.nsubdomains, MPIU_INT, MPI_SUM, comm));
+  for (PetscInt c : counts) total += c;
+  /* cut[q]: the first global row of rank q, at the subdomain group boundary nearest to q total / size */
+  PetscCallCXX(cut.assign(size + 1, total));
+  cut[0] = 0;
+  {
+    PetscInt    prefix = 0, s = 0;
+    PetscMPIInt q = 1;
+    for (; q < size; q++) {
+      const PetscReal target = (PetscReal)total * q / size;
+      while (s < impl.nsubdomains && std::abs((PetscReal)(prefix + counts[s]) - target) <= std::abs((PetscReal)prefix - target)) prefix += counts[s++];
+      cut[q] = std::max(prefix, cut[q - 1]);
+    }
+  }
+  *nowned = cut[rank + 1] - cut[rank];
+  for (PetscInt r = 0; r < nlocalrows; r++) {
+    const PetscInt row = firstrow + r;
+    PetscMPIInt    q   = 0;
+    while (row >= cut[q + 1]) q++;
+    dest[r] = q;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -151,8 +203,9 @@ static PetscErrorCode BuildRows(FEM fem, const std::vector<ExtraRow> &extra, std
   -fem_dirichlet_min_hold (0.25). Such a subdomain would swing about its small support (K_s nearly singular,
   F many times larger); it floats instead and its Dirichlet dofs get rows as in Total FETI (-info lists the
   subdomains and their values).
-  Rows are owned by the rank of the lowest subdomain they touch and ordered by that subdomain, so
-  the problem (and the iterates) do not depend on the number of ranks.
+  Rows are ordered by the lowest subdomain they touch, so the problem (and the iterates) do not depend on the
+  number of ranks. They are owned by the rank of that subdomain with -fem_balance_multipliers 0; by default the
+  cuts between the ranks move (only between two subdomains' rows) so that every rank owns about as many rows.
 
   Level: beginner
 
@@ -188,9 +241,10 @@ PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
 
   Notes:
   Row r reads sum_t coef[t] u(body[t], node[t])[comp[t]] (<= or =) rhs[r]. A node held by several subdomains is
-  addressed through its copy in the lowest subdomain (the copies are glued). The rows are placed with the rank
-  owning the lowest subdomain they touch, after that subdomain's gluing and Dirichlet rows and in the order given;
-  consecutive rows stay consecutive there (so a normal and its two tangential rows form one block on one rank).
+  addressed through its copy in the lowest subdomain (the copies are glued). The rows are placed after the gluing
+  and Dirichlet rows of the lowest subdomain they touch, in the order given, and owned by the rank that owns that
+  subdomain's rows (`FEMCreateFETI()`); consecutive rows stay consecutive there (so a normal and its two
+  tangential rows form one block on one rank).
   The model keeps none of them: they pass through, from the caller to the FETI object.
 
   Level: intermediate
@@ -200,20 +254,24 @@ PetscErrorCode FEMCreateFETI(FEM fem, FETI *feti)
 PetscErrorCode FEMCreateFETIWithRows(FEM fem, PetscInt nextra, const FETIRowKind kinds[], const PetscInt rowptr[], const PetscInt body[], const PetscInt node[], const PetscInt comp[],
                                      const PetscScalar coef[], const PetscScalar rhs[], PetscInt rowindex[], FETI *feti)
 {
-  FEM_Impl             &impl = *fem->impl;
-  MPI_Comm              comm = PetscObjectComm((PetscObject)fem);
-  std::vector<Mat>      K(impl.nlocal);
-  std::vector<Vec>      f(impl.nlocal);
-  std::vector<LocalRow> rows;
-  std::vector<ExtraRow> extra;
-  PetscInt              nprimal = 0, first, nrows, firstrow;
-  const char           *prefix;
+  FEM_Impl                &impl = *fem->impl;
+  MPI_Comm                 comm = PetscObjectComm((PetscObject)fem);
+  std::vector<Mat>         K(impl.nlocal);
+  std::vector<Vec>         f(impl.nlocal);
+  std::vector<LocalRow>    rows;
+  std::vector<ExtraRow>    extra;
+  PetscInt                 nprimal = 0, nrows, firstrow, nowned;
+  std::vector<PetscInt>    persub;
+  std::vector<PetscMPIInt> dest;
+  PetscMPIInt              size;
+  const char              *prefix;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
   PetscAssertPointer(feti, 11);
   PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FEMSetUp() before FEMCreateFETI()");
   PetscCheck(nextra >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "FEMCreateFETIWithRows(): %" PetscInt_FMT " rows", nextra);
+  PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(GatherExtraRows(fem, nextra, kinds, rowptr, body, node, comp, coef, rhs, extra));
   PetscCall(FETICreate(comm, feti));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)fem, &prefix));
@@ -276,32 +334,55 @@ PetscErrorCode FEMCreateFETIWithRows(FEM fem, PetscInt nextra, const FETIRowKind
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, impl.dirichletrows.data(), (PetscMPIInt)impl.nsubdomains, MPIU_INT, MPI_MAX, comm));
 
-  /* B: rows numbered rank by rank */
-  PetscCall(BuildRows(fem, extra, rows));
+  /* B: rows numbered rank by rank, subdomain by subdomain; owned as LayoutRows() says */
+  PetscCall(BuildRows(fem, extra, rows, persub));
   nrows = (PetscInt)rows.size();
   PetscCallMPI(MPI_Scan(&nrows, &firstrow, 1, MPIU_INT, MPI_SUM, comm));
   firstrow -= nrows;
-  first = impl.subprimaloffset[impl.firstlocal];
+  PetscCall(LayoutRows(fem, persub, firstrow, dest, &nowned));
   {
     Mat                      B;
-    Vec                      c;
-    std::vector<PetscInt>    dnnz(nrows), onnz(nrows);
-    std::vector<FETIRowKind> kinds(nrows);
-    std::vector<PetscInt>    extrarows(nextra, -1);
+    Vec                      c, meta; /* meta: per owned row its kind, diagonal and off-diagonal nonzeros */
+    std::vector<PetscInt>    dnnz(nowned), onnz(nowned), extrarows(nextra, -1), primalstart(size + 1, 0);
+    std::vector<FETIRowKind> kinds(nowned);
+    /* every rank's first primal dof: the preallocation of a row counts its entries against its owner's columns */
+    {
+      const PetscInt mine = impl.subprimaloffset[impl.firstlocal];
+      PetscCallMPI(MPI_Allgather(&mine, 1, MPIU_INT, primalstart.data(), 1, MPIU_INT, comm));
+      primalstart[size] = impl.subprimaloffset[impl.nsubdomains];
+    }
+    PetscCall(VecCreateMPI(comm, 3 * nowned, PETSC_DETERMINE, &meta)); /* B's row layout, three numbers per row */
     for (PetscInt r = 0; r < nrows; r++) {
+      const PetscMPIInt q    = dest[r];
+      PetscScalar       v[3] = {(PetscScalar)rows[r].kind, 0, 0};
+      PetscInt          idx[3];
       for (const RowEntry &e : rows[r].entries) {
-        if (e.col >= first && e.col < first + nprimal) dnnz[r]++;
-        else onnz[r]++;
+        if (e.col >= primalstart[q] && e.col < primalstart[q + 1]) v[1] += 1;
+        else v[2] += 1;
       }
-      kinds[r] = rows[r].kind;
+      for (PetscInt k = 0; k < 3; k++) idx[k] = 3 * (firstrow + r) + k;
+      PetscCall(VecSetValues(meta, 3, idx, v, INSERT_VALUES));
       if (rows[r].extra >= 0) extrarows[rows[r].extra] = firstrow + r;
     }
+    PetscCall(VecAssemblyBegin(meta));
+    PetscCall(VecAssemblyEnd(meta));
+    {
+      const PetscScalar *m;
+      PetscCall(VecGetArrayRead(meta, &m));
+      for (PetscInt r = 0; r < nowned; r++) {
+        kinds[r] = (FETIRowKind)(PetscInt)PetscRealPart(m[3 * r]);
+        dnnz[r]  = (PetscInt)PetscRealPart(m[3 * r + 1]);
+        onnz[r]  = (PetscInt)PetscRealPart(m[3 * r + 2]);
+      }
+      PetscCall(VecRestoreArrayRead(meta, &m));
+    }
+    PetscCall(VecDestroy(&meta));
     PetscCall(MatCreate(comm, &B));
-    PetscCall(MatSetSizes(B, nrows, nprimal, PETSC_DETERMINE, PETSC_DETERMINE));
+    PetscCall(MatSetSizes(B, nowned, nprimal, PETSC_DETERMINE, PETSC_DETERMINE));
     PetscCall(MatSetType(B, MATAIJ));
     PetscCall(MatXAIJSetPreallocation(B, 1, dnnz.data(), onnz.data(), NULL, NULL));
     PetscCall(MatCreateVecs(B, NULL, &c));
-    for (PetscInt r = 0; r < nrows; r++) {
+    for (PetscInt r = 0; r < nrows; r++) { /* rows owned elsewhere go there at the assembly */
       const PetscInt row = firstrow + r;
       for (const RowEntry &e : rows[r].entries) PetscCall(MatSetValue(B, row, e.col, e.val, ADD_VALUES));
       if (rows[r].rhs != 0.0) PetscCall(VecSetValue(c, row, rows[r].rhs, INSERT_VALUES));

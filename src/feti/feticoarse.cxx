@@ -8,12 +8,17 @@
      parallel   a parallel Cholesky (MUMPS unless -feti_coarse_pc_factor_mat_solver_type says otherwise)
                 on all ranks: the factor is distributed, for coarse problems too large for one rank; the
                 rounding then depends on the distribution.
-     auto       (default) single for a coarse dimension below -feti_coarse_parallel_dim (50 000), parallel from
-                there. Why (docs/scale.md, "Past this machine"): the single factor's entries grow like Ns^1.5 and
-                its flops like Ns^2.2 in the floating subdomains Ns (measured: at Ns = 6912 it took 0.4 GB and
+     auto       (default) redundant for a coarse dimension below -feti_coarse_redundant_dim (10 000), single below
+                -feti_coarse_parallel_dim (50 000), parallel from there. Why redundant for small coarse problems
+                (docs/scale.md, "Two ranks: where the time goes"): with single every other rank waits for each of
+                rank 0's coarse solves (on the brick at 2 ranks about 4 per F product, 1440 in a solve), and the
+                gather and the send back are two messages where redundant sends one; a factor of dimension 10 000
+                takes some 50 MB per rank, and every rank factors the same gathered matrix as single would, so the
+                numbers stay those of one rank (the fingerprints match on 1, 2 and 3 ranks). Why parallel above the next switch (docs/scale.md, "Past this machine"): the
+                single factor's entries grow like Ns^1.5 and its flops like Ns^2.2 in the floating subdomains Ns (measured: at Ns = 6912 it took 0.4 GB and
                 26 s on rank 0 while every other rank waited), and at 10^8 unknowns (Ns ~ 1.5e5 at H/h = 6)
                 tens of gigabytes: no rank holds it, so the factor must be distributed. Below the switch,
-                single keeps the results bit for bit those of one rank.
+                single (and redundant) keep the results bit for bit those of one rank.
    On one rank all four are one sequential Cholesky. */
 #include <conefeti/private/fetiimpl.h>
 
@@ -74,9 +79,9 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
   if (cs.mode == FETI_COARSE_AUTO) {
     PetscInt N;
     PetscCall(MatGetSize(A, &N, NULL));
-    cs.mode = N >= impl.coarseparalleldim ? FETI_COARSE_PARALLEL : FETI_COARSE_SINGLE;
-    PetscCall(PetscInfo(feti, "-feti_coarse_mode auto: coarse dimension %" PetscInt_FMT " %s -feti_coarse_parallel_dim %" PetscInt_FMT ": %s\n", N, N >= impl.coarseparalleldim ? ">=" : "<",
-                        impl.coarseparalleldim, FETICoarseModes[cs.mode]));
+    cs.mode = N >= impl.coarseparalleldim ? FETI_COARSE_PARALLEL : (N < impl.coarseredundantdim ? FETI_COARSE_REDUNDANT : FETI_COARSE_SINGLE);
+    PetscCall(PetscInfo(feti, "-feti_coarse_mode auto: coarse dimension %" PetscInt_FMT " (-feti_coarse_redundant_dim %" PetscInt_FMT ", -feti_coarse_parallel_dim %" PetscInt_FMT "): %s\n", N,
+                        impl.coarseredundantdim, impl.coarseparalleldim, FETICoarseModes[cs.mode]));
   }
   if (cs.mode == FETI_COARSE_SINGLE) {
     Mat           *gathered = NULL, Aseq = A;

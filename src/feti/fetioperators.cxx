@@ -397,6 +397,68 @@ PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscErrorCode (*pr
 
 /* The MATSHELLs F, P, Q, PFP, K+ and G of a FETI whose layout, factors and coarse problem are set up
    (FETISetUp()); each carries the FETI as its context. */
+/* -info: what this rank holds, the quantities that set its share of an F product and of the dual vector
+   operations (the load balance of a run on several ranks: docs/scale.md, "Two ranks: where the time goes") */
+static PetscErrorCode InfoBalance(FETI feti)
+{
+  FETI_Impl         &impl      = *feti->impl;
+  PetscInt           nfloating = 0, nb = 0, rows[4] = {0, 0, 0, 0}, ghostsB = 0, ghostsBt = 0;
+  PetscReal          nb2  = 0;
+  const PetscScalar *mask = nullptr;
+  PetscBool          info, own = PETSC_FALSE;
+
+  PetscFunctionBegin;
+  PetscCall(PetscInfoEnabled(FETI_CLASSID, &info));
+  if (!info) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!impl.boundarymask) { /* a transient mask: the run without -info keeps no more memory */
+    PetscCall(FETISetUpBoundaryMask(feti));
+    own = PETSC_TRUE;
+  }
+  PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
+  for (const FETISubdomain &sd : impl.sub) {
+    PetscInt b = 0;
+    if (sd.nkernel) nfloating++;
+    for (PetscInt i = 0; i < sd.n; i++) b += mask[sd.localoffset + i] != 0.0;
+    nb += b;
+    nb2 += (PetscReal)b * (PetscReal)b;
+  }
+  PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
+  if (own) PetscCall(VecDestroy(&impl.boundarymask));
+  for (FETIRowKind k : impl.kinds) rows[k]++;
+  if (impl.Bsum.ghosts) PetscCall(VecGetLocalSize(impl.Bsum.ghosts, &ghostsB));
+  if (impl.Btsum.ghosts) PetscCall(VecGetLocalSize(impl.Btsum.ghosts, &ghostsBt));
+  { /* PetscInfo() prints on the first rank of the communicator only: it prints every rank's line */
+    MPI_Comm            comm = PetscObjectComm((PetscObject)feti);
+    PetscMPIInt         size, rank;
+    const int           nv       = 12;
+    const double        mine[nv] = {(double)impl.sub.size(),
+                                    (double)nfloating,
+                                    (double)impl.nlocalprimal,
+                                    (double)nb,
+                                    nb2,
+                                    (double)impl.nlocalcoarse,
+                                    (double)impl.kinds.size(),
+                                    (double)rows[FETI_ROW_GLUING],
+                                    (double)rows[FETI_ROW_DIRICHLET],
+                                    (double)rows[FETI_ROW_CONTACT_NORMAL],
+                                    (double)rows[FETI_ROW_CONTACT_TANGENTIAL],
+                                    (double)(ghostsB + ghostsBt)};
+    std::vector<double> all;
+    PetscCallMPI(MPI_Comm_size(comm, &size));
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    PetscCallCXX(all.resize((size_t)nv * size));
+    PetscCallMPI(MPI_Gather(mine, nv, MPI_DOUBLE, all.data(), nv, MPI_DOUBLE, 0, comm));
+    for (PetscMPIInt r = 0; r < size; r++) {
+      const double *v = &all[(size_t)nv * r];
+      PetscCall(PetscInfo(feti,
+                          "Load of rank %d: %.0f subdomains (%.0f floating), %.0f primal dofs, %.0f touched by B (sum of squares %.4g), %.0f coarse; %.0f dual rows (gluing %.0f, Dirichlet %.0f, "
+                          "normal %.0f, tangential %.0f); ghost entries of B and B' %.0f\n",
+                          r, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11]));
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode FETICreateOperators_Private(FETI feti)
 {
   FETI_Impl &impl = *feti->impl;
@@ -416,6 +478,7 @@ PetscErrorCode FETICreateOperators_Private(FETI feti)
   PetscCall(MatShellSetOperation(impl.G, MATOP_MULT_TRANSPOSE, (void (*)(void))MatMultTranspose_G));
   PetscCall(PetscObjectComposeFunction((PetscObject)impl.G, "FETIShellGetFETI_C", ShellGetFETI));
   PetscCall(PetscObjectSetName((PetscObject)impl.G, "G"));
+  PetscCall(InfoBalance(feti));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -124,6 +124,7 @@ struct FEM_Impl {
   FEMDirichletMode          dirichletmode = FEM_DIRICHLET_MULTIPLIERS;
   PetscReal                 dirichlethold = 0.25;     /* -fem_dirichlet_min_hold: primal mode, subdomains held less firmly by Gamma_u get multipliers */
   std::vector<PetscInt>     dirichletrows;            /* per subdomain (all ranks), set by FEMCreateFETI(): 1 when its Dirichlet dofs are rows of B */
+  PetscBool                 balancerows = PETSC_TRUE; /* -fem_balance_multipliers: B's rows (the multipliers) spread evenly over the ranks, see FEMCreateFETI() */
   PetscBool                 sbaij       = PETSC_TRUE; /* symmetric storage: half of AIJ (CHOLMOD factors a transient AIJ copy) */
   PetscBool                 setupcalled = PETSC_FALSE;
   PetscInt                  nsubdomains = 0, firstlocal = 0, nlocal = 0;
