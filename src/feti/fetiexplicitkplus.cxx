@@ -169,12 +169,12 @@ static PetscErrorCode SubdomainExplicitKplusBySolves(FETISubdomain &sd)
     }
     PetscCall(MatDenseGetArrayWrite(E, &e));
     std::fill(e, e + (size_t)sd.n * nc, 0.0);
-    for (PetscInt j = 0; j < nc; j++) e[(size_t)j * sd.n + sd.kb[j0 + j]] = 1.0;
+    for (PetscInt j = 0; j < nc; j++) e[(size_t)j * sd.n + FETISubdomainFactorRow(sd, sd.kb[j0 + j])] = 1.0; /* the factor may be of Kreg permuted */
     PetscCall(MatDenseRestoreArrayWrite(E, &e));
     PetscCall(MatMatSolve(factor, E, X));
     PetscCall(MatDenseGetArrayRead(X, &x));
     for (PetscInt j = 0; j < nc; j++)
-      for (PetscInt i = 0; i < nb; i++) s[(size_t)(j0 + j) * nb + i] = x[(size_t)j * sd.n + sd.kb[i]];
+      for (PetscInt i = 0; i < nb; i++) s[(size_t)(j0 + j) * nb + i] = x[(size_t)j * sd.n + FETISubdomainFactorRow(sd, sd.kb[i])];
     PetscCall(MatDenseRestoreArrayRead(X, &x));
   }
   PetscCall(MatDenseRestoreArrayWrite(sd.Kplusbb, &s));

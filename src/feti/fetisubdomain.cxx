@@ -35,6 +35,23 @@ PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &sd, Vec x, Vec y)
   PetscScalar *a;
 
   PetscFunctionBegin;
+  if (sd.factor) { /* a factor of Kreg permuted by nodes: permute in and out around one MatSolve (no KSPSolve bookkeeping per call) */
+    const PetscScalar *xa, *ya;
+    PetscScalar       *ta;
+    PetscCall(VecGetArrayRead(x, &xa));
+    PetscCall(VecGetArrayWrite(sd.x, &ta));
+    for (PetscInt k = 0; k < sd.n; k++) ta[k] = xa[sd.perm[k]];
+    for (PetscInt r : sd.removed) ta[sd.iperm[r]] = 0;
+    PetscCall(VecRestoreArrayWrite(sd.x, &ta));
+    PetscCall(VecRestoreArrayRead(x, &xa));
+    PetscCall(MatSolve(sd.factor, sd.x, sd.y));
+    PetscCall(VecGetArrayRead(sd.y, &ya));
+    PetscCall(VecGetArrayWrite(y, &ta));
+    for (PetscInt k = 0; k < sd.n; k++) ta[sd.perm[k]] = ya[k];
+    PetscCall(VecRestoreArrayWrite(y, &ta));
+    PetscCall(VecRestoreArrayRead(sd.y, &ya));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(VecCopy(x, sd.x));
   PetscCall(VecGetArray(sd.x, &a));
   for (PetscInt r : sd.removed) a[r] = 0;
@@ -273,6 +290,49 @@ PetscErrorCode FETISubdomainSetUpKernel(FETI feti, FETISubdomain &sd, PetscInt s
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The largest subdomain (dofs) whose factor for F is PETSc's block Cholesky by default: it factors more slowly
+   than CHOLMOD (no supernodes, no BLAS 3), which its cheaper solves repay only for small subdomains (the brick
+   measured at 1029, 2187 and 3993 dofs: docs/scale.md, "Memory of the factor path") */
+#define FETI_BLOCK_CHOLESKY_MAX_DOFS 3000
+
+/* Kreg as SBAIJ with block size 3, its nodes reordered by a fill-reducing ordering of the node graph (PETSc's
+   own Cholesky of SBAIJ takes the natural order only, so the order is put into the matrix): perm[k] is the dof
+   at row k. The factor keeps the 3x3 blocks (one column index per block, no relaxed supernodes), so it is
+   smaller and its triangular solves read less memory than CHOLMOD's supernodal factor of the same matrix. */
+static PetscErrorCode PermuteByNodes(Mat Kreg, MatOrderingType type, std::vector<PetscInt> &perm, std::vector<PetscInt> &iperm, Mat *Kperm)
+{
+  Mat             Kb, Ka;
+  IS              rows, cols, is;
+  const PetscInt *idx;
+  PetscInt        n;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetSize(Kreg, &n, NULL));
+  PetscCall(MatConvert(Kreg, MATSEQBAIJ, MAT_INITIAL_MATRIX, &Kb)); /* its ordering is one of the block (node) graph */
+  PetscCall(MatGetOrdering(Kb, type, &rows, &cols));
+  PetscCall(MatDestroy(&Kb));
+  PetscCallCXX(perm.resize(n));
+  PetscCallCXX(iperm.resize(n));
+  PetscCall(ISGetIndices(rows, &idx));
+  for (PetscInt k = 0; k < n / 3; k++)
+    for (PetscInt c = 0; c < 3; c++) perm[3 * k + c] = 3 * idx[k] + c;
+  PetscCall(ISRestoreIndices(rows, &idx));
+  PetscCall(ISDestroy(&rows));
+  PetscCall(ISDestroy(&cols));
+  for (PetscInt k = 0; k < n; k++) iperm[perm[k]] = k;
+  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, perm.data(), PETSC_USE_POINTER, &is));
+  PetscCall(ISSetPermutation(is));
+  PetscCall(MatConvert(Kreg, MATSEQAIJ, MAT_INITIAL_MATRIX, &Ka));
+  PetscCall(MatPermute(Ka, is, is, Kperm));
+  PetscCall(MatDestroy(&Ka));
+  PetscCall(ISDestroy(&is));
+  PetscCall(MatSetBlockSize(*Kperm, 3));
+  PetscCall(MatConvert(*Kperm, MATSEQSBAIJ, MAT_INPLACE_MATRIX, Kperm));
+  PetscCall(MatSetOption(*Kperm, MAT_SYMMETRIC, PETSC_TRUE));
+  PetscCall(MatSetOption(*Kperm, MAT_SPD, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Kreg (in place when nobody else holds K_s) and its sparse Cholesky factorization, prefix feti_sub_ */
 PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, PetscInt s)
 {
@@ -299,21 +359,37 @@ PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, Pet
 
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
   PetscCall(PetscSNPrintf(subprefix, sizeof(subprefix), "%sfeti_sub_", prefix ? prefix : ""));
-  /* CHOLMOD takes AIJ or block-size-1 SBAIJ only: it factors a transient AIJ copy of an SBAIJ K_s, and
-     Kreg stays symmetric storage (half the memory of AIJ) for the products with K */
-  Mat Kfactor = sd.Kreg;
+  /* The package: MUMPS for explicit K+ blocks from its Schur complement; CHOLMOD for blocks built by solves (its
+     supernodal solves with many right-hand sides at once); PETSc's own block Cholesky when F uses the factor
+     (its solves are the F product: docs/scale.md, "Memory of the factor path"); the option overrides all.
+     CHOLMOD takes AIJ or block-size-1 SBAIJ only: it factors a transient AIJ copy of an SBAIJ K_s. PETSc's own
+     Cholesky factors a transient copy of Kreg with its nodes reordered (-feti_sub_pc_factor_mat_ordering_type,
+     default amd, applied to the node graph). Either way Kreg stays symmetric storage (half the memory of AIJ)
+     for the products with K, and only the factor is kept beside it. */
+  const PetscBool factorpath    = (PetscBool)(!impl.kplusexplicit || sd.kplusimplicit); /* F applies K+ by this factor's solves */
+  const char     *defaultsolver = !factorpath ? (impl.kplusschur ? MATSOLVERMUMPS : impl.subsolver) : (sd.n <= FETI_BLOCK_CHOLESKY_MAX_DOFS ? MATSOLVERPETSC : impl.subsolver);
+  Mat             Kfactor       = sd.Kreg;
+  PetscBool       bynodes       = PETSC_FALSE;
   {
-    char      solver[64];
-    PetscBool set, sbaij, cholmod;
-    /* the package KSPSetFromOptions() will choose: the option, else ours (MUMPS for explicit K+ blocks from its Schur complement) */
-    PetscCall(PetscStrncpy(solver, impl.kplusexplicit && impl.kplusschur && !sd.kplusimplicit ? MATSOLVERMUMPS : impl.subsolver, sizeof(solver)));
+    char      solver[64], ordering[64] = MATORDERINGAMD;
+    PetscBool set, sbaij, cholmod, petsc;
+    PetscInt  bs;
+    PetscCall(PetscStrncpy(solver, defaultsolver, sizeof(solver)));
     PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, subprefix, "-pc_factor_mat_solver_type", solver, sizeof(solver), &set));
+    PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, subprefix, "-pc_factor_mat_ordering_type", ordering, sizeof(ordering), &set));
     PetscCall(PetscStrcmp(solver, MATSOLVERCHOLMOD, &cholmod));
+    PetscCall(PetscStrcmp(solver, MATSOLVERPETSC, &petsc));
     PetscCall(PetscObjectTypeCompare((PetscObject)sd.Kreg, MATSEQSBAIJ, &sbaij));
+    PetscCall(MatGetBlockSize(sd.Kreg, &bs));
+    sd.perm.clear();
+    sd.iperm.clear();
     if (cholmod && sbaij) {
       PetscCall(MatConvert(sd.Kreg, MATSEQAIJ, MAT_INITIAL_MATRIX, &Kfactor));
       PetscCall(MatSetOption(Kfactor, MAT_SYMMETRIC, PETSC_TRUE));
       PetscCall(MatSetOption(Kfactor, MAT_SPD, PETSC_TRUE));
+    } else if (petsc && bs == 3) {
+      PetscCall(PermuteByNodes(sd.Kreg, ordering, sd.perm, sd.iperm, &Kfactor));
+      bynodes = PETSC_TRUE;
     }
   }
   PetscCall(KSPCreate(PETSC_COMM_SELF, &sd.ksp));
@@ -324,8 +400,9 @@ PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, Pet
   PetscCall(KSPGetPC(sd.ksp, &pc));
   PetscCall(PCSetType(pc, PCCHOLESKY));
   /* with explicit K+ blocks, MUMPS factors K_s once and keeps the Schur complement on the dofs B touches */
-  PetscCall(PCFactorSetMatSolverType(pc, impl.kplusexplicit && impl.kplusschur && !sd.kplusimplicit ? MATSOLVERMUMPS : impl.subsolver));
+  PetscCall(PCFactorSetMatSolverType(pc, defaultsolver));
   PetscCall(KSPSetFromOptions(sd.ksp));
+  if (bynodes) PetscCall(PCFactorSetMatOrderingType(pc, MATORDERINGNATURAL)); /* the ordering is in Kfactor already */
   PetscCall(FETISubdomainSetSchurDofs(feti, sd));
   {
     PetscBool        failed;
@@ -340,6 +417,11 @@ PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, Pet
     PetscCall(PCSetReusePreconditioner(pc, PETSC_TRUE));
     PetscCall(KSPSetOperators(sd.ksp, sd.Kreg, sd.Kreg));
     PetscCall(MatDestroy(&Kfactor));
+  }
+  sd.factor = nullptr;
+  if (bynodes) { /* FETISubdomainApplyKplus() permutes around it and calls MatSolve() itself: -feti_sub_ksp_view is honoured here, as KSPSolve() would */
+    PetscCall(PCFactorGetMatrix(pc, &sd.factor));
+    PetscCall(KSPViewFromOptions(sd.ksp, NULL, "-ksp_view"));
   }
   PetscCall(FETISubdomainExplicitKplusFromSchur(sd));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &sd.x));
@@ -370,6 +452,7 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(VecDestroy(&sd.uD));
   PetscCall(MatDestroy(&sd.Kreg));
   PetscCall(MatDestroy(&sd.correction));
+  sd.factor = nullptr; /* the KSP's */
   PetscCall(KSPDestroy(&sd.ksp));
   PetscCall(VecDestroy(&sd.x));
   PetscCall(VecDestroy(&sd.y));

@@ -31,6 +31,8 @@ struct FETISubdomain {
   Mat                      correction = nullptr;               /* K_V - Kreg restricted to rows/cols of removed dofs (SeqAIJ) */
   PetscScalar              regdiag    = 1.0;                   /* the diagonal put at removed dofs */
   KSP                      ksp        = nullptr;               /* KSPPREONLY + PCCHOLESKY on Kreg, prefix feti_sub_ */
+  Mat                      factor     = nullptr;               /* the KSP's factor when it is of Kreg permuted by nodes (borrowed), else NULL */
+  std::vector<PetscInt>    perm, iperm;                        /* that permutation: row k of the factor is dof perm[k], dof i is row iperm[i]; empty: none */
   Vec                      x = nullptr, y = nullptr;           /* work vectors of length n (own storage) */
   Vec                      xa = nullptr, ya = nullptr;         /* vectors of length n without storage (VecPlaceArray) */
 
@@ -146,6 +148,8 @@ PETSC_INTERN PetscErrorCode FETISubdomainSetUpFactorization(FETI, FETISubdomain 
 PETSC_INTERN PetscErrorCode FETISubdomainApplyK(FETISubdomain &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainDestroy(FETISubdomain &);
+/* the row of the subdomain's factor that holds dof i (for solves with the factor itself, FETISubdomainSetUpFactorization()) */
+static inline PetscInt FETISubdomainFactorRow(const FETISubdomain &sd, PetscInt i) { return sd.iperm.empty() ? i : sd.iperm[i]; }
 
 /* fetioperators.cxx */
 PETSC_INTERN PetscErrorCode FETIApplyKplus(FETI, Vec, Vec);
