@@ -62,7 +62,7 @@ def main():
         rows = parse(r.stdout + r.stderr)
         print(f"\np = {p}: n = {j['n']}, contact nodes {j['contact_nodes']} ({j['separated']}/{j['stick']}/{j['slip']} separated/stick/slip), "
               f"Iter {j['iter']}, n_A {j['n_A']}, largest residual {j['residuals']['max']:.2e}, converged {j['converged']}")
-        print("| k | radii change (2-norm / largest) | products | CG + expansion + proportioning | M \\|Cx - d\\| / tol_g | \\|gP\\| / tol_g | \\|Cx - d\\| / tol_e | fall of \\|Cx - d\\| |")
+        print("| k | radii change (2-norm / largest) | products | CG + expansion + proportioning | M \\|Cx - d\\| / tol_g (end) | \\|gP\\| / tol_g | \\|Cx - d\\| / tol_e | fall of \\|Cx - d\\| |")
         print("|---|---|---|---|---|---|---|---|")
         prev, total, early = None, 0, 0
         for w in rows:
