@@ -146,7 +146,10 @@ PetscErrorCode PreSolve(Tao, PetscInt block, Vec lambda, void *ctx)
   PetscFunctionBegin;
   if (d->algorithm == CONTACT_COULOMB_MERGED && block != 1) PetscFunctionReturn(PETSC_SUCCESS);
   const std::vector<PetscReal> old = d->radius;
-  PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, NULL));
+  PetscReal                    change, largest;
+  PetscCall(ContactProblemUpdateRadii_Private(cp, lambda, &change));
+  PetscCall(LargestChange(cp, lambda, d->radius, old, &largest));
+  PetscCall(PetscInfo(cp, "Coulomb radii F l_n before the inner solve: relative change %g, largest %g of the largest force\n", (double)change, (double)largest));
   if (d->follow_radii) PetscCall(FollowGrownRadii(cp, old, lambda));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

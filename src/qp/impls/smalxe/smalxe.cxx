@@ -79,11 +79,12 @@ struct TaoSMALXE {
 
   /* parameters */
   PetscReal    rho_rel = 1.0, M_rel = 0.1, M_min_rel = 1e-4, eta_rel = 0.1, beta = 10.0;
-  PetscReal    rho_first   = 1.0; /* the first outer iteration's penalty relative to rho (see TaoSolve_SMALXE()) */
-  SMALXEUpdate update      = SMALXE_UPDATE_M;
-  PetscInt     sweeps      = 1;
-  PetscReal    block_rtol  = 0.0; /* > 0: a block solve of a sweep also stops at this reduction of its projected gradient */
-  PetscReal    inner_floor = 0.5; /* inner solves stop at this fraction of the final |gP| tolerance (0: only the adaptive precision) */
+  PetscReal    rho_first    = 1.0; /* the first outer iteration's penalty relative to rho (see TaoSolve_SMALXE()) */
+  PetscInt     repeat_first = 0;   /* the inner solves of this many first outer iterations run twice, the pre-solve hook before each */
+  SMALXEUpdate update       = SMALXE_UPDATE_M;
+  PetscInt     sweeps       = 1;
+  PetscReal    block_rtol   = 0.0; /* > 0: a block solve of a sweep also stops at this reduction of its projected gradient */
+  PetscReal    inner_floor  = 0.5; /* inner solves stop at this fraction of the final |gP| tolerance (0: only the adaptive precision) */
   PetscReal    norm_user = 0, norm_margin = -1;
   QPNormMethod norm_method   = QP_NORM_SLEPC;
   PetscBool    counters_view = PETSC_FALSE;
@@ -803,6 +804,11 @@ PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
       PetscCall(TaoQPGetCounters(blk.sub, &before));
       PetscCall(TaoSolve(blk.sub));
       PetscCall(TaoQPGetCounters(blk.sub, &after));
+      PetscCall(PetscInfo(tao,
+                          "TAO smalxe outer %" PetscInt_FMT " block %zu: %" PetscInt_FMT " products, %" PetscInt_FMT " CG + %" PetscInt_FMT " expansion + %" PetscInt_FMT
+                          " proportioning steps, |gP| %g (M |Cx - d| with M %g, eta %g), rho %g\n",
+                          (PetscInt)s->feas_history.size(), k, after.hessian_mults - before.hessian_mults, after.cg_steps - before.cg_steps, after.expansion_steps - before.expansion_steps,
+                          after.proportioning_steps - before.proportioning_steps, (double)blk.sub->residual, (double)s->M, (double)s->eta, (double)s->rho));
       s->counters.nested_hessian_mults += after.hessian_mults - before.hessian_mults;
       s->counters.nested_iterations += after.iterations - before.iterations;
       s->counters.estimate_mults += after.estimate_mults - before.estimate_mults;
@@ -1003,6 +1009,12 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     PetscReal xg, xb, md;
     PetscCall(UpdateInnerLinearTerm(s));
     PetscCall(InnerSolve(tao, s, &gp));
+    /* a pre-solve hook that moves the set from the iterate (the Coulomb radii F l_n) hands the first inner solve
+       a set computed from the starting point, which may be far from any solution (the particular solution of
+       C x = d: its normal multipliers are no contact pressure); the multiplier update after that solve then
+       meets a set that moves again by half its size. A second pass from the solved iterate, the hook between,
+       lets the first update see a set near its fixed point (-tao_smalxe_repeat_first; docs/scale.md) */
+    if (k < s->repeat_first && s->presolve && !PetscIsInfOrNanReal(gp)) PetscCall(InnerSolve(tao, s, &gp));
     PetscCall(Feasibility(s, tao->solution, &e));
     /* L(x, mu, rho) = 1/2 x'(g - bx) - mu'd + rho/2 |d|^2 (general form), or
        1/2 x'(g - bx) - nu'x~ + rho/2 |x~|^2 + q(x~) (projector form) */
@@ -1091,6 +1103,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsReal("-tao_smalxe_rho", "Penalty rho relative to ||A|| (||PAP|| in projector form, ||A||/||C||^2 otherwise)", "TaoSMALXE", s->rho_rel, &s->rho_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_rho_first", "Penalty of the first outer iteration relative to -tao_smalxe_rho (the later ones use -tao_smalxe_rho)", "TaoSMALXE", s->rho_first, &s->rho_first,
                              NULL));
+  PetscCall(PetscOptionsInt("-tao_smalxe_repeat_first", "With a pre-solve hook: the inner solves of this many first outer iterations run twice, the hook before each (0: never)",
+                            "TaoSMALXESetPreSolve", s->repeat_first, &s->repeat_first, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_M", "Initial M relative to ||H||: inner solves stop when |gP| <= min(M |Cx - d|, eta)", "TaoSMALXE", s->M_rel, &s->M_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_M_min", "Floor of M relative to ||H|| (the semi-monotonicity updates stop there)", "TaoSMALXE", s->M_min_rel, &s->M_min_rel, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_eta", "eta relative to |b| (|P(b - A x~)| in projector form)", "TaoSMALXE", s->eta_rel, &s->eta_rel, NULL));
@@ -1135,6 +1149,7 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
      sends M straight to its floor */
   PetscCheck(s->rho_rel > 0 && !PetscIsInfOrNanReal(s->rho_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_rho must be finite and > 0, got %g", p, (double)s->rho_rel);
   PetscCheck(s->rho_first > 0 && !PetscIsInfOrNanReal(s->rho_first), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_rho_first must be finite and > 0, got %g", p, (double)s->rho_first);
+  PetscCheck(s->repeat_first >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_repeat_first must be >= 0 (0: never), got %" PetscInt_FMT, p, s->repeat_first);
   PetscCheck(s->M_rel > 0 && !PetscIsInfOrNanReal(s->M_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_M must be finite and > 0, got %g", p, (double)s->M_rel);
   PetscCheck(s->M_min_rel >= 0 && !PetscIsInfOrNanReal(s->M_min_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_M_min must be finite and >= 0 (0: no floor), got %g", p, (double)s->M_min_rel);
   PetscCheck(s->eta_rel > 0 && !PetscIsInfOrNanReal(s->eta_rel), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_eta must be finite and > 0, got %g", p, (double)s->eta_rel);
@@ -1175,6 +1190,8 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
   }
   PetscCall(PetscViewerASCIIPrintf(viewer, "last iterate: |projected gradient| %g, |Cx - d| %g\n", (double)s->gpnorm, (double)s->feas));
   if (s->rho_first != 1) PetscCall(PetscViewerASCIIPrintf(viewer, "the first outer iteration runs at %g rho\n", (double)s->rho_first));
+  if (s->repeat_first > 0 && s->presolve)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "the inner solves of the first %" PetscInt_FMT " outer iteration(s) run twice, the pre-solve hook before each\n", s->repeat_first));
   if (AndersonDepth(s) > 0)
     PetscCall(PetscViewerASCIIPrintf(
         viewer, "Anderson acceleration of the multiplier, depth %" PetscInt_FMT " from outer iteration %" PetscInt_FMT ": %" PetscInt_FMT " accelerated updates, %" PetscInt_FMT " restarts\n",
@@ -1495,6 +1512,7 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
   Options Database Keys:
 + -tao_smalxe_rho <1>          - penalty rho relative to ||A|| (||PAP|| in projector form)
 . -tao_smalxe_rho_first <1>    - penalty of the first outer iteration relative to rho (below 1: the first inner solve, which finds the active set, runs at a smaller penalty)
+. -tao_smalxe_repeat_first <0> - with a pre-solve hook (`TaoSMALXESetPreSolve()`), the inner solves of this many first outer iterations run twice, the hook before each
 . -tao_smalxe_M <0.1>          - initial M relative to ||H|| (inner precision |gP| <= min(M |Cx - d|, eta))
 . -tao_smalxe_M_min <1e-4>     - floor of M relative to ||H|| (0: none)
 . -tao_smalxe_eta <0.1>        - eta relative to |b|
