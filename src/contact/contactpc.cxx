@@ -124,22 +124,29 @@ PetscErrorCode ContactProblemGetPC(ContactProblem cp, PC *pc)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* From ContactProblemSetFromOptions(): how the preconditioner is used, then its own options */
-PetscErrorCode ContactProblemSetFromOptionsPC_Private(ContactProblem cp)
+/* Inside ContactProblemSetFromOptions()'s options block: how the preconditioner is used */
+PetscErrorCode ContactProblemPCOptions_Private(ContactProblem cp, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
   ContactProblemData *d = cp->data;
-  PC                  pc;
 
   PetscFunctionBegin;
-  PetscObjectOptionsBegin((PetscObject)cp);
   PetscCall(PetscOptionsReal("-contact_pc_contact_scale", "With -contact_pc_type: the contact rows are scaled by this over ||F|| instead of preconditioned", "ContactProblemGetPC", d->pc_contact_scale,
                              &d->pc_contact_scale, NULL));
   PetscCall(PetscOptionsBool("-contact_pc_contact_rows_scaled", "With -contact_pc_type: scale the contact rows (true) or precondition them like the gluing rows (false)", "ContactProblemGetPC",
                              d->pc_contact_rows_scaled, &d->pc_contact_rows_scaled, NULL));
-  PetscOptionsEnd();
   PetscCheck(d->pc_contact_scale > 0 && !PetscIsInfOrNanReal(d->pc_contact_scale), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_pc_contact_scale must be finite and > 0, got %g", (double)d->pc_contact_scale);
-  PetscCall(ContactProblemGetPC(cp, &pc)); /* -contact_pc_type */
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* After that block (an object's options print once under -help, in its first block): the preconditioner's own
+   options (-contact_pc_type ...) */
+PetscErrorCode ContactProblemSetFromOptionsPC_Private(ContactProblem cp)
+{
+  PC pc;
+
+  PetscFunctionBegin;
+  PetscCall(ContactProblemGetPC(cp, &pc));
   PetscCall(PCSetFromOptions(pc));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

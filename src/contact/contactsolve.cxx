@@ -395,6 +395,7 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
                              "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, NULL));
   PetscCall(PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance (-1: -contact_rtol)", "ContactProblemSolve", d->fixed_point_rtol,
                              &d->fixed_point_rtol, NULL));
+  PetscCall(ContactProblemPCOptions_Private(cp, PetscOptionsObject)); /* -contact_pc_contact_scale ... (contactpc.cxx) */
   PetscOptionsEnd();
   PetscCall(ContactProblemSetFromOptionsPC_Private(cp)); /* -contact_pc_type ... (contactpc.cxx) */
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,

@@ -74,6 +74,7 @@ struct _p_ContactProblem {
 
 PETSC_INTERN PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode ContactProblemSetUpPC_Private(ContactProblem);
+PETSC_INTERN PetscErrorCode ContactProblemPCOptions_Private(ContactProblem, CONEFETI_OPTIONS_ITEMS);
 PETSC_INTERN PetscErrorCode ContactProblemSetFromOptionsPC_Private(ContactProblem);
 
 /* The friction polygon of k directions (contactpolygon.cxx): direction j is (cos, sin)(j pi / k) in the node's
