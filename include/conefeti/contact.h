@@ -154,6 +154,7 @@ PETSC_EXTERN PetscErrorCode ContactProblemGetEqualityMultiplier(ContactProblem, 
 PETSC_EXTERN PetscErrorCode ContactProblemGetNodes(ContactProblem, PetscInt *, const PetscInt **, const PetscInt **, const PetscInt **, const ContactLaw **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode ContactProblemGetSlipBounds(ContactProblem, Vec, PetscReal[]);
 PETSC_EXTERN PetscErrorCode ContactProblemGetTao(ContactProblem, Tao *);
+PETSC_EXTERN PetscErrorCode ContactProblemGetPC(ContactProblem, PC *);
 PETSC_EXTERN PetscErrorCode ContactProblemSetProgress(ContactProblem, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem, Vec, PetscReal *, PetscReal *);
 

@@ -155,6 +155,8 @@ PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStalled(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetAnderson(Tao, PetscInt, PetscInt);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetPenaltyPreconditioner(Tao, PetscBool);
+PETSC_EXTERN PetscErrorCode TaoSMALXESetProjectedPreconditioner(Tao, PC);
+PETSC_EXTERN PetscErrorCode TaoSMALXEGetProjectedPreconditioner(Tao, PC *);
 
 /* ---------------------------------------------------------------------------------------------
    KSP types: the same algorithms through KSPSolve(A x = b), i.e. min 1/2 x'Ax - b'x

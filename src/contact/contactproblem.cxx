@@ -69,6 +69,7 @@ PetscErrorCode ContactProblemDestroy(ContactProblem *cp)
   PetscCall(VecDestroy(&d->lb));
   PetscCall(VecDestroy(&d->ub));
   PetscCall(TaoDestroy(&d->tao));
+  PetscCall(PCDestroy(&d->pc));
   PetscCall(MatDestroy(&d->C0));
   PetscCall(VecDestroy(&d->d0));
   delete d;
@@ -361,6 +362,10 @@ PetscErrorCode ContactProblemSetOptionsPrefix(ContactProblem cp, const char pref
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)cp, prefix));
+  if (cp->data->pc) { /* the preconditioner's (ContactProblemGetPC()) follows */
+    PetscCall(PCSetOptionsPrefix(cp->data->pc, prefix));
+    PetscCall(PCAppendOptionsPrefix(cp->data->pc, "contact_"));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

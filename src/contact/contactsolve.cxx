@@ -363,6 +363,7 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_kkt_check <true>             - recompute the KKT residual before saying converged (a `ContactModel` turns it off: it judges by the mechanics)
 . -contact_acceptance_factor <10>       - converged only when the KKT residual recomputed from the multipliers (`ContactProblemComputeKKTResidual()`) is at most this times -contact_rtol
 . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
+. -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; see `ContactProblemGetPC()`)
 . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); default 1 for monolithic, 0 for merged's blocks, 3 otherwise; see
 `TaoSMALXESetAnderson()`
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
@@ -397,7 +398,9 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
                              "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, NULL));
   PetscCall(PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance (-1: -contact_rtol)", "ContactProblemSolve", d->fixed_point_rtol,
                              &d->fixed_point_rtol, NULL));
+  PetscCall(ContactProblemPCOptions_Private(cp, PetscOptionsObject)); /* -contact_pc_contact_scale ... (contactpc.cxx) */
   PetscOptionsEnd();
+  PetscCall(ContactProblemSetFromOptionsPC_Private(cp)); /* -contact_pc_type ... (contactpc.cxx) */
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", (double)d->acceptance_factor);
   PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_rtol must be in (0, 1), got %g", (double)d->rtol);
@@ -491,6 +494,7 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
     }
   }
   PetscCall(TaoSetFromOptions(d->tao));
+  PetscCall(ContactProblemSetUpPC_Private(cp));
   PetscCall(CheckSolverTypes(d->tao, d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED ? 2 : 1));
   d->setup = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -42,20 +42,23 @@ struct ContactProblemData {
   ContactCoulombAlgorithm algorithm   = CONTACT_COULOMB_MONOLITHIC;
   PetscBool               has_coulomb = PETSC_FALSE, has_tresca = PETSC_FALSE, has_normal = PETSC_FALSE;
   Tao                     tao   = nullptr;
+  PC                      pc    = nullptr; /* ContactProblemGetPC() (contactpc.cxx): the preconditioner of F in face; NULL or PCNONE: none */
   Mat                     C0    = nullptr; /* empty equality when the problem has none */
   Vec                     d0    = nullptr;
   PetscBool               setup = PETSC_FALSE;
 
   /* options */
-  PetscReal rtol              = 1e-6; /* smalxe: |gP| and feasibility relative to |h| */
-  PetscReal msa_rtol          = -1;   /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| (< 0: rtol) */
-  PetscInt  msa_max_it        = 100;
-  PetscReal msa_start_rtol    = 1e-2;       /* MSA: tolerance of the first Tresca solve (bounds of the initial multipliers) */
-  PetscBool msa_recycle       = PETSC_TRUE; /* MSA: Tresca solves after the first keep the equality's multiplier */
-  PetscReal fixed_point_rtol  = -1;         /* monolithic: radii consistent with F l_n to this relative tolerance (< 0: rtol) */
-  PetscBool follow_radii      = PETSC_TRUE; /* Coulomb: a tangential pair on its old circle moves onto the new one when the radius grows */
-  PetscReal acceptance_factor = 10;         /* converged only with the KKT residual <= factor * rtol */
-  PetscBool kkt_check         = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
+  PetscReal rtol                   = 1e-6; /* smalxe: |gP| and feasibility relative to |h| */
+  PetscReal msa_rtol               = -1;   /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| (< 0: rtol) */
+  PetscInt  msa_max_it             = 100;
+  PetscReal msa_start_rtol         = 1e-2;       /* MSA: tolerance of the first Tresca solve (bounds of the initial multipliers) */
+  PetscBool msa_recycle            = PETSC_TRUE; /* MSA: Tresca solves after the first keep the equality's multiplier */
+  PetscReal fixed_point_rtol       = -1;         /* monolithic: radii consistent with F l_n to this relative tolerance (< 0: rtol) */
+  PetscBool follow_radii           = PETSC_TRUE; /* Coulomb: a tangential pair on its old circle moves onto the new one when the radius grows */
+  PetscReal acceptance_factor      = 10;         /* converged only with the KKT residual <= factor * rtol */
+  PetscReal pc_contact_scale       = 30;         /* -contact_pc_contact_scale: the contact rows get c/||F|| in the preconditioner (contactpc.cxx) */
+  PetscBool pc_contact_rows_scaled = PETSC_TRUE; /* -contact_pc_contact_rows_scaled */
+  PetscBool kkt_check              = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
 
   ContactStatistics stats = {};
 
@@ -70,6 +73,9 @@ struct _p_ContactProblem {
 };
 
 PETSC_INTERN PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem, Vec, PetscReal *);
+PETSC_INTERN PetscErrorCode ContactProblemSetUpPC_Private(ContactProblem);
+PETSC_INTERN PetscErrorCode ContactProblemPCOptions_Private(ContactProblem, CONEFETI_OPTIONS_ITEMS);
+PETSC_INTERN PetscErrorCode ContactProblemSetFromOptionsPC_Private(ContactProblem);
 
 /* The friction polygon of k directions (contactpolygon.cxx): direction j is (cos, sin)(j pi / k) in the node's
    (t1, t2) frame, each multiplier is bounded by ContactPolygonBoundFactor(k) g. */

@@ -88,9 +88,12 @@ struct TaoSMALXE {
   PetscReal    norm_user = 0, norm_margin = -1;
   QPNormMethod norm_method   = QP_NORM_SLEPC;
   PetscBool    counters_view = PETSC_FALSE;
-  PetscBool    penalty_pc    = PETSC_TRUE; /* projector form: precondition the inner CG steps by I - theta Q */
-  PetscReal    rho_balance   = -1;         /* > 1: residual balancing of rho (see BalancePenalty()); 0: off; -1: 2 with blocks, 0 without */
-  PetscInt     rho_changes   = 0;          /* by the balancing, over all solves, for TaoView */
+  PetscBool    penalty_pc    = PETSC_TRUE;   /* projector form: precondition the inner CG steps by I - theta Q */
+  PC           projected_pc  = nullptr;      /* projector form: a preconditioner M of A (TaoSMALXESetProjectedPreconditioner()), used as P M P + (q_scale/rho) Q instead */
+  PetscReal    pc_q_scale    = 1.0;          /* -tao_smalxe_pc_q_scale */
+  Vec          pcq = nullptr, pcp = nullptr; /* its work vectors */
+  PetscReal    rho_balance = -1;             /* > 1: residual balancing of rho (see BalancePenalty()); 0: off; -1: 2 with blocks, 0 without */
+  PetscInt     rho_changes = 0;              /* by the balancing, over all solves, for TaoView */
 
   /* inner solves */
   std::vector<SMALXEBlock> blocks; /* one block with is = NULL: monolithic */
@@ -862,11 +865,32 @@ PetscErrorCode PenaltyPCApply(PC pc, Vec g, Vec z)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-const char kPenaltyPCName[] = "smalxe penalty preconditioner I - rho/(||PAP|| + rho) Q";
+/* z = P M P g + (q_scale/rho) Q g, M the preconditioner of A given by TaoSMALXESetProjectedPreconditioner().
+   H = PAP + rho Q is block diagonal in range(P) + range(Q), so its inverse is (PAP)^+ + Q/rho: M
+   approximates the first block (P M P keeps it there, whatever M does to range(Q)), 1/rho the second
+   exactly. Two products with Q, one application of M. */
+PetscErrorCode ProjectedPCApply(PC pc, Vec g, Vec z)
+{
+  TaoSMALXE *s;
 
-/* Puts the penalty preconditioner into the inner solver's PC when that is PCNONE (a PC the user chose
-   stays), or takes it out again when it is off. Only the projector form with one inner solver has it:
-   a Gauss-Seidel block would need Q's block, the penalty form (C C')^-1. */
+  PetscFunctionBegin;
+  PetscCall(PCShellGetContext(pc, &s));
+  PetscCall(MatMult(s->Q, g, s->pcq));
+  PetscCall(VecWAXPY(s->pcp, -1.0, s->pcq, g)); /* P g */
+  PetscCall(PCApply(s->projected_pc, s->pcp, z));
+  PetscCall(MatMult(s->Q, z, s->pcp));
+  PetscCall(VecAXPY(z, -1.0, s->pcp)); /* P M P g (a subtraction: no multiply to fuse) */
+  PetscCall(ReproducibleAXPY(z, s->pc_q_scale / s->rho, s->pcq));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+const char kPenaltyPCName[]   = "smalxe penalty preconditioner I - rho/(||PAP|| + rho) Q";
+const char kProjectedPCName[] = "smalxe projected preconditioner P M P + Q/rho";
+
+/* Puts the projected preconditioner (when a PC of A was given) or the penalty preconditioner into the
+   inner solver's PC when that is PCNONE or one of ours (a PC the user chose stays), or takes it out again
+   when neither is wanted. Only the projector form with one inner solver has them: a Gauss-Seidel block
+   would need Q's block, the penalty form (C C')^-1. */
 PetscErrorCode UpdatePenaltyPC(TaoSMALXE *s)
 {
   PC          pc;
@@ -880,14 +904,23 @@ PetscErrorCode UpdatePenaltyPC(TaoSMALXE *s)
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCNONE, &none));
   PetscCall(PetscObjectTypeCompare((PetscObject)pc, PCSHELL, &shell));
   if (shell) PetscCall(PCShellGetName(pc, &name));
-  const bool ours = shell && name && !std::strcmp(name, kPenaltyPCName);
-  const bool want = s->penalty_pc && s->projector;
-  if (want && none) {
+  const bool  ours      = shell && name && (!std::strcmp(name, kPenaltyPCName) || !std::strcmp(name, kProjectedPCName));
+  const bool  projected = s->projector && s->projected_pc;
+  const bool  want      = s->projector && (s->penalty_pc || s->projected_pc);
+  const char *wanted    = projected ? kProjectedPCName : kPenaltyPCName;
+  if (want && (none || (ours && std::strcmp(name, wanted)))) {
     PetscCall(PCSetType(pc, PCSHELL));
     PetscCall(PCShellSetContext(pc, s));
-    PetscCall(PCShellSetApply(pc, PenaltyPCApply));
-    PetscCall(PCShellSetName(pc, kPenaltyPCName));
+    PetscCall(PCShellSetApply(pc, projected ? ProjectedPCApply : PenaltyPCApply));
+    PetscCall(PCShellSetName(pc, wanted));
   } else if (!want && ours) PetscCall(PCSetType(pc, PCNONE));
+  if (want && projected) {
+    if (!s->pcq) {
+      PetscCall(VecDuplicate(s->tao->solution, &s->pcq));
+      PetscCall(VecDuplicate(s->tao->solution, &s->pcp));
+    }
+    PetscCall(PCSetUp(s->projected_pc));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -1137,6 +1170,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_penalty_pc", "Projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q in face (unless the inner solver has a PC of its own)",
                              "TaoSMALXESetPenaltyPreconditioner", s->penalty_pc, &s->penalty_pc, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_pc_q_scale", "Projector form with TaoSMALXESetProjectedPreconditioner(): the inner CG steps use P M P + (this/rho) Q", "TaoSMALXESetProjectedPreconditioner",
+                             s->pc_q_scale, &s->pc_q_scale, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_rho_balance",
                              "With blocks: halve rho when |gP| is further from its tolerance than |Cx - d| by this factor (> 1), double it (up to -tao_smalxe_rho) in the opposite case (0: off; -1: 2 "
                              "with blocks, 0 without)",
@@ -1161,6 +1196,7 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCheck(s->stagnation_its >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_stagnation_its must be >= 0 (0: never), got %" PetscInt_FMT, p, s->stagnation_its);
   PetscCheck(s->rho_balance == -1 || s->rho_balance == 0 || (s->rho_balance > 1 && !PetscIsInfOrNanReal(s->rho_balance)), comm, PETSC_ERR_ARG_OUTOFRANGE,
              "-%stao_smalxe_rho_balance must be a finite factor > 1 (0: off, -1: automatic), got %g", p, (double)s->rho_balance);
+  PetscCheck(s->pc_q_scale > 0 && !PetscIsInfOrNanReal(s->pc_q_scale), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_pc_q_scale must be finite and > 0, got %g", p, (double)s->pc_q_scale);
   PetscCheck(s->sweeps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_sweeps must be >= 1, got %" PetscInt_FMT, p, s->sweeps);
   PetscCheck(s->norm_method != QP_NORM_USER || s->norm_user > 0, comm, PETSC_ERR_ARG_WRONG, "-%stao_smalxe_norm_method user needs -%stao_smalxe_norm <value>", p, p);
   /* the nested solvers read their options with ours (their type: from the options, else decided at setup) */
@@ -1197,7 +1233,12 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
         viewer, "Anderson acceleration of the multiplier, depth %" PetscInt_FMT " from outer iteration %" PetscInt_FMT ": %" PetscInt_FMT " accelerated updates, %" PetscInt_FMT " restarts\n",
         AndersonDepth(s), s->anderson_start, s->aAccelerated, s->aRestarts));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "plain multiplier update (no Anderson acceleration)\n"));
-  if (s->penalty_pc && s->projector && Monolithic(s))
+  if (s->projected_pc && s->projector && Monolithic(s)) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "inner CG steps preconditioned in face by P M P + %g/rho Q, unless the inner solver has a PC of its own; M:\n", (double)s->pc_q_scale));
+    PetscCall(PetscViewerASCIIPushTab(viewer));
+    PetscCall(PCView(s->projected_pc, viewer));
+    PetscCall(PetscViewerASCIIPopTab(viewer));
+  } else if (s->penalty_pc && s->projector && Monolithic(s))
     PetscCall(PetscViewerASCIIPrintf(viewer, "inner CG steps preconditioned in face by I - rho/(||PAP|| + rho) Q, unless the inner solver has a PC of its own\n"));
   if (BalanceFactor(s) > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "rho balanced between |gP| and |Cx - d| (factor %g): %" PetscInt_FMT " changes\n", (double)BalanceFactor(s), s->rho_changes));
   if (tao->recycle) PetscCall(PetscViewerASCIIPrintf(viewer, "recycles the multiplier: a solve starts from the previous solve's multiplier\n"));
@@ -1218,7 +1259,7 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
 PetscErrorCode ResetWork(TaoSMALXE *s)
 {
   PetscFunctionBegin;
-  for (Vec *v : {&s->mu, &s->nu, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w}) PetscCall(VecDestroy(v));
+  for (Vec *v : {&s->mu, &s->nu, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w, &s->pcq, &s->pcp}) PetscCall(VecDestroy(v));
   PetscCall(AndersonDestroyHistory(s));
   PetscCall(MatDestroy(&s->H));
   if (s->Q_from_C) {
@@ -1250,7 +1291,9 @@ const char *const kComposed[] = {"TaoQPSetConstraints_C",
                                  "TaoSMALXEGetStagnated_C",
                                  "TaoSMALXEGetStalled_C",
                                  "TaoSMALXESetAnderson_C",
-                                 "TaoSMALXESetPenaltyPreconditioner_C"};
+                                 "TaoSMALXESetPenaltyPreconditioner_C",
+                                 "TaoSMALXESetProjectedPreconditioner_C",
+                                 "TaoSMALXEGetProjectedPreconditioner_C"};
 
 PetscErrorCode TaoDestroy_SMALXE(Tao tao)
 {
@@ -1265,6 +1308,7 @@ PetscErrorCode TaoDestroy_SMALXE(Tao tao)
   PetscCall(VecDestroy(&s->d));
   PetscCall(MatDestroy(&s->Q));
   PetscCall(VecDestroy(&s->xt));
+  PetscCall(PCDestroy(&s->projected_pc));
   for (const char *fn : kComposed) PetscCall(PetscObjectComposeFunction((PetscObject)tao, fn, NULL));
   delete s;
   tao->data = NULL;
@@ -1470,6 +1514,24 @@ PetscErrorCode SetPenaltyPreconditioner_SMALXE(Tao tao, PetscBool flag)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SetProjectedPreconditioner_SMALXE(Tao tao, PC pc)
+{
+  TaoSMALXE *s = Get(tao);
+
+  PetscFunctionBegin;
+  if (pc) PetscCall(PetscObjectReference((PetscObject)pc));
+  PetscCall(PCDestroy(&s->projected_pc));
+  s->projected_pc = pc;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GetProjectedPreconditioner_SMALXE(Tao tao, PC *pc)
+{
+  PetscFunctionBegin;
+  *pc = Get(tao)->projected_pc;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GetStagnated_SMALXE(Tao tao, PetscBool *flag)
 {
   PetscFunctionBegin;
@@ -1530,6 +1592,7 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
 . -tao_smalxe_anderson_start <3> - first outer iteration (from 0) whose update is accelerated
 . -tao_smalxe_rho_balance <-1> - with blocks: residual balancing of rho by this factor (0: off; -1: 2 with blocks, 0 without)
 . -tao_smalxe_penalty_pc <true> - projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`)
+. -tao_smalxe_pc_q_scale <1>   - with a preconditioner of A (`TaoSMALXESetProjectedPreconditioner()`): the inner CG steps use P M P + (this/rho) Q
 . -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
 . -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner solves)
 - -tao_smalxe_block<k>_tao_*   - options of block k's nested solver
@@ -1605,6 +1668,8 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStalled_C", GetStalled_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetAnderson_C", SetAnderson_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPenaltyPreconditioner_C", SetPenaltyPreconditioner_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetProjectedPreconditioner_C", SetProjectedPreconditioner_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetProjectedPreconditioner_C", GetProjectedPreconditioner_SMALXE));
   PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

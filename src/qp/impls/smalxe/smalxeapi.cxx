@@ -418,3 +418,70 @@ PetscErrorCode TaoSMALXESetPenaltyPreconditioner(Tao tao, PetscBool flag)
   PetscTryMethod(tao, "TaoSMALXESetPenaltyPreconditioner_C", (Tao, PetscBool), (tao, flag));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/*@
+  TaoSMALXESetProjectedPreconditioner - Gives a preconditioner M of the Hessian A, which the inner solves of the
+  projector form use in face as P M P + (s/rho) Q instead of the penalty preconditioner.
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver
+- pc  - an SPD approximation of the inverse of A on range(P) = ker(C) (referenced; set up by the solver before
+        each solve), or `NULL` to go back to the penalty preconditioner
+
+  Options Database Key:
+. -tao_smalxe_pc_q_scale <1> - s
+
+  Notes:
+  In projector form the inner Hessian H = PAP + rho Q is block diagonal in range(P) + range(Q), with the
+  inverse (PAP)^+ + Q/rho. M approximates the first block, P M P keeps it in range(P) whatever M does to
+  range(Q), and 1/rho is the second block exactly (s = 1); s moves the rank-m block's eigenvalue among those of
+  the preconditioned PAP. The inner CG steps are preconditioned in face (the principal submatrix on the free
+  set, as `TaoQPGetPC()` describes), so the iterates stay feasible; expansion, proportioning and the stopping
+  tests stay unpreconditioned, and the solution and its accuracy do not change, only the path. Each CG step
+  costs one application of M and two products with Q more. A FETI dual (A = F = B K+ B') takes the lumped
+  B K B' or the Dirichlet preconditioner B S B' (`PCFETILUMPED`, `PCFETIDIRICHLET`); the contact layer
+  sets one (`ContactProblemGetPC()`).
+
+  It is used only in projector form with one inner solver of type `TAOMPRGP` or `TAOMPGP` whose PC is `PCNONE`
+  (the default); a PC chosen for the inner solver is kept, and Gauss-Seidel blocks (`TaoSMALXESetBlocks()`) and
+  the penalty form have none.
+
+  Level: advanced
+
+.seealso: `TAOSMALXE`, `TaoSMALXESetPenaltyPreconditioner()`, `TaoSMALXEGetProjectedPreconditioner()`, `TaoQPGetPC()`
+@*/
+PetscErrorCode TaoSMALXESetProjectedPreconditioner(Tao tao, PC pc)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  if (pc) PetscValidHeaderSpecific(pc, PC_CLASSID, 2);
+  PetscTryMethod(tao, "TaoSMALXESetProjectedPreconditioner_C", (Tao, PC), (tao, pc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  TaoSMALXEGetProjectedPreconditioner - The preconditioner of A given by `TaoSMALXESetProjectedPreconditioner()`.
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. pc - the preconditioner (borrowed), or `NULL`
+
+  Level: advanced
+
+.seealso: `TAOSMALXE`, `TaoSMALXESetProjectedPreconditioner()`
+@*/
+PetscErrorCode TaoSMALXEGetProjectedPreconditioner(Tao tao, PC *pc)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscAssertPointer(pc, 2);
+  *pc = NULL;
+  PetscTryMethod(tao, "TaoSMALXEGetProjectedPreconditioner_C", (Tao, PC *), (tao, pc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
