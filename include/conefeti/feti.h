@@ -49,6 +49,25 @@ typedef enum {
 } FETIRowKind;
 PETSC_EXTERN const char *const FETIRowKinds[];
 
+/*E
+  FETIKplusType - How F = B K+ B' applies K+ in each subdomain.
+
+$ FETI_KPLUS_AUTO     - per subdomain, after its factorization: a dense block (K+)_bb where it holds at most
+$                       -feti_kplus_memory_ratio times the entries of the sparse factor (and is read faster than the factor twice), the factor elsewhere
+$ FETI_KPLUS_EXPLICIT - dense blocks (K+)_bb in every subdomain whose block is not larger than twice its factor
+$ FETI_KPLUS_IMPLICIT - two sparse triangular solves with the factor in every subdomain
+
+  Level: intermediate
+
+.seealso: `FETISetKplusType()`, `FETIGetKplusType()`, `FETISetKplusExplicit()`
+E*/
+typedef enum {
+  FETI_KPLUS_AUTO,
+  FETI_KPLUS_EXPLICIT,
+  FETI_KPLUS_IMPLICIT
+} FETIKplusType;
+PETSC_EXTERN const char *const FETIKplusTypes[];
+
 PETSC_EXTERN PetscClassId  FETI_CLASSID;
 PETSC_EXTERN PetscLogEvent FETI_SetUp, FETI_Assembly, FETI_Factorization, FETI_MultF, FETI_CoarseSolve, FETI_ApplyKplus, FETI_PrimalRecovery, FETI_Preconditioner;
 
@@ -96,6 +115,9 @@ PETSC_EXTERN PetscErrorCode FETIGetKSP(FETI, KSP *);
 PETSC_EXTERN PetscErrorCode FETISetKplusExplicit(FETI, PetscBool);
 PETSC_EXTERN PetscErrorCode FETISetProgress(FETI, ConeFETIProgressFn, void *);
 PETSC_EXTERN PetscErrorCode FETIGetKplusExplicit(FETI, PetscBool *, PetscBool *);
+PETSC_EXTERN PetscErrorCode FETISetKplusType(FETI, FETIKplusType);
+PETSC_EXTERN PetscErrorCode FETIGetKplusType(FETI, FETIKplusType *, PetscInt *);
+PETSC_EXTERN PetscErrorCode FETISetKplusMemoryRatio(FETI, PetscReal);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryEstimate(FETI, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryBudget(MPI_Comm, const char[], PetscReal *, PetscBool *);
 PETSC_EXTERN PetscErrorCode FETIEstimateFactorMemory(PetscReal, PetscReal, PetscReal *);

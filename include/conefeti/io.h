@@ -83,6 +83,8 @@ typedef struct {
 . failed_check  - why the solve did not converge: a `ContactChecks` name, "solver", or "" when it converged
 . kplus_explicit - whether F products used explicit dense blocks of K+ (in at least one subdomain)
 . kplus_fallback - whether those blocks were asked for but dropped because they would not fit in memory (`FETIGetKplusExplicit()`)
+. kplus_type    - how they were asked for (`FETIGetKplusType()`: the contact layer's default is auto, per subdomain by memory)
+. kplus_blocks  - the subdomains whose F products used a dense block (`FETIGetKplusType()`)
 . unmatched_nodes - slave nodes of zones between bodies without a master point within the search distance (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
@@ -114,6 +116,8 @@ typedef struct {
   PetscInt                 refinements;
   char                     failed_check[32];
   PetscBool                kplus_explicit, kplus_fallback;
+  FETIKplusType            kplus_type;
+  PetscInt                 kplus_blocks;
   PetscInt                 unmatched_nodes;
   PetscReal                max_nu;
   PetscReal                contact_force[3], normal_force;

@@ -628,8 +628,10 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
     PetscCall(ContactCheckRigidMotions_Private(cm, d->fem, d->zones, holding));
   }
   PetscCall(CreateFETIWithContactRows(cm));
-  /* contact needs hundreds of F products: dense K+ blocks on the interface pay for their setup (-feti_kplus_explicit) */
-  if (!d->zones.empty()) PetscCall(FETISetKplusExplicit(d->feti, PETSC_TRUE));
+  /* contact needs hundreds of F products: a dense K+ block on the interface pays for its setup in time, but costs
+     |b|^2 numbers beside the factor; auto gives it to the subdomains where it is no larger than the factor
+     (-feti_kplus, -feti_kplus_memory_ratio; -feti_kplus_explicit 1 puts it everywhere, as before) */
+  if (!d->zones.empty()) PetscCall(FETISetKplusType(d->feti, FETI_KPLUS_AUTO));
   PetscCall(FETISetFromOptions(d->feti));
   PetscCall(ConeFETIProgressEnd_Private(d->progress));
   PetscCall(FETISetProgress(d->feti, d->progress.fn, d->progress.ctx));

@@ -3,8 +3,10 @@
 #include <conefeti/qp.h>
 
 #include <algorithm>
+#include <cstdlib>
 
-const char *const FETIRowKinds[] = {"gluing", "dirichlet", "contact_normal", "contact_tangential", "FETIRowKind", "FETI_ROW_", NULL};
+const char *const FETIRowKinds[]   = {"gluing", "dirichlet", "contact_normal", "contact_tangential", "FETIRowKind", "FETI_ROW_", NULL};
+const char *const FETIKplusTypes[] = {"auto", "explicit", "implicit", "FETIKplusType", "FETI_KPLUS_", NULL};
 
 static PetscErrorCode FETIReset(FETI feti)
 {
@@ -440,7 +442,10 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_check <true>           - check K_s R_s = 0 and K_s K_s+ K_s = K_s at setup (one solve per subdomain)
 . -feti_check_tol <1e-6>       - relative tolerance of these checks
 . -feti_fixing_nodes <8>       - well-separated candidate nodes among which the fixing dofs are pivoted
-. -feti_kplus_explicit <false> - F products with dense blocks of K+ on the dofs B touches (`FETISetKplusExplicit()`)
+. -feti_kplus <implicit,explicit,auto> - how F products apply K+ (`FETISetKplusType()`): the factor, dense blocks on the dofs B touches, or per subdomain by their
+  memory (the contact layer's default: auto)
+. -feti_kplus_explicit <bool>  - the same as -feti_kplus explicit (true) or implicit (false) (`FETISetKplusExplicit()`)
+. -feti_kplus_memory_ratio <1> - auto: a subdomain gets its dense block when the block has at most this many times the entries of its sparse factor (`FETISetKplusMemoryRatio()`)
 . -feti_kplus_explicit_schur <true> - build those blocks from a MUMPS Schur complement (when MUMPS is there); false: by solves with the subdomain factor
 . -feti_memory_budget <MB>     - memory the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup); `FETISetUp()` drops the explicit blocks when only
 they exceed it and stops when the factorizations do . -feti_view                   - view the problem after setup . -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of
@@ -458,8 +463,10 @@ factor does not fit one rank's memory and time; docs/scale.md)
 @*/
 PetscErrorCode FETISetFromOptions(FETI feti)
 {
-  FETI_Impl &impl          = *feti->impl;
-  PetscBool  kplusexplicit = impl.kplusexplicit;
+  FETI_Impl    &impl          = *feti->impl;
+  FETIKplusType kplustype     = impl.kplustype;
+  PetscBool     kplusexplicit = impl.kplustype == FETI_KPLUS_EXPLICIT ? PETSC_TRUE : PETSC_FALSE, typeset, explicitset;
+  const char   *prefix;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
@@ -468,9 +475,35 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscCall(PetscOptionsBool("-feti_check", "Check K R = 0 and K K+ K = K at setup", "FETISetUp", impl.check, &impl.check, NULL));
   PetscCall(PetscOptionsReal("-feti_check_tol", "Relative tolerance of the setup checks", "FETISetUp", impl.checktol, &impl.checktol, NULL));
   PetscCall(PetscOptionsInt("-feti_fixing_nodes", "Candidate nodes for the fixing dofs of K+", "FETISetUp", impl.nfixingcandidates, &impl.nfixingcandidates, NULL));
-  PetscCall(PetscOptionsBool("-feti_kplus_explicit",
-                             "Apply K+ in F = B K+ B' as a dense block on the dofs B touches (cheaper products when they are few; |b|^2 memory and |b| solves at setup per subdomain)", "FETISetUp",
-                             impl.kplusexplicit, &kplusexplicit, NULL));
+  PetscCall(PetscOptionsEnum("-feti_kplus",
+                             "How F = B K+ B' applies K+: two triangular solves with the sparse factor (implicit), a dense block on the dofs B touches (explicit: cheaper products when they "
+                             "are few, |b|^2 memory and a Schur complement at setup per subdomain), or per subdomain by their memory (auto, -feti_kplus_memory_ratio)",
+                             "FETISetKplusType", FETIKplusTypes, (PetscEnum)impl.kplustype, (PetscEnum *)&kplustype, &typeset));
+  PetscCall(PetscOptionsBool("-feti_kplus_explicit", "The same as -feti_kplus explicit (true) or implicit (false)", "FETISetKplusExplicit", kplusexplicit, &kplusexplicit, &explicitset));
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
+  if (explicitset) {
+    PetscCheck(!typeset || kplustype == (kplusexplicit ? FETI_KPLUS_EXPLICIT : FETI_KPLUS_IMPLICIT), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_INCOMP,
+               "-%sfeti_kplus %s and -%sfeti_kplus_explicit %s contradict each other: give one of them", prefix ? prefix : "", FETIKplusTypes[kplustype], prefix ? prefix : "",
+               kplusexplicit ? "true" : "false");
+    kplustype = kplusexplicit ? FETI_KPLUS_EXPLICIT : FETI_KPLUS_IMPLICIT;
+  }
+  { /* PETSc's own message for a word that is not a number does not name the option */
+    char      text[64];
+    PetscBool given;
+    PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, prefix, "-feti_kplus_memory_ratio", text, sizeof(text), &given));
+    if (given) {
+      char *end;
+      (void)std::strtod(text, &end);
+      PetscCheck(text[0] && !*end, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_WRONG,
+                 "-%sfeti_kplus_memory_ratio %s: not a number (the ratio of a block's numbers to its factor's entries, >= 0)", prefix ? prefix : "", text);
+    }
+  }
+  PetscCall(PetscOptionsReal("-feti_kplus_memory_ratio",
+                             "-feti_kplus auto: a subdomain gets its dense block (K+)_bb when the block (|b|^2 numbers) has at most this many times the entries of its sparse factor",
+                             "FETISetKplusMemoryRatio", impl.kplusratio, &impl.kplusratio, NULL));
+  PetscCheck(impl.kplusratio >= 0 && !PetscIsInfOrNanReal(impl.kplusratio), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sfeti_kplus_memory_ratio %g: the ratio of a block's numbers to its factor's entries is a finite number >= 0 (0: no block; 1, the default: a block at most as large as the factor)",
+             prefix ? prefix : "", (double)impl.kplusratio);
   PetscCall(PetscOptionsBool("-feti_kplus_explicit_schur", "Build the explicit K+ blocks from a MUMPS Schur complement (false: by solves with the subdomain factor)", "FETISetKplusExplicit",
                              impl.kplusschur, &impl.kplusschur, NULL));
   PetscCall(PetscOptionsEnum("-feti_coarse_mode",
@@ -490,7 +523,7 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   }
   PetscCall(PetscOptionsName("-feti_view", "View the FETI problem after setup", "FETIView", NULL));
   PetscOptionsEnd();
-  PetscCall(FETISetKplusExplicit(feti, kplusexplicit));
+  PetscCall(FETISetKplusType(feti, kplustype));
   PetscCheck(impl.kerneltol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_kernel_tol %g must be positive", (double)impl.kerneltol);
   PetscCheck(impl.checktol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_check_tol %g must be positive", (double)impl.checktol);
   PetscCheck(impl.nfixingcandidates >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_fixing_nodes %" PetscInt_FMT " must be non-negative", impl.nfixingcandidates);
@@ -543,6 +576,8 @@ PetscErrorCode FETISetProgress(FETI feti, ConeFETIProgressFn fn, void *ctx)
 . -feti_kplus_explicit <bool> - the same; read by `FETISetFromOptions()`, overrides this call
 
   Notes:
+  The same as `FETISetKplusType()` with `FETI_KPLUS_EXPLICIT` (true) or `FETI_KPLUS_IMPLICIT` (false).
+
   Each local subdomain keeps a dense |b| x |b| block, b the dofs B touches (gluing, Dirichlet and contact
   dofs): the inverse of the Schur complement of the regularized K_s on b, which the subdomain's MUMPS
   factorization keeps (the subdomain solver becomes MUMPS unless -feti_sub_pc_factor_mat_solver_type names
@@ -551,21 +586,131 @@ PetscErrorCode FETISetProgress(FETI feti, ConeFETIProgressFn fn, void *ctx)
   Cholesky factor. Worth it
   when an F product is needed many times (contact and friction: hundreds of products) and |b| is small
   against the subdomain; a linear FETI solve (tens of products) rarely recovers the setup. The contact
-  layer turns it on; the default of a bare FETI object is off. Products with K+ itself (`FETIGetGeneralizedInverse()`)
+  layer asks for `FETI_KPLUS_AUTO`, which builds a block only where it costs at most the factor's memory; the
+  default of a bare FETI object is off. Products with K+ itself (`FETIGetGeneralizedInverse()`)
   always use the factor.
 
   Level: intermediate
 
-.seealso: `FETISetUp()`, `FETIGetOperators()`
+.seealso: `FETISetKplusType()`, `FETISetUp()`, `FETIGetOperators()`
 @*/
 PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscValidLogicalCollectiveBool(feti, flg, 2);
-  PetscCheck(!feti->impl->setupcalled || (feti->impl->kplusexplicit || feti->impl->kplusfallback || feti->impl->nkplusimplicit > 0) == flg, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
-             "FETISetKplusExplicit() (-feti_kplus_explicit) must come before FETISetUp()");
-  if (!feti->impl->setupcalled) feti->impl->kplusexplicit = flg;
+  PetscCall(FETISetKplusType(feti, flg ? FETI_KPLUS_EXPLICIT : FETI_KPLUS_IMPLICIT));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETISetKplusType - How F = B K+ B' applies K+ in each subdomain: two sparse triangular solves with its factor,
+  a dense block (K+)_bb on the dofs B touches, or a choice per subdomain by what each costs in memory.
+
+  Logically Collective
+
+  Input Parameters:
++ feti - the FETI problem
+- type - `FETI_KPLUS_IMPLICIT` (the default of a bare FETI object), `FETI_KPLUS_EXPLICIT` (`FETISetKplusExplicit()`),
+         or `FETI_KPLUS_AUTO` (the contact layer's default)
+
+  Options Database Keys:
++ -feti_kplus <implicit,explicit,auto> - the same; read by `FETISetFromOptions()`, overrides this call
+. -feti_kplus_explicit <bool>           - the same as explicit (true) or implicit (false)
+- -feti_kplus_memory_ratio <1>          - auto: the largest ratio of a block's numbers to its factor's entries (`FETISetKplusMemoryRatio()`)
+
+  Notes:
+  auto factors every subdomain with its own package (-feti_sub_pc_factor_mat_solver_type, CHOLMOD by default), then
+  gives a subdomain its dense block, |b|^2 numbers stored square next to the factor (which products with K+
+  itself still use), only when the block has at most -feti_kplus_memory_ratio times the entries of that factor
+  as the package reports them (CHOLMOD: the nonzeros of L) and its triangle is less than the factor read twice
+  (so that its F products are faster). Those blocks come from a second, transient, MUMPS factorization that keeps
+  the Schur complement on b (or, without MUMPS, |b| solves with the factor). On the brick of cubes of 6 cells the
+  blocks are 2 to 3 times the factor and auto keeps the factor everywhere, at 3.6 to 4.3 times less memory than
+  explicit for about the same time (docs/scale.md); a subdomain touched by B on a small part of its boundary
+  (a small contact zone, a cube glued on one face) gets its block. `FETIGetKplusType()` says how many did.
+
+  explicit is the behaviour of `FETISetKplusExplicit()`: blocks in every subdomain whose block's triangle is not
+  larger than twice its (estimated) factor, the subdomain's solver becomes MUMPS keeping the Schur complement
+  (its factor and workspace stay beside the block); the results of the options that choose it are unchanged.
+
+  Level: intermediate
+
+.seealso: `FETIKplusType`, `FETIGetKplusType()`, `FETISetKplusExplicit()`, `FETISetKplusMemoryRatio()`, `FETISetUp()`
+@*/
+PetscErrorCode FETISetKplusType(FETI feti, FETIKplusType type)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidLogicalCollectiveEnum(feti, type, 2);
+  PetscCheck(type >= FETI_KPLUS_AUTO && type <= FETI_KPLUS_IMPLICIT, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "Unknown FETIKplusType %d", (int)type);
+  PetscCheck(!feti->impl->setupcalled || feti->impl->kplustype == type, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
+             "FETISetKplusType() (-feti_kplus, -feti_kplus_explicit) must come before FETISetUp()");
+  if (!feti->impl->setupcalled) {
+    feti->impl->kplustype     = type;
+    feti->impl->kplusexplicit = type == FETI_KPLUS_IMPLICIT ? PETSC_FALSE : PETSC_TRUE;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETIGetKplusType - How F products apply K+: the type asked for, and after `FETISetUp()` in how many subdomains a dense block was used.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem
+
+  Output Parameters:
++ type   - the type asked for (`FETISetKplusType()`); NULL if not needed
+- blocks - after `FETISetUp()`, the subdomains (all ranks) whose F products use a dense block (K+)_bb (0 when they
+           were dropped for memory, `FETIGetKplusExplicit()`); before it 0; NULL if not needed
+
+  Level: intermediate
+
+.seealso: `FETISetKplusType()`, `FETIGetKplusExplicit()`, `FETIView()`
+@*/
+PetscErrorCode FETIGetKplusType(FETI feti, FETIKplusType *type, PetscInt *blocks)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  if (type) *type = feti->impl->kplustype;
+  if (blocks) *blocks = feti->impl->setupcalled && feti->impl->kplusexplicit ? feti->impl->nkplusblocks : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETISetKplusMemoryRatio - With `FETI_KPLUS_AUTO`, the largest ratio of a subdomain's dense block (K+)_bb (|b|^2
+  numbers, stored square) to the entries of its sparse factor for which the subdomain gets the block.
+
+  Logically Collective
+
+  Input Parameters:
++ feti  - the FETI problem
+- ratio - a finite number >= 0; 0: no block; 1 (the default): a block at most as large as the factor, i.e. at
+          most twice the subdomain's memory for F
+
+  Options Database Key:
+. -feti_kplus_memory_ratio <1> - the same; read by `FETISetFromOptions()`, overrides this call
+
+  Notes:
+  Whatever the ratio, a block whose triangle would be larger than twice the factor (slower F products) is not
+  built. The node's memory budget (-feti_memory_budget) can still drop every block.
+
+  Level: advanced
+
+.seealso: `FETISetKplusType()`, `FETIGetKplusType()`, `FETIGetMemoryEstimate()`
+@*/
+PetscErrorCode FETISetKplusMemoryRatio(FETI feti, PetscReal ratio)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(feti, ratio, 2);
+  PetscCheck(ratio >= 0 && !PetscIsInfOrNanReal(ratio), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+             "FETISetKplusMemoryRatio() (-feti_kplus_memory_ratio) %g: the ratio is a finite number >= 0", (double)ratio);
+  PetscCheck(!feti->impl->setupcalled || feti->impl->kplusratio == ratio, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
+             "FETISetKplusMemoryRatio() (-feti_kplus_memory_ratio) must come before FETISetUp()");
+  feti->impl->kplusratio = ratio;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -689,7 +834,20 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
       PetscCall(PetscViewerASCIIPrintf(viewer, "generalized inverse: Cholesky (%s) with fixing dofs; first local subdomain: %" PetscInt_FMT " fixing dofs\n", type ? type : "petsc",
                                        (PetscInt)impl.sub[0].fixing.size()));
     }
-    if (impl.kplusexplicit) {
+    if (impl.kplustype == FETI_KPLUS_AUTO && !impl.kplusfallback) {
+      PetscInt nbmax = 0;
+      for (const FETISubdomain &sd : impl.sub)
+        if (!sd.kplusimplicit) nbmax = std::max(nbmax, (PetscInt)sd.kb.size());
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
+      PetscCall(PetscViewerASCIIPrintf(viewer,
+                                       "F products (-feti_kplus auto): explicit dense K+ blocks in %" PetscInt_FMT " of %" PetscInt_FMT " subdomains (at most %" PetscInt_FMT
+                                       " dofs), two triangular solves with the factor in %" PetscInt_FMT "\n",
+                                       impl.nkplusblocks, impl.nglobalsub, nbmax, impl.nkplusimplicit));
+      PetscCall(PetscViewerASCIIPrintf(viewer,
+                                       "  a block where its |b|^2 numbers are at most %g times its factor's entries (-feti_kplus_memory_ratio) and its triangle less than twice the factor; "
+                                       "factors %.1f MB, blocks %.1f MB (all ranks, 8 bytes per entry)\n",
+                                       (double)impl.kplusratio, 8.0 * impl.kplusfactorentries / 1048576.0, 8.0 * impl.kplusblockentries / 1048576.0));
+    } else if (impl.kplusexplicit) {
       PetscInt nbmax = 0;
       for (const FETISubdomain &sd : impl.sub) nbmax = std::max(nbmax, (PetscInt)sd.kb.size());
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));

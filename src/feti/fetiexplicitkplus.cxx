@@ -1,4 +1,4 @@
-/* Explicit K+ on the dofs touched by B (-feti_kplus_explicit).
+/* Explicit K+ on the dofs touched by B (-feti_kplus explicit, or auto where it pays: fetimemory.cxx).
 
    F = B K+ B' only needs the rows and columns of K+ at the dofs that B touches (the subdomain's
    "interface": gluing and contact dofs). When that set is small, the dense block (K+)_bb applied
@@ -259,11 +259,17 @@ static PetscErrorCode SubdomainExplicitKplusBySchur(FETI feti, FETISubdomain &sd
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Build (K+)_bb for every local subdomain; after the factorizations and B are set up */
+/* Build (K+)_bb for every local subdomain; after the factorizations and B are set up. With -feti_kplus auto,
+   first choose per subdomain (FETISubdomainChooseKplus(): the block against the factor just built); the
+   chosen blocks come from a second, transient, MUMPS factorization (or solves with the factor), so that
+   the subdomain keeps only its own factor and the block, not MUMPS's factor and workspace as well. */
 PetscErrorCode FETISetUpExplicitKplus(FETI feti)
 {
   FETI_Impl         &impl = *feti->impl;
   const PetscScalar *mask;
+  const PetscBool    autochoice = impl.kplustype == FETI_KPLUS_AUTO ? PETSC_TRUE : PETSC_FALSE;
+  PetscInt           counts[2]  = {0, 0}; /* auto: subdomains with a block, subdomains that keep the factor for F */
+  double             entries[2] = {0, 0}; /* auto: factor entries, block entries */
 
   PetscFunctionBegin;
   PetscCall(FETISetUpBoundaryMask(feti));
@@ -272,8 +278,27 @@ PetscErrorCode FETISetUpExplicitKplus(FETI feti)
     FETISubdomain &sd    = impl.sub[s];
     PetscBool      mumps = PETSC_FALSE, interior;
     if (s) PetscCall(ConeFETIProgressStep_Private(impl.progress, (PetscInt)s)); /* the ones before are done */
-    if (sd.schurfactor || sd.kplusimplicit) continue;                           /* built with the subdomain's factorization, or not at all (F uses the factor) */
-    PetscCall(BoundaryDofs(sd, mask, sd.kb));
+    if (autochoice) {
+      PetscBool blocks;
+      PetscReal factorentries;
+      PetscCall(BoundaryDofs(sd, mask, sd.kb));
+      PetscCall(FETISubdomainChooseKplus(feti, sd, impl.firstsub + (PetscInt)s, (PetscInt)sd.kb.size(), &blocks, &factorentries));
+      entries[0] += factorentries;
+      if (sd.kb.empty()) { /* B does not touch it: nothing to apply for F */
+        sd.kplusimplicit = PETSC_FALSE;
+        continue;
+      }
+      sd.kplusimplicit = blocks ? PETSC_FALSE : PETSC_TRUE;
+      counts[blocks ? 0 : 1]++;
+      if (!blocks) {
+        PetscCallCXX(std::vector<PetscInt>().swap(sd.kb));
+        continue;
+      }
+      entries[1] += (double)sd.kb.size() * (double)sd.kb.size();
+    } else {
+      if (sd.schurfactor || sd.kplusimplicit) continue; /* built with the subdomain's factorization, or not at all (F uses the factor) */
+      PetscCall(BoundaryDofs(sd, mask, sd.kb));
+    }
     PetscCall(HasInterior(sd, sd.kb, &interior));
     if (impl.kplusschur && interior) PetscCall(MatGetFactorAvailable(sd.Kreg, MATSOLVERMUMPS, MAT_FACTOR_CHOLESKY, &mumps));
     if (mumps) PetscCall(SubdomainExplicitKplusBySchur(feti, sd, impl.firstsub + (PetscInt)s));
@@ -281,6 +306,19 @@ PetscErrorCode FETISetUpExplicitKplus(FETI feti)
   }
   PetscCall(ConeFETIProgressStep_Private(impl.progress, (PetscInt)impl.sub.size()));
   PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
+  if (autochoice) {
+    MPI_Comm comm = PetscObjectComm((PetscObject)feti);
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, counts, 2, MPIU_INT, MPI_SUM, comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, entries, 2, MPI_DOUBLE, MPI_SUM, comm));
+    impl.nkplusblocks       = counts[0];
+    impl.nkplusimplicit     = counts[1];
+    impl.kplusfactorentries = entries[0];
+    impl.kplusblockentries  = entries[1];
+    PetscCall(PetscInfo(feti,
+                        "-feti_kplus auto: dense blocks (K+)_bb in %" PetscInt_FMT " of %" PetscInt_FMT " subdomains (%.1f MB), the factor for F in %" PetscInt_FMT " (factors: %.1f MB of entries)\n",
+                        counts[0], impl.nglobalsub, 8.0 * entries[1] / 1048576.0, counts[1], 8.0 * entries[0] / 1048576.0));
+    if (!counts[0]) impl.kplusexplicit = PETSC_FALSE; /* no block anywhere: the plain products with the factors, as -feti_kplus implicit */
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -7,7 +7,16 @@
    (or -feti_memory_budget), drops the explicit blocks when only they do not fit, and stops at once with the
    estimate when even the factors do not. A subdomain whose dense block would be larger than its factor
    (a wide slab one cell thick: B touches every node) keeps the factor for F in any case: the block would cost
-   more memory, more setup (|b| solves) and more time per product than the two triangular solves it replaces. */
+   more memory, more setup (|b| solves) and more time per product than the two triangular solves it replaces.
+
+   -feti_kplus auto (the contact layer's default) chooses per subdomain after its factorization, from what is
+   really stored: the block is |b|^2 numbers (stored square, for dsymv) on top of the factor, which K+ x (h,
+   the primal recovery) needs anyway, so a subdomain gets its block only when |b|^2 is at most
+   -feti_kplus_memory_ratio (default 1) times the entries of its factor as the package reports them (CHOLMOD:
+   the nonzeros of L, MatGetInfo()), and when reading its triangle is faster than reading the factor twice.
+   On the brick's cubes of 6 cells (1029 dofs, |b| up to 654, docs/scale.md) the blocks are 2 to 3 times
+   the factor: the factor everywhere, 3.6 to 4.3 times less memory than the blocks for about the same time;
+   on a body with a small contact zone or the paper's three large cubes, blocks. */
 #include <conefeti/private/fetiimpl.h>
 
 #include <algorithm>
@@ -188,16 +197,20 @@ PetscErrorCode FETICheckMemory(FETI feti)
     PetscReal nnzhalf = 0;
     PetscCall(HalfNonzeros(sd.K, sd.n, &nnzhalf));
     mine[0] += FactorBytes(sd.n, nnzhalf);
-    nmax             = std::max(nmax, sd.n);
-    sd.kplusimplicit = PETSC_FALSE;
+    nmax = std::max(nmax, sd.n);
+    /* auto: every subdomain is factored by its own package first (no Schur complement kept);
+       FETISetUpExplicitKplus() then chooses with the real size of that factor */
+    sd.kplusimplicit = impl.kplustype == FETI_KPLUS_AUTO ? PETSC_TRUE : PETSC_FALSE;
     if (mask) { /* |b| counted with the fixing dofs (an upper bound); the dense block, and the n x 128 work blocks of the solves that may build it */
       std::vector<char> isD(sd.n, 0);
       PetscInt          nb = 0;
       for (PetscInt d : sd.dirichletdofs) isD[d] = 1;
       for (PetscInt k = 0; k < sd.n; k++)
         if (mask[sd.localoffset + k] != 0.0 && !isD[k]) nb++;
-      /* dsymv reads the triangle, nb^2/2 numbers; the two triangular solves read the factor twice */
-      if (0.5 * (double)nb * nb > 2.0 * FactorEntries(sd.n, nnzhalf)) {
+      if (impl.kplustype == FETI_KPLUS_AUTO) { /* the blocks the estimated factor would let through: for the budget only */
+        const PetscReal entries = FactorEntries(sd.n, nnzhalf);
+        if ((double)nb * nb > impl.kplusratio * entries || 0.5 * (double)nb * nb > 2.0 * entries) continue;
+      } else if (0.5 * (double)nb * nb > 2.0 * FactorEntries(sd.n, nnzhalf)) { /* dsymv reads the triangle, nb^2/2 numbers; the two triangular solves read the factor twice */
         sd.kplusimplicit = PETSC_TRUE;
         nimplicit++;
         continue;
@@ -212,10 +225,11 @@ PetscErrorCode FETICheckMemory(FETI feti)
   PetscCallMPI(MPI_Comm_free(&node));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nmax, 1, MPIU_INT, MPI_MAX, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nbmax, 1, MPIU_INT, MPI_MAX, comm));
-  if (impl.kplusexplicit) {
+  if (impl.kplusexplicit && impl.kplustype == FETI_KPLUS_EXPLICIT) {
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nimplicit, 1, MPIU_INT, MPI_SUM, comm));
     impl.nkplusimplicit = nimplicit;
     nexplicit           = impl.nglobalsub - nimplicit;
+    impl.nkplusblocks   = nexplicit;
     if (nimplicit)
       PetscCall(PetscInfo(feti, "%" PetscInt_FMT " of %" PetscInt_FMT " subdomains keep their factor for F: their explicit K+ block would be larger than the factor\n", nimplicit, impl.nglobalsub));
     if (!nexplicit) impl.kplusexplicit = PETSC_FALSE; /* no block anywhere: the plain implicit products */
@@ -252,12 +266,53 @@ PetscErrorCode FETICheckMemory(FETI feti)
   if (impl.kplusexplicit && !allfit[1]) {
     impl.kplusexplicit = PETSC_FALSE;
     impl.kplusfallback = PETSC_TRUE;
+    impl.nkplusblocks  = 0;
+    for (FETISubdomain &sd : impl.sub) sd.kplusimplicit = PETSC_FALSE; /* as -feti_kplus implicit */
     PetscCall(PetscInfo(feti,
                         "The explicit K+ blocks (%.1f MB on the node of rank %d, |b| up to %" PetscInt_FMT
                         ") and the factors (%.1f MB) exceed the budget of %.1f MB: F products use the factors (implicit K+, "
                         "as -feti_kplus_explicit 0)\n",
                         onnode[1] / 1048576.0, rank, nbmax, onnode[0] / 1048576.0, budget / 1048576.0));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* -feti_kplus auto, after the subdomain's factorization: a dense block (K+)_bb on its nb dofs where B touches it,
+   or its factor for F. The block is stored beside the factor (K+ x needs it anyway): it is worth its memory
+   when its nb^2 numbers (square storage) are at most -feti_kplus_memory_ratio times the factor's entries, and
+   its time when dsymv's triangle, nb^2/2 numbers, is less than the two triangular solves read, twice the
+   factor. The factor's entries are those its package reports after the factorization (CHOLMOD: the nonzeros
+   of L; MUMPS: INFOG(20)), else the estimate from the nonzeros of K_s. */
+PetscErrorCode FETISubdomainChooseKplus(FETI feti, FETISubdomain &sd, PetscInt s, PetscInt nb, PetscBool *blocks, PetscReal *factorentries)
+{
+  FETI_Impl    &impl = *feti->impl;
+  PC            pc;
+  Mat           factor;
+  MatInfo       info;
+  PetscReal     entries  = 0;
+  PetscBool     measured = PETSC_FALSE, known;
+  MatSolverType type;
+
+  PetscFunctionBegin;
+  PetscCall(KSPGetPC(sd.ksp, &pc));
+  PetscCall(PCFactorGetMatrix(pc, &factor));
+  PetscCall(MatFactorGetSolverType(factor, &type));
+  known = type && (!strcmp(type, MATSOLVERCHOLMOD) || !strcmp(type, MATSOLVERMUMPS) || !strcmp(type, MATSOLVERPETSC)) ? PETSC_TRUE : PETSC_FALSE;
+  if (known) { /* the packages whose factors report their size to MatGetInfo() */
+    PetscCall(MatGetInfo(factor, MAT_LOCAL, &info));
+    entries  = (PetscReal)info.nz_used;
+    measured = entries > 0 ? PETSC_TRUE : PETSC_FALSE;
+  }
+  if (!measured) {
+    PetscReal nnzhalf;
+    PetscCall(HalfNonzeros(sd.Kreg, sd.n, &nnzhalf));
+    entries = FactorEntries(sd.n, nnzhalf);
+  }
+  *factorentries = entries;
+  *blocks        = nb > 0 && (double)nb * nb <= impl.kplusratio * entries && 0.5 * (double)nb * nb <= 2.0 * entries ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscInfo(NULL, "Subdomain %" PetscInt_FMT ": %s: block (K+)_bb %" PetscInt_FMT "^2 = %.0f numbers, factor %.0f entries (%s), ratio %.2f (-feti_kplus_memory_ratio %g)\n", s,
+                      *blocks ? "dense block" : "factor", nb, (double)nb * nb, (double)entries, measured ? "measured" : "estimated", entries > 0 ? (double)nb * nb / entries : 0.0,
+                      (double)impl.kplusratio));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

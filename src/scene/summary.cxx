@@ -180,6 +180,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   PetscCall(ContactModelGetFETI(impl.cm, &feti));
   PetscCall(FETIGetSizes(feti, &s->n_primal, &s->m, &s->rigid_modes));
   PetscCall(FETIGetKplusExplicit(feti, &s->kplus_explicit, &s->kplus_fallback));
+  PetscCall(FETIGetKplusType(feti, &s->kplus_type, &s->kplus_blocks));
   PetscCall(FEMGetNumSubdomains(impl.fem, &s->subdomains, NULL, NULL));
   PetscCall(FETIGetConstraints(feti, &B, &c, &kinds));
   PetscCall(ContactModelGetSolution(impl.cm, &lambda, NULL));
@@ -536,7 +537,15 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Real(out, "acceptance", s->acceptance);
   Str(out, "failed_check", s->failed_check[0] ? s->failed_check : NULL);
   Int(out, "refinements", s->refinements);
-  Str(out, "kplus", s->kplus_explicit ? "explicit" : (s->kplus_fallback ? "implicit (memory)" : "implicit"));
+  {
+    char kplus[128];
+    /* explicit and implicit as before auto existed (the pages made with -feti_kplus_explicit read them); auto says what it chose */
+    if (s->kplus_fallback) PetscCall(PetscStrncpy(kplus, "implicit (memory)", sizeof(kplus)));
+    else if (s->kplus_type == FETI_KPLUS_AUTO) PetscCall(PetscSNPrintf(kplus, sizeof(kplus), "auto: blocks in %" PetscInt_FMT " of %" PetscInt_FMT " subdomains", s->kplus_blocks, s->subdomains));
+    else PetscCall(PetscStrncpy(kplus, s->kplus_explicit ? "explicit" : "implicit", sizeof(kplus)));
+    Str(out, "kplus", kplus);
+  }
+  Int(out, "kplus_blocks", s->kplus_blocks);
   Int(out, "friction_polygon", s->friction_polygon);
   Real(out, "fixed_point", s->fixed_point);
   Real(out, "feasibility", s->feasibility);

@@ -122,7 +122,7 @@ int main(int argc, char **argv)
   PetscCall(PetscViewerBinaryOpen(PETSC_COMM_WORLD, file, FILE_MODE_READ, &viewer));
   PetscCall(FETILoadContact(feti, cp, viewer));
   PetscCall(PetscViewerDestroy(&viewer));
-  PetscCall(FETISetKplusExplicit(feti, PETSC_TRUE)); /* as the writers (ContactModel, the tutorial) do for a contact solve */
+  PetscCall(FETISetKplusExplicit(feti, PETSC_TRUE)); /* as the writer (the tutorial ex3_usercontact) does for a contact solve */
   PetscCall(FETISetFromOptions(feti));
   PetscCall(FETISetUp(feti));
   PetscCall(FETIGetOperators(feti, &F, NULL, NULL, &Q));

@@ -21,7 +21,7 @@ FIELDS = {
     "subdomains": int, "rigid_modes": int, "iter": int, "al_iter": int, "n_A": int, "n_A_qpp": int, "n_A_qpq": int,
     "n_A_other": int, "n_A_estimate": int, "norm_F": float, "time_setup": float, "time_solve": float, "time_phases": dict,
     "contact_nodes": int, "separated": int, "stick": int, "slip": int, "fixed_point": float, "feasibility": float,
-    "acceptance": float, "refinements": int, "residuals": dict,
+    "acceptance": float, "refinements": int, "residuals": dict, "kplus": str, "kplus_blocks": int,
 }
 PROGRESS = re.compile(r"^(setup|solve): ")
 RESIDUALS = ["equilibrium", "gluing", "penetration", "normal_sign", "complementarity", "friction_cone", "slip_rule", "max"]

@@ -346,7 +346,8 @@ int main(int argc, char **argv)
     PetscCall(VecDestroy(&c));
   }
   /* a contact solve needs hundreds of products with F = B K+ B': dense blocks of K+ on the dofs B touches pay for their
-     setup (as ContactModel chooses; -feti_kplus_explicit 0 turns them off) */
+     setup in time (ContactModel asks for -feti_kplus auto instead: a block only where it costs at most the factor's
+     memory; -feti_kplus_explicit 0 or -feti_kplus auto override this call) */
   PetscCall(FETISetKplusExplicit(feti, PETSC_TRUE));
   PetscCall(FETISetFromOptions(feti));
   PetscCall(FETISetUp(feti));

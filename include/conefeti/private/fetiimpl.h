@@ -46,7 +46,7 @@ struct FETISubdomain {
   Mat                   Kplusbb = nullptr;           /* dense (K+)_bb */
   Vec                   kx = nullptr, ky = nullptr;  /* work vectors of length |kb| */
   PetscBool             schurfactor   = PETSC_FALSE; /* the subdomain's MUMPS factor holds the Schur complement on kb */
-  PetscBool             kplusimplicit = PETSC_FALSE; /* explicit K+ asked for, but this block would be larger than the factor: F uses the factor here */
+  PetscBool             kplusimplicit = PETSC_FALSE; /* blocks asked for (explicit or auto), but F uses the factor here (its block would be too large) */
 };
 
 /* y = A x with every row summed in increasing global column order: bitwise the same on any number of
@@ -90,21 +90,25 @@ struct FETI_Impl {
   PetscInt  nprimal = 0, nlocalprimal = 0, ncoarse = 0, nlocalcoarse = 0;
 
   /* options */
-  PetscReal      kerneltol          = 1e-8;       /* -feti_kernel_tol */
-  PetscReal      checktol           = 1e-6;       /* -feti_check_tol */
-  PetscBool      check              = PETSC_TRUE; /* -feti_check */
-  PetscInt       nfixingcandidates  = 8;          /* -feti_fixing_nodes */
-  char           subsolver[64]      = "";
-  PetscBool      kplusexplicit      = PETSC_FALSE;      /* -feti_kplus_explicit */
-  PetscBool      kplusschur         = PETSC_TRUE;       /* -feti_kplus_explicit_schur */
-  FETICoarseMode coarsemode         = FETI_COARSE_AUTO; /* -feti_coarse_mode */
-  PetscInt       coarseparalleldim  = 50000;            /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
-  PetscInt       coarseredundantdim = 10000;            /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
+  PetscReal      kerneltol         = 1e-8;       /* -feti_kernel_tol */
+  PetscReal      checktol          = 1e-6;       /* -feti_check_tol */
+  PetscBool      check             = PETSC_TRUE; /* -feti_check */
+  PetscInt       nfixingcandidates = 8;          /* -feti_fixing_nodes */
+  char           subsolver[64]     = "";
+  FETIKplusType  kplustype         = FETI_KPLUS_IMPLICIT; /* -feti_kplus, -feti_kplus_explicit */
+  PetscReal      kplusratio        = 1.0;                 /* -feti_kplus_memory_ratio (auto) */
+  PetscBool      kplusexplicit     = PETSC_FALSE;         /* blocks may be built (before setup: kplustype is not implicit), are used in some subdomain (after) */
+  PetscBool      kplusschur        = PETSC_TRUE;          /* -feti_kplus_explicit_schur */
+  FETICoarseMode coarsemode        = FETI_COARSE_AUTO;    /* -feti_coarse_mode */
+  PetscInt       coarseparalleldim = 50000;               /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
+  PetscInt       coarseredundantdim = 10000;              /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
 
   /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
   PetscReal memfactors = -1, memblocks = -1, membudget = -1; /* bytes; -1: not estimated (budget: unknown) */
-  PetscBool kplusfallback  = PETSC_FALSE;
-  PetscInt  nkplusimplicit = 0; /* subdomains (all ranks) that keep the factor for F because their block would be larger */
+  PetscBool kplusfallback      = PETSC_FALSE;
+  PetscInt  nkplusimplicit     = 0;                          /* subdomains (all ranks) that keep the factor for F because their block would be larger */
+  PetscInt  nkplusblocks       = 0;                          /* subdomains (all ranks) whose F products use a dense block (K+)_bb */
+  PetscReal kplusfactorentries = -1, kplusblockentries = -1; /* auto: entries (all ranks) of the factors as measured after the factorizations, and of the blocks built (stored square) */
 
   /* global objects */
   Vec              f  = nullptr; /* primal load */
@@ -175,6 +179,7 @@ PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &)
 
 /* fetimemory.cxx */
 PETSC_INTERN PetscErrorCode FETICheckMemory(FETI);
+PETSC_INTERN PetscErrorCode FETISubdomainChooseKplus(FETI, FETISubdomain &, PetscInt, PetscInt, PetscBool *, PetscReal *);
 
 /* fetirowsum.cxx */
 PETSC_INTERN PetscErrorCode FETICreateCoarseMatrix(FETI, Vec, Mat *);
