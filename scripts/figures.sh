@@ -33,6 +33,9 @@
 #                 says; copied into that page by hand: its tables are interleaved with text) 15 min page
 #   qp            build/figures/qp-benchmark.md (scripts/bench-qp.sh; likewise by hand)       11 min page
 #
+# The pages made when dense K+ blocks were the contact default (brick-benchmark's paper-tolerance table,
+# accuracy-cost, the ablations) pass -feti_kplus_explicit 1, which reproduces them bit for bit.
+#
 # Everything: about 1 h 50 min, plus the build (3-6 min from clean); --quick: about 15 minutes.
 # Tables go into their pages between a marker `<!-- generated: NAME -->` and the end of the fenced block
 # after it (scripts/docs-block.py), with a first line "# made at commit <hash> on <machine>, <date>".
@@ -77,12 +80,12 @@ if want brick; then
   say "brick: defaults"
   scripts/bench-brick.py --build "$build" --algorithms monolithic --rtol 1e-6 | block docs/brick-benchmark.md defaults
   say "brick: the paper's tolerance"
-  scripts/bench-brick.py --build "$build" --algorithms monolithic,msa,merged | block docs/brick-benchmark.md paper-tolerance
+  scripts/bench-brick.py --build "$build" --algorithms monolithic,msa,merged --extra "-feti_kplus_explicit 1" | block docs/brick-benchmark.md paper-tolerance
 fi
 
 if want accuracy; then
   say "accuracy-cost"
-  scripts/bench-accuracy.py --build "$build" | block docs/accuracy-cost.md tables
+  scripts/bench-accuracy.py --build "$build" --extra "-feti_kplus_explicit 1" | block docs/accuracy-cost.md tables
 fi
 
 if want precision; then
@@ -129,23 +132,23 @@ if want ablations; then
   page=docs/brick-ablations.md
   say "ablations (every table of $page)"
   b() { scripts/bench-brick.py --build "$build" "$@"; }
-  b --algorithms monolithic,merged --extra "-paper_m -gap 3e-3" | block $page paper-zone
-  b --algorithms monolithic,msa --extra "-contact_tao_smalxe_penalty_pc 0" | block $page penalty-pc-off
-  b --algorithms monolithic --extra "-contact_tao_smalxe_rho 2 -contact_tao_smalxe_rho_first 0.5 -contact_tao_smalxe_anderson_start 2" | block $page rho-first
-  b --algorithms monolithic --extra "-options_file petsc-options/coulomb-fewer-iterations.opts" | block $page fewer-iterations
+  b --algorithms monolithic,merged --extra "-feti_kplus_explicit 1 -paper_m -gap 3e-3" | block $page paper-zone
+  b --algorithms monolithic,msa --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0" | block $page penalty-pc-off
+  b --algorithms monolithic --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_rho 2 -contact_tao_smalxe_rho_first 0.5 -contact_tao_smalxe_anderson_start 2" | block $page rho-first
+  b --algorithms monolithic --extra "-feti_kplus_explicit 1 -options_file petsc-options/coulomb-fewer-iterations.opts" | block $page fewer-iterations
   scripts/goals-brick.py --build "$build" --others --config default --config "fewer-iterations=-options_file petsc-options/coulomb-fewer-iterations.opts" \
     --config "rho-first=-contact_tao_smalxe_rho 2 -contact_tao_smalxe_rho_first 0.5 -contact_tao_smalxe_anderson_start 2" \
     --config "projcg=-contact_tao_smalxe_subsolver_tao_mpgp_expansion_projcg" | block $page goals
-  b --algorithms monolithic --extra "-contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_subsolver_tao_mpgp_arc 0" | block $page arc-off
-  b --algorithms monolithic,msa,merged --extra "-contact_tao_smalxe_penalty_pc 0 -contact_coulomb_follow_radii 0" | block $page follow-radii-off
-  { b --algorithms msa --extra "-contact_tao_smalxe_penalty_pc 0 -contact_msa_recycle 0"; echo
-    b --algorithms msa --extra "-contact_tao_smalxe_penalty_pc 0 -contact_msa_start_rtol 1e-7"; } | block $page msa
-  b --algorithms monolithic --extra "-contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_anderson 0" | block $page anderson-off
-  b --algorithms monolithic --extra "-contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_rho 2" | block $page rho-2
-  b --algorithms monolithic --extra "-contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_rho 3" | block $page rho-3
-  b --algorithms monolithic,msa,merged --extra "-contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_subsolver_tao_mpgp_expansion_projcg 1 -contact_tao_smalxe_block0_tao_mprgp_expansion_projcg 1 -contact_tao_smalxe_block1_tao_mpgp_expansion_projcg 1" | block $page projcg
+  b --algorithms monolithic --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_subsolver_tao_mpgp_arc 0" | block $page arc-off
+  b --algorithms monolithic,msa,merged --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0 -contact_coulomb_follow_radii 0" | block $page follow-radii-off
+  { b --algorithms msa --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0 -contact_msa_recycle 0"; echo
+    b --algorithms msa --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0 -contact_msa_start_rtol 1e-7"; } | block $page msa
+  b --algorithms monolithic --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_anderson 0" | block $page anderson-off
+  b --algorithms monolithic --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_rho 2" | block $page rho-2
+  b --algorithms monolithic --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_rho 3" | block $page rho-3
+  b --algorithms monolithic,msa,merged --extra "-feti_kplus_explicit 1 -contact_tao_smalxe_penalty_pc 0 -contact_tao_smalxe_subsolver_tao_mpgp_expansion_projcg 1 -contact_tao_smalxe_block0_tao_mprgp_expansion_projcg 1 -contact_tao_smalxe_block1_tao_mpgp_expansion_projcg 1" | block $page projcg
   b --algorithms monolithic --extra "-feti_kplus_explicit 0" | block $page kplus-implicit
-  b --algorithms monolithic --hugepages 0 | block $page small-pages
+  b --algorithms monolithic --hugepages 0 --extra "-feti_kplus_explicit 1" | block $page small-pages
 fi
 
 if want table3; then

@@ -90,18 +90,18 @@ struct FETI_Impl {
   PetscInt  nprimal = 0, nlocalprimal = 0, ncoarse = 0, nlocalcoarse = 0;
 
   /* options */
-  PetscReal      kerneltol         = 1e-8;       /* -feti_kernel_tol */
-  PetscReal      checktol          = 1e-6;       /* -feti_check_tol */
-  PetscBool      check             = PETSC_TRUE; /* -feti_check */
-  PetscInt       nfixingcandidates = 8;          /* -feti_fixing_nodes */
-  char           subsolver[64]     = "";
-  FETIKplusType  kplustype         = FETI_KPLUS_IMPLICIT; /* -feti_kplus, -feti_kplus_explicit */
-  PetscReal      kplusratio        = 1.0;                 /* -feti_kplus_memory_ratio (auto) */
-  PetscBool      kplusexplicit     = PETSC_FALSE;         /* blocks may be built (before setup: kplustype is not implicit), are used in some subdomain (after) */
-  PetscBool      kplusschur        = PETSC_TRUE;          /* -feti_kplus_explicit_schur */
-  FETICoarseMode coarsemode        = FETI_COARSE_AUTO;    /* -feti_coarse_mode */
-  PetscInt       coarseparalleldim = 50000;               /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
-  PetscInt       coarseredundantdim = 10000;              /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
+  PetscReal      kerneltol          = 1e-8;       /* -feti_kernel_tol */
+  PetscReal      checktol           = 1e-6;       /* -feti_check_tol */
+  PetscBool      check              = PETSC_TRUE; /* -feti_check */
+  PetscInt       nfixingcandidates  = 8;          /* -feti_fixing_nodes */
+  char           subsolver[64]      = "";
+  FETIKplusType  kplustype          = FETI_KPLUS_IMPLICIT; /* -feti_kplus, -feti_kplus_explicit */
+  PetscReal      kplusratio         = 1.0;                 /* -feti_kplus_memory_ratio (auto) */
+  PetscBool      kplusexplicit      = PETSC_FALSE;         /* blocks may be built (before setup: kplustype is not implicit), are used in some subdomain (after) */
+  PetscBool      kplusschur         = PETSC_TRUE;          /* -feti_kplus_explicit_schur */
+  FETICoarseMode coarsemode         = FETI_COARSE_AUTO;    /* -feti_coarse_mode */
+  PetscInt       coarseparalleldim  = 50000;               /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
+  PetscInt       coarseredundantdim = 10000;               /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
 
   /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
   PetscReal memfactors = -1, memblocks = -1, membudget = -1; /* bytes; -1: not estimated (budget: unknown) */
