@@ -19,6 +19,7 @@ Prints a markdown table.
 import argparse, json, os, re, subprocess, sys
 
 import hugepages
+import logview
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -34,25 +35,6 @@ def scene_options(spec):
     return opts
 
 
-def events(text):
-    """count and max time over the ranks of each -log_view event, summed over the stages"""
-    ev, inside = {}, False
-    for l in text.splitlines():
-        if l.startswith("Event ") and "Count" in l:
-            inside = True
-            continue
-        if l.startswith("Memory usage") or l.startswith("Object Type"):
-            inside = False
-        f = l.split()
-        if inside and len(f) >= 5 and re.match(r"^[A-Za-z_]\w*$", f[0]) and re.match(r"^\d+$", f[1]):
-            try:
-                c, t = ev.get(f[0], (0, 0.0))
-                ev[f[0]] = (c + int(f[1]), t + float(f[3]))
-            except ValueError:
-                pass
-    return ev
-
-
 def run(build, ranks, opts, env):
     cmd = ["/usr/bin/time", "-f", "bench-dualpc-cpu %U %S", os.path.join(build, "conefeti")] + opts + ["-summary_table", "0", "-log_view"]
     if ranks > 1:
@@ -63,7 +45,7 @@ def run(build, ranks, opts, env):
         sys.exit("bench-dualpc: failed (%s):\n%s" % (" ".join(cmd), (out.stdout + out.stderr)[-3000:]))
     j = json.loads(line)
     j["cpu"] = sum(float(u) + float(s) for u, s in re.findall(r"bench-dualpc-cpu ([\d.]+) ([\d.]+)", out.stderr))
-    j["events"] = events(out.stdout)
+    j["events"] = logview.events(out.stdout)
     j["rc"] = out.returncode
     return j
 

@@ -27,6 +27,7 @@ The wrapper events (the solve and setup stages, TaoSolve, QPSolve, the MatMult o
 import argparse, json, os, re, subprocess, sys
 
 import hugepages
+import logview
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 BRICK = os.path.join(ROOT, "petsc-options", "brick.opts")
@@ -61,24 +62,8 @@ WRAPPERS = {"ContactSceneSolve", "ContactSceneSetUp", "ContactSolve", "TaoSolve"
 
 def log_events(text, top=8):
     """The events of a -log_view table with their max time over the ranks and count, largest first"""
-    events, inside = {}, False
-    for l in text.splitlines():
-        if l.startswith("Event ") and "Count" in l:
-            inside = True
-            continue
-        if l.startswith("Memory usage") or l.startswith("Object Type"):
-            inside = False
-        if not inside:
-            continue
-        f = l.split()
-        if len(f) >= 5 and re.match(r"^[A-Za-z_][\w]*$", f[0]) and re.match(r"^\d+$", f[1]):
-            try:
-                name, count, t = f[0], int(f[1]), float(f[3])
-            except ValueError:
-                continue
-            c, s = events.get(name, (0, 0.0))
-            events[name] = (c + count, s + t)  # summed over the stages
-    return sorted(((n, c, t) for n, (c, t) in events.items() if n not in WRAPPERS), key=lambda e: -e[2])[:top], events
+    ev = logview.events(text)
+    return sorted(((n, c, t) for n, (c, t) in ev.items() if n not in WRAPPERS), key=lambda e: -e[2])[:top], ev
 
 
 def fmt_bytes(b):

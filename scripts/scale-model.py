@@ -24,6 +24,7 @@ they are (wall seconds under load; a quiet core is 2-5x faster on all terms alik
 import argparse, json, math, os, re, subprocess, sys
 
 import hugepages
+import logview
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LINEAR = os.path.join(ROOT, "petsc-options", "linear.opts")
@@ -45,26 +46,6 @@ def run(cmd, env):
     return json.loads(line), rss, out.stdout
 
 
-def events(text):
-    """-log_view events: name -> (count, max time), summed over the stages"""
-    ev, inside = {}, False
-    for l in text.splitlines():
-        if l.startswith("Event ") and "Count" in l:
-            inside = True
-            continue
-        if l.startswith("Memory usage") or l.startswith("Object Type"):
-            inside = False
-        f = l.split()
-        if inside and len(f) >= 5 and re.match(r"^[A-Za-z_]\w*$", f[0]) and re.match(r"^\d+$", f[1]):
-            try:
-                c, t = int(f[1]), float(f[3])
-            except ValueError:
-                continue
-            c0, t0 = ev.get(f[0], (0, 0.0))
-            ev[f[0]] = (c0 + c, t0 + t)
-    return ev
-
-
 def scene(hh, p):
     return ["-options_file", LINEAR, "-scene_refine", str(hh * p), "-scene_body0_subdomains", "%d,%d,%d" % (4 * p, p, p), "-feti_kplus_explicit", "0", "-summary_table", "0", "-log_view"]
 
@@ -75,7 +56,7 @@ def measure(a):
     data = dict(coarse=[], subdomain=[], machine="2 cores shared by 6 agents (loaded); wall seconds", command="scripts/scale-model.py --measure --coarse-sizes %s" % a.coarse_sizes)
     for p in [int(x) for x in a.coarse_sizes.split(",") if x]:
         j, rss, out = run([exe] + scene(2, p) + ["-feti_view"], env)
-        ev = events(out)
+        ev = logview.events(out)
         lnz = re.findall(r"Common\.lnz\s*([0-9.eE+]+)", out)
         fl = re.findall(r"Common\.fl\s*([0-9.eE+]+)", out)
         row = dict(hh=2, p=p, n=j["n"], Ns=j["subdomains"], coarse_dim=j["rigid_modes"], iter=j["iter"], coarse_setup=j["time_phases"]["coarse"],
@@ -88,7 +69,7 @@ def measure(a):
             row["Ns"], row["coarse_dim"], row["n"], row["coarse_setup"], row["coarse_solves"], row["coarse_solve_time"], row["lnz"], row["flops"], rss / 1e6), flush=True)
     for hh in (4, 6, 8):
         j, rss, out = run([exe] + scene(hh, 2), env)
-        ev = events(out)
+        ev = logview.events(out)
         row = dict(hh=hh, p=2, n=j["n"], Ns=j["subdomains"], iter=j["iter"], factor_count=ev.get("FETIFactor", (0, 0))[0], factor_time=ev.get("FETIFactor", (0, 0))[1],
                    products=ev.get("FETI_MultF", (0, 0))[0], product_time=ev.get("FETI_MultF", (0, 0))[1], coarse_setup=j["time_phases"]["coarse"],
                    factorization=j["time_phases"]["factorization"], mem=rss)
