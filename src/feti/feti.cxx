@@ -1124,10 +1124,12 @@ PetscErrorCode FETISetUp(FETI feti)
   if (impl.kplusexplicit) PetscCall(FETISetUpBoundaryMask(feti)); /* the subdomain factorizations may keep a Schur complement on it */
   /* kernels first: the coarse problem is assembled and factored before the subdomain factors exist, so
      that the memory its assembly needs for a moment is reused by them rather than stacked on them */
+  PetscCall(PetscLogEventBegin(FETI_Kernels, feti, 0, 0, 0));
   for (PetscInt s = 0; s < nlocal; s++) {
     PetscCall(FETISubdomainSetUpKernel(feti, impl.sub[s], impl.firstsub + s));
     PetscCall(ConeFETIProgressStep_Private(impl.progress, s + 1));
   }
+  PetscCall(PetscLogEventEnd(FETI_Kernels, feti, 0, 0, 0));
   PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   /* before anything large: the factors and explicit blocks must fit (the blocks are dropped when only they do not) */
   PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_MEMORY, 0));

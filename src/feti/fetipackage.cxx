@@ -4,6 +4,7 @@
 
 PetscClassId  FETI_CLASSID;
 PetscLogEvent FETI_SetUp, FETI_Assembly, FETI_Factorization, FETI_MultF, FETI_CoarseSolve, FETI_ApplyKplus, FETI_PrimalRecovery, FETI_Preconditioner;
+PetscLogEvent FETI_Kernels, FETI_Reorder;
 
 static PetscBool feti_package_initialized = PETSC_FALSE;
 
@@ -16,6 +17,8 @@ PetscErrorCode ConeFETIFETIInitializePackage(void)
   PetscCall(PetscClassIdRegister("FETI", &FETI_CLASSID));
   PetscCall(PetscLogEventRegister("FETISetUp", FETI_CLASSID, &FETI_SetUp));
   PetscCall(PetscLogEventRegister("FETIAssembly", FETI_CLASSID, &FETI_Assembly));
+  PetscCall(PetscLogEventRegister("FETIKernels", FETI_CLASSID, &FETI_Kernels));
+  PetscCall(PetscLogEventRegister("FETIReorder", FETI_CLASSID, &FETI_Reorder));
   PetscCall(PetscLogEventRegister("FETIFactor", FETI_CLASSID, &FETI_Factorization));
   PetscCall(PetscLogEventRegister("FETI_MultF", FETI_CLASSID, &FETI_MultF));
   PetscCall(PetscLogEventRegister("FETIApplyKplus", FETI_CLASSID, &FETI_ApplyKplus));

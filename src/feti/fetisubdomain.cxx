@@ -301,35 +301,104 @@ PetscErrorCode FETISubdomainSetUpKernel(FETI feti, FETISubdomain &sd, PetscInt s
    smaller and its triangular solves read less memory than CHOLMOD's supernodal factor of the same matrix. */
 static PetscErrorCode PermuteByNodes(Mat Kreg, MatOrderingType type, std::vector<PetscInt> &perm, std::vector<PetscInt> &iperm, Mat *Kperm)
 {
-  Mat             Kb, Ka;
-  IS              rows, cols, is;
-  const PetscInt *idx;
-  PetscInt        n;
+  IS                    rows, cols;
+  const PetscInt       *idx, *ia = NULL, *ja = NULL;
+  PetscInt              n, nb = 0;
+  PetscBool             sbaij, done;
+  std::vector<PetscInt> inode;
 
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(FETI_Reorder, 0, 0, 0, 0));
   PetscCall(MatGetSize(Kreg, &n, NULL));
-  PetscCall(MatConvert(Kreg, MATSEQBAIJ, MAT_INITIAL_MATRIX, &Kb)); /* its ordering is one of the block (node) graph */
-  PetscCall(MatGetOrdering(Kb, type, &rows, &cols));
-  PetscCall(MatDestroy(&Kb));
+  PetscCall(PetscObjectTypeCompare((PetscObject)Kreg, MATSEQSBAIJ, &sbaij));
+  if (sbaij) { /* the node graph with both triangles (columns sorted, as a block matrix of K_s would have them) */
+    std::vector<PetscInt>    gi, gj, fill;
+    std::vector<PetscScalar> ones;
+    Mat                      graph;
+    PetscCall(MatGetRowIJ(Kreg, 0, PETSC_FALSE, PETSC_TRUE, &nb, &ia, &ja, &done));
+    PetscCheck(done && 3 * nb == n, PETSC_COMM_SELF, PETSC_ERR_PLIB, "Cannot read the block structure of Kreg");
+    PetscCallCXX(gi.assign(nb + 1, 0));
+    for (PetscInt r = 0; r < nb; r++)
+      for (PetscInt p = ia[r]; p < ia[r + 1]; p++) {
+        gi[r + 1]++;
+        if (ja[p] != r) gi[ja[p] + 1]++;
+      }
+    for (PetscInt r = 0; r < nb; r++) gi[r + 1] += gi[r];
+    PetscCallCXX(gj.resize(gi[nb]));
+    PetscCallCXX(fill.assign(gi.begin(), gi.end() - 1));
+    for (PetscInt r = 0; r < nb; r++) /* first the lower triangle, row by row: each row's columns come out in order */
+      for (PetscInt p = ia[r]; p < ia[r + 1]; p++)
+        if (ja[p] != r) gj[fill[ja[p]]++] = r;
+    for (PetscInt r = 0; r < nb; r++)
+      for (PetscInt p = ia[r]; p < ia[r + 1]; p++) gj[fill[r]++] = ja[p];
+    PetscCallCXX(ones.assign(gi[nb], 1.0));
+    PetscCall(MatCreateSeqAIJWithArrays(PETSC_COMM_SELF, nb, nb, gi.data(), gj.data(), ones.data(), &graph));
+    PetscCall(MatGetOrdering(graph, type, &rows, &cols));
+    PetscCall(MatDestroy(&graph));
+  } else { /* AIJ with block size 3: its ordering is one of the block (node) graph */
+    Mat Kb;
+    PetscCall(MatConvert(Kreg, MATSEQBAIJ, MAT_INITIAL_MATRIX, &Kb));
+    PetscCall(MatGetOrdering(Kb, type, &rows, &cols));
+    PetscCall(MatDestroy(&Kb));
+  }
   PetscCallCXX(perm.resize(n));
   PetscCallCXX(iperm.resize(n));
+  PetscCallCXX(inode.resize(n / 3));
   PetscCall(ISGetIndices(rows, &idx));
-  for (PetscInt k = 0; k < n / 3; k++)
+  for (PetscInt k = 0; k < n / 3; k++) {
+    inode[idx[k]] = k;
     for (PetscInt c = 0; c < 3; c++) perm[3 * k + c] = 3 * idx[k] + c;
+  }
   PetscCall(ISRestoreIndices(rows, &idx));
   PetscCall(ISDestroy(&rows));
   PetscCall(ISDestroy(&cols));
   for (PetscInt k = 0; k < n; k++) iperm[perm[k]] = k;
-  PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, perm.data(), PETSC_USE_POINTER, &is));
-  PetscCall(ISSetPermutation(is));
-  PetscCall(MatConvert(Kreg, MATSEQAIJ, MAT_INITIAL_MATRIX, &Ka));
-  PetscCall(MatPermute(Ka, is, is, Kperm));
-  PetscCall(MatDestroy(&Ka));
-  PetscCall(ISDestroy(&is));
-  PetscCall(MatSetBlockSize(*Kperm, 3));
-  PetscCall(MatConvert(*Kperm, MATSEQSBAIJ, MAT_INPLACE_MATRIX, Kperm));
+  if (sbaij) {
+    /* the permuted upper triangle block by block from Kreg's arrays (a block that falls below the diagonal goes in
+       transposed): the values are copied, not recomputed, and no AIJ copy of K_s is made on the way */
+    std::vector<PetscInt> nnz(nb, 0);
+    PetscScalar          *va;
+    for (PetscInt r = 0; r < nb; r++)
+      for (PetscInt p = ia[r]; p < ia[r + 1]; p++) nnz[std::min(inode[r], inode[ja[p]])]++;
+    PetscCall(MatCreateSeqSBAIJ(PETSC_COMM_SELF, 3, n, n, 0, nnz.data(), Kperm));
+    PetscCall(MatSetOption(*Kperm, MAT_ROW_ORIENTED, PETSC_FALSE)); /* a block's 9 values column by column, as SBAIJ stores them */
+    PetscCall(MatSeqSBAIJGetArray(Kreg, &va));
+    for (PetscInt r = 0; r < nb; r++)
+      for (PetscInt p = ia[r]; p < ia[r + 1]; p++) {
+        const PetscScalar *b  = va + 9 * (size_t)p;
+        PetscInt           pr = inode[r], pc = inode[ja[p]];
+        PetscScalar        t[9];
+        if (pr > pc) {
+          std::swap(pr, pc);
+          for (PetscInt i = 0; i < 3; i++)
+            for (PetscInt j = 0; j < 3; j++) t[3 * i + j] = b[3 * j + i];
+          b = t;
+        } else if (pr == pc) { /* a diagonal block: its upper triangle mirrored, the entries K_s holds (its stored lower one may differ in the last bit) */
+          for (PetscInt i = 0; i < 3; i++)
+            for (PetscInt j = 0; j < 3; j++) t[i + 3 * j] = i <= j ? b[i + 3 * j] : b[j + 3 * i];
+          b = t;
+        }
+        PetscCall(MatSetValuesBlocked(*Kperm, 1, &pr, 1, &pc, b, INSERT_VALUES));
+      }
+    PetscCall(MatSeqSBAIJRestoreArray(Kreg, &va));
+    PetscCall(MatRestoreRowIJ(Kreg, 0, PETSC_FALSE, PETSC_TRUE, &nb, &ia, &ja, &done));
+    PetscCall(MatAssemblyBegin(*Kperm, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(*Kperm, MAT_FINAL_ASSEMBLY));
+  } else {
+    Mat Ka;
+    IS  is;
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, n, perm.data(), PETSC_USE_POINTER, &is));
+    PetscCall(ISSetPermutation(is));
+    PetscCall(MatConvert(Kreg, MATSEQAIJ, MAT_INITIAL_MATRIX, &Ka));
+    PetscCall(MatPermute(Ka, is, is, Kperm));
+    PetscCall(MatDestroy(&Ka));
+    PetscCall(ISDestroy(&is));
+    PetscCall(MatSetBlockSize(*Kperm, 3));
+    PetscCall(MatConvert(*Kperm, MATSEQSBAIJ, MAT_INPLACE_MATRIX, Kperm));
+  }
   PetscCall(MatSetOption(*Kperm, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(*Kperm, MAT_SPD, PETSC_TRUE));
+  PetscCall(PetscLogEventEnd(FETI_Reorder, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

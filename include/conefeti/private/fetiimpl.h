@@ -71,6 +71,10 @@ typedef enum {
 } FETICoarseMode;
 PETSC_INTERN const char *const FETICoarseModes[];
 
+/* setup events inside FETISetUp beside the public ones of feti.h: the subdomain kernels (rigid modes, fixing dofs,
+   checks) and the node reordering of K_s for PETSc's block Cholesky */
+PETSC_INTERN PetscLogEvent FETI_Kernels, FETI_Reorder;
+
 struct FETICoarseSolver {
   FETICoarseMode mode    = FETI_COARSE_SINGLE;
   KSP            ksp     = nullptr; /* single mode: on rank 0 only */
