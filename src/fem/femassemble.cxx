@@ -43,15 +43,24 @@ static PetscErrorCode ElementRHS(const FEMBody &b, PetscInt e, const PetscInt v[
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Boundary triangles with tractions, grouped by the element that owns them, per traction spec */
-static PetscErrorCode TractionTriangles(const FEMBody &b, std::vector<std::vector<PetscInt>> &tris, std::vector<PetscInt> &elements)
+/* The boundary triangles with tractions owned by the elements of one subdomain (sorted body element ids), per
+   traction spec in the order of the tag, and the elements that own them (sorted). Only the subdomain's own: a
+   list of the whole body's triangles, searched for each loaded element, made the loads of all subdomains cost
+   (subdomains x loaded triangles of the body). */
+static PetscErrorCode TractionTriangles(const FEMBody &b, const std::vector<PetscInt> &sdelements, std::vector<std::vector<PetscInt>> &tris, std::vector<PetscInt> &elements)
 {
   PetscFunctionBegin;
   tris.assign(b.tractions.size(), {});
   elements.clear();
+  if (sdelements.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  const PetscInt lo = sdelements.front(), hi = sdelements.back();
   for (size_t ts = 0; ts < b.tractions.size(); ts++) {
-    tris[ts] = b.tags.at(b.tractions[ts].name);
-    for (PetscInt t : tris[ts]) PetscCallCXX(elements.push_back(b.boundary[t].element));
+    for (PetscInt t : b.tags.at(b.tractions[ts].name)) {
+      const PetscInt e = b.boundary[t].element;
+      if (e < lo || e > hi || !std::binary_search(sdelements.begin(), sdelements.end(), e)) continue;
+      PetscCallCXX(tris[ts].push_back(t));
+      PetscCallCXX(elements.push_back(e));
+    }
   }
   std::sort(elements.begin(), elements.end());
   elements.erase(std::unique(elements.begin(), elements.end()), elements.end());
@@ -92,7 +101,7 @@ PetscErrorCode FEMAssembleSubdomain(FEM fem, const FEMSubdomain &sd, Mat *K, Vec
 
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, 3 * nn, f));
   PetscCall(VecSetBlockSize(*f, 3));
-  PetscCall(TractionTriangles(b, tractiontris, tractionelements));
+  PetscCall(TractionTriangles(b, sd.elements, tractiontris, tractionelements));
   PetscCall(VecGetArray(*f, &fa));
   for (size_t e = 0; e < sd.elements.size(); e++) {
     PetscInt  v[4], loc[4];
@@ -159,10 +168,10 @@ PetscErrorCode FEMComputeLoadResultant(FEM fem, PetscInt body, const PetscReal p
     const FEMBody                     &b = impl.bodies[body];
     std::vector<std::vector<PetscInt>> tractiontris;
     std::vector<PetscInt>              tractionelements;
-    PetscCall(TractionTriangles(b, tractiontris, tractionelements));
     /* every element lies in exactly one subdomain: the local subdomains' elements, summed over the ranks */
     for (const FEMSubdomain &sd : impl.local) {
       if (sd.body != body) continue;
+      PetscCall(TractionTriangles(b, sd.elements, tractiontris, tractionelements));
       for (PetscInt e : sd.elements) {
         PetscInt  v[4];
         PetscReal fe[12];
@@ -266,7 +275,7 @@ PetscErrorCode FEMAssembleGlobal(FEM fem, Mat *K, Vec *f)
     const FEMBody                     &b = impl.bodies[sd.body];
     std::vector<std::vector<PetscInt>> tractiontris;
     std::vector<PetscInt>              tractionelements;
-    PetscCall(TractionTriangles(b, tractiontris, tractionelements));
+    PetscCall(TractionTriangles(b, sd.elements, tractiontris, tractionelements));
     for (PetscInt e : sd.elements) {
       PetscInt  v[4], rows[4];
       PetscReal X[12], Ke[144], fe[12];
