@@ -148,13 +148,17 @@ PetscErrorCode FETIAssembleCoarseMatrix(Mat Gt, Vec w, Mat *M)
   PetscInt           dcstart = rows.cstart;
   PetscCall(CSR(rows.Ad, &dia, &dja, &da));
   if (rows.Ao) PetscCall(CSR(rows.Ao, &oia, &oja, &oa));
-  for (PetscInt i = 0; i < mrows; i++) {
-    for (PetscInt k = dia[i]; k < dia[i + 1]; k++) PetscCallCXX(need.push_back(dcstart + dja[k]));
-    if (oia)
-      for (PetscInt k = oia[i]; k < oia[i + 1]; k++) PetscCallCXX(need.push_back(rows.garray[oja[k]]));
+  { /* marked in a table of all dual rows and read back in order: each row is reached from ~12 coarse rows, so
+       sorting the list with repetitions cost more than the rest of the assembly */
+    std::vector<char> mark(nd, 0);
+    for (PetscInt i = 0; i < mrows; i++) {
+      for (PetscInt k = dia[i]; k < dia[i + 1]; k++) mark[dcstart + dja[k]] = 1;
+      if (oia)
+        for (PetscInt k = oia[i]; k < oia[i + 1]; k++) mark[rows.garray[oja[k]]] = 1;
+    }
+    for (PetscInt r = 0; r < nd; r++)
+      if (mark[r]) PetscCallCXX(need.push_back(r));
   }
-  std::sort(need.begin(), need.end());
-  need.erase(std::unique(need.begin(), need.end()), need.end());
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)need.size(), need.data(), PETSC_COPY_VALUES, &isrow));
   PetscCall(ISCreateStride(PETSC_COMM_SELF, nc, 0, 1, &iscol));
   PetscCall(MatCreateSubMatrices(Gt, 1, &isrow, &iscol, MAT_INITIAL_MATRIX, &sub));
