@@ -32,7 +32,7 @@ PetscErrorCode FETIFloatFactorCreate(Mat factor, FETIFloatFactor &ff)
   PetscCall(MatGetRowIJ(factor, 0, PETSC_FALSE, PETSC_TRUE, &mbs, &ai, &aj, &done));
   PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "-feti_kplus_precision single: the factor does not give its block structure (MatGetRowIJ())");
   PetscCall(MatSeqSBAIJGetArray(factor, &aa));
-  ff.nb = mbs;
+  ff.nb                = mbs;
   const PetscInt first = ai[0], nz = ai[mbs] - ai[0];
   PetscCallCXX(ff.rowstart.resize(mbs + 1));
   PetscCallCXX(ff.col.resize(nz));
