@@ -137,8 +137,8 @@ static PetscErrorCode Bench(PetscRandom rnd, PetscInt k, PetscInt nsolves, Petsc
   }
   std::clock_t t2 = std::clock();
   const double sd = (double)(t1 - t0) / CLOCKS_PER_SEC / nsolves, sf = (double)(t2 - t1) / CLOCKS_PER_SEC / nsolves;
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "bench: %" PetscInt_FMT " dofs, factor %.2f MB double, %.2f MB float, %" PetscInt_FMT " copies; CPU per solve: MatSolve %.1f us, float %.1f us (ratio %.2f)\n", 3 * nb,
-                        ffs[0].doublebytes / 1048576.0, FETIFloatFactorBytes(ffs[0]) / 1048576.0, ncopies, 1e6 * sd, 1e6 * sf, sf / sd));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "bench: %" PetscInt_FMT " dofs, factor %.2f MB double, %.2f MB float, %" PetscInt_FMT " copies; CPU per solve: MatSolve %.1f us, float %.1f us (ratio %.2f)\n",
+                        3 * nb, ffs[0].doublebytes / 1048576.0, FETIFloatFactorBytes(ffs[0]) / 1048576.0, ncopies, 1e6 * sd, 1e6 * sf, sf / sd));
   for (Mat &Fc : Fs) PetscCall(MatDestroy(&Fc));
   PetscCall(VecDestroy(&b));
   PetscCall(VecDestroy(&x));
@@ -155,7 +155,7 @@ static PetscErrorCode Bench(PetscRandom rnd, PetscInt k, PetscInt nsolves, Petsc
 int main(int argc, char **argv)
 {
   PetscInt    sizes[] = {1, 2, 17, 400}, ntrials = 3;
-  PetscReal   tol     = 1e-6, worst = 0;
+  PetscReal   tol = 1e-6, worst = 0;
   PetscRandom rnd;
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
