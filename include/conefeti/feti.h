@@ -68,6 +68,25 @@ typedef enum {
 } FETIKplusType;
 PETSC_EXTERN const char *const FETIKplusTypes[];
 
+/*E
+  FETIKplusPrecision - In which precision the subdomains' sparse factors are stored for the F products.
+
+$ FETI_KPLUS_PRECISION_DOUBLE - as the factorization made them (the default)
+$ FETI_KPLUS_PRECISION_SINGLE - PETSc's block Cholesky factors (subdomains up to 3000 dofs by default) are copied to float
+$                               storage after the factorization and the double factor is freed; the solves sum in double.
+$                               F products use them as they are; K+ x for h, the primal recovery and explicit blocks is
+$                               refined against Kreg in double. Factors of other packages (CHOLMOD, MUMPS) stay double.
+
+  Level: advanced
+
+.seealso: `FETISetKplusPrecision()`, `FETIGetKplusPrecision()`, `FETISetKplusType()`
+E*/
+typedef enum {
+  FETI_KPLUS_PRECISION_DOUBLE,
+  FETI_KPLUS_PRECISION_SINGLE
+} FETIKplusPrecision;
+PETSC_EXTERN const char *const FETIKplusPrecisions[];
+
 PETSC_EXTERN PetscClassId  FETI_CLASSID;
 PETSC_EXTERN PetscLogEvent FETI_SetUp, FETI_Assembly, FETI_Factorization, FETI_MultF, FETI_CoarseSolve, FETI_ApplyKplus, FETI_PrimalRecovery, FETI_Preconditioner;
 
@@ -118,6 +137,8 @@ PETSC_EXTERN PetscErrorCode FETIGetKplusExplicit(FETI, PetscBool *, PetscBool *)
 PETSC_EXTERN PetscErrorCode FETISetKplusType(FETI, FETIKplusType);
 PETSC_EXTERN PetscErrorCode FETIGetKplusType(FETI, FETIKplusType *, PetscInt *);
 PETSC_EXTERN PetscErrorCode FETISetKplusMemoryRatio(FETI, PetscReal);
+PETSC_EXTERN PetscErrorCode FETISetKplusPrecision(FETI, FETIKplusPrecision);
+PETSC_EXTERN PetscErrorCode FETIGetKplusPrecision(FETI, FETIKplusPrecision *, PetscInt *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryEstimate(FETI, PetscReal *, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryBudget(MPI_Comm, const char[], PetscReal *, PetscBool *);
 PETSC_EXTERN PetscErrorCode FETIEstimateFactorMemory(PetscReal, PetscReal, PetscReal *);

@@ -85,6 +85,9 @@ typedef struct {
 . kplus_fallback - whether those blocks were asked for but dropped because they would not fit in memory (`FETIGetKplusExplicit()`)
 . kplus_type    - how they were asked for (`FETIGetKplusType()`: the contact layer's default is auto, per subdomain by memory)
 . kplus_blocks  - the subdomains whose F products used a dense block (`FETIGetKplusType()`)
+. kplus_precision - the storage of the block Cholesky factors asked for (`FETIGetKplusPrecision()`)
+. kplus_single  - the subdomains whose factor is stored in float
+. kplus_factor_bytes, kplus_factor_double_bytes - the block Cholesky factors as kept, and the same in double (all ranks)
 . unmatched_nodes - slave nodes of zones between bodies without a master point within the search distance (`ContactModelGetUnmatchedNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
@@ -118,6 +121,9 @@ typedef struct {
   PetscBool                kplus_explicit, kplus_fallback;
   FETIKplusType            kplus_type;
   PetscInt                 kplus_blocks;
+  FETIKplusPrecision       kplus_precision;
+  PetscInt                 kplus_single;
+  PetscReal                kplus_factor_bytes, kplus_factor_double_bytes;
   PetscInt                 unmatched_nodes;
   PetscReal                max_nu;
   PetscReal                contact_force[3], normal_force;

@@ -5,8 +5,9 @@
 #include <algorithm>
 #include <cstdlib>
 
-const char *const FETIRowKinds[]   = {"gluing", "dirichlet", "contact_normal", "contact_tangential", "FETIRowKind", "FETI_ROW_", NULL};
-const char *const FETIKplusTypes[] = {"auto", "explicit", "implicit", "FETIKplusType", "FETI_KPLUS_", NULL};
+const char *const FETIRowKinds[]        = {"gluing", "dirichlet", "contact_normal", "contact_tangential", "FETIRowKind", "FETI_ROW_", NULL};
+const char *const FETIKplusTypes[]      = {"auto", "explicit", "implicit", "FETIKplusType", "FETI_KPLUS_", NULL};
+const char *const FETIKplusPrecisions[] = {"double", "single", "FETIKplusPrecision", "FETI_KPLUS_PRECISION_", NULL};
 
 static PetscErrorCode FETIReset(FETI feti)
 {
@@ -446,6 +447,8 @@ static PetscErrorCode FETICreateKSP(FETI feti)
   memory (the contact layer's default: auto)
 . -feti_kplus_explicit <bool>  - the same as -feti_kplus explicit (true) or implicit (false) (`FETISetKplusExplicit()`)
 . -feti_kplus_memory_ratio <1> - auto: a subdomain gets its dense block when the block has at most this many times the entries of its sparse factor (`FETISetKplusMemoryRatio()`)
+. -feti_kplus_precision <double,single> - storage of PETSc's block Cholesky factors for the F products (`FETISetKplusPrecision()`): single keeps a float copy (half the
+  factor's memory traffic and memory, sums in double) and frees the double factor
 . -feti_kplus_explicit_schur <true> - build those blocks from a MUMPS Schur complement (when MUMPS is there); false: by solves with the subdomain factor
 . -feti_memory_budget <MB>     - memory the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup); `FETISetUp()` drops the explicit blocks when only
 they exceed it and stops when the factorizations do . -feti_view                   - view the problem after setup . -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of
@@ -504,6 +507,10 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscCheck(impl.kplusratio >= 0 && !PetscIsInfOrNanReal(impl.kplusratio), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
              "-%sfeti_kplus_memory_ratio %g: the ratio of a block's numbers to its factor's entries is a finite number >= 0 (0: no block; 1, the default: a block at most as large as the factor)",
              prefix ? prefix : "", (double)impl.kplusratio);
+  PetscCall(PetscOptionsEnum("-feti_kplus_precision",
+                             "Storage of PETSc's block Cholesky factors of the subdomains: double, or single (a float copy, sums in double; the double factor is freed; K+ x outside F "
+                             "products is refined against Kreg)",
+                             "FETISetKplusPrecision", FETIKplusPrecisions, (PetscEnum)impl.kplusprecision, (PetscEnum *)&impl.kplusprecision, NULL));
   PetscCall(PetscOptionsBool("-feti_kplus_explicit_schur", "Build the explicit K+ blocks from a MUMPS Schur complement (false: by solves with the subdomain factor)", "FETISetKplusExplicit",
                              impl.kplusschur, &impl.kplusschur, NULL));
   PetscCall(PetscOptionsEnum("-feti_coarse_mode",
@@ -715,6 +722,77 @@ PetscErrorCode FETISetKplusMemoryRatio(FETI feti, PetscReal ratio)
 }
 
 /*@
+  FETISetKplusPrecision - The precision in which the subdomains' block Cholesky factors are stored for the F products.
+
+  Logically Collective
+
+  Input Parameters:
++ feti      - the FETI problem
+- precision - `FETI_KPLUS_PRECISION_DOUBLE` (the default) or `FETI_KPLUS_PRECISION_SINGLE`
+
+  Options Database Key:
+. -feti_kplus_precision <double,single> - the same; read by `FETISetFromOptions()`, overrides this call
+
+  Notes:
+  The two triangular solves with a subdomain's factor read the whole factor twice and are bound by memory
+  traffic. single copies each factor made by PETSc's own block Cholesky (the default package for subdomains of
+  up to 3000 dofs in the F products, -feti_sub_pc_factor_mat_solver_type petsc) into float storage right after
+  its factorization and frees the double factor: the factor takes about half the memory, and the solves read
+  half as much. Vectors and sums stay double, so the solve is exact for the factor rounded to float, a symmetric
+  operator that differs from K_s^-1 by about cond(K_s) times 6e-8. F products use it as it is; K+ x for the
+  dual right-hand side h, the primal recovery and explicit blocks built by solves is refined against Kreg in
+  double until it is as accurate as the double solve. Factors of other packages (CHOLMOD, MUMPS) stay double.
+  With -feti_check the float copy is compared with the double solve at setup.
+
+  Level: advanced
+
+.seealso: `FETIKplusPrecision`, `FETIGetKplusPrecision()`, `FETISetKplusType()`, `FETISetUp()`
+@*/
+PetscErrorCode FETISetKplusPrecision(FETI feti, FETIKplusPrecision precision)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidLogicalCollectiveEnum(feti, precision, 2);
+  PetscCheck(precision == FETI_KPLUS_PRECISION_DOUBLE || precision == FETI_KPLUS_PRECISION_SINGLE, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+             "FETISetKplusPrecision() (-feti_kplus_precision): unknown FETIKplusPrecision %d (double or single)", (int)precision);
+  PetscCheck(!feti->impl->setupcalled || feti->impl->kplusprecision == precision, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
+             "FETISetKplusPrecision() (-feti_kplus_precision) must come before FETISetUp()");
+  feti->impl->kplusprecision = precision;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETIGetKplusPrecision - The precision of the subdomains' factors: asked for, and after `FETISetUp()` how many
+  factors are stored in float and how much memory the block Cholesky factors take.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem
+
+  Output Parameters:
++ precision   - what was asked for (`FETISetKplusPrecision()`); NULL if not needed
+. nsingle     - after `FETISetUp()`, the subdomains (all ranks) whose factor is stored in float; 0 before; NULL if not needed
+. factorbytes - after `FETISetUp()`, bytes (all ranks) of PETSc's block Cholesky factors as they are kept (float copies
+                or double factors: values, block columns, row starts); 0 before or without such factors; NULL if not needed
+- doublebytes - the same factors as PETSc stores them in double (equal to factorbytes with double); NULL if not needed
+
+  Level: advanced
+
+.seealso: `FETISetKplusPrecision()`, `FETIView()`
+@*/
+PetscErrorCode FETIGetKplusPrecision(FETI feti, FETIKplusPrecision *precision, PetscInt *nsingle, PetscReal *factorbytes, PetscReal *doublebytes)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  if (precision) *precision = feti->impl->kplusprecision;
+  if (nsingle) *nsingle = feti->impl->setupcalled ? feti->impl->nkplussingle : 0;
+  if (factorbytes) *factorbytes = feti->impl->setupcalled ? feti->impl->kplusfactorbytes : 0;
+  if (doublebytes) *doublebytes = feti->impl->setupcalled ? feti->impl->kplusdoublebytes : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
   FETIGetKplusExplicit - Whether F products use the explicit dense blocks of K+: before `FETISetUp()` what was asked
   for, after it what was actually chosen.
 
@@ -859,6 +937,9 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
     else
       PetscCall(
           PetscViewerASCIIPrintf(viewer, "F products: two triangular solves per subdomain%s\n", impl.kplusfallback ? " (explicit K+ blocks asked for, dropped: they would not fit in memory)" : ""));
+    if (impl.kplusdoublebytes > 0)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "block Cholesky factors (-feti_kplus_precision %s): %" PetscInt_FMT " of %" PetscInt_FMT " stored in float, %.1f MB (%.1f MB in double; all ranks)\n",
+                                       FETIKplusPrecisions[impl.kplusprecision], impl.nkplussingle, impl.nglobalsub, impl.kplusfactorbytes / 1048576.0, impl.kplusdoublebytes / 1048576.0));
     if (impl.memfactors >= 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "memory estimate (node of rank 0): factors %.1f MB, explicit K+ blocks %.1f MB, budget %.1f MB\n", impl.memfactors / 1048576.0,
                                        impl.memblocks / 1048576.0, impl.membudget / 1048576.0));
@@ -1242,6 +1323,19 @@ PetscErrorCode FETISetUp(FETI feti)
     PetscCall(ConeFETIProgressEnd_Private(impl.progress));
     PetscCall(PetscLogEventEnd(FETI_Factorization, feti, 0, 0, 0));
   }
+  { /* the block Cholesky factors as kept: float copies (-feti_kplus_precision single) or PETSc's double factors */
+    double bytes[2]   = {0, 0};
+    impl.nkplussingle = 0;
+    for (FETISubdomain &sd : impl.sub) {
+      if (sd.ffactor.nb) impl.nkplussingle++;
+      bytes[0] += sd.ffactor.nb ? FETIFloatFactorBytes(sd.ffactor) : sd.ffactor.doublebytes;
+      bytes[1] += sd.ffactor.doublebytes;
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &impl.nkplussingle, 1, MPIU_INT, MPI_SUM, comm));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, bytes, 2, MPI_DOUBLE, MPI_SUM, comm));
+    impl.kplusfactorbytes = bytes[0];
+    impl.kplusdoublebytes = bytes[1];
+  }
 
   PetscCall(ConeFETIProgressBegin_Private(impl.progress, CONEFETI_PHASE_OPERATORS, 0));
   PetscCall(FETICreateOperators_Private(feti));
@@ -1254,7 +1348,7 @@ PetscErrorCode FETISetUp(FETI feti)
   PetscCall(VecDuplicate(impl.wc1, &impl.alpha));
   PetscCall(VecDuplicate(impl.wd1, &impl.rhs));
   PetscCall(VecDuplicate(impl.wd1, &impl.residual));
-  PetscCall(FETIApplyKplus(feti, impl.f, impl.wp1));
+  PetscCall(FETIApplyKplus(feti, impl.f, impl.wp1, PETSC_TRUE));
   PetscCall(FETIRowSumApply(impl.Bsum, impl.wp1, impl.h));
   if (impl.c) PetscCall(VecAXPY(impl.h, -1.0, impl.c));
   PetscCall(MatMultTranspose(impl.R, impl.f, impl.e));

@@ -153,6 +153,29 @@ static PetscErrorCode SubdomainExplicitKplusBySolves(FETISubdomain &sd)
   PetscCall(VecDestroy(&sd.kx));
   PetscCall(VecDestroy(&sd.ky));
   if (!nb) PetscFunctionReturn(PETSC_SUCCESS);
+  if (sd.ffactor.nb) { /* the factor is a float copy (-feti_kplus_precision single): column by column, refined to double accuracy */
+    Vec e, x;
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, nb, nb, NULL, &sd.Kplusbb));
+    PetscCall(MatDenseGetArrayWrite(sd.Kplusbb, &s));
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &e));
+    PetscCall(VecDuplicate(e, &x));
+    for (PetscInt j = 0; j < nb; j++) {
+      const PetscScalar *xa;
+      PetscCall(VecSet(e, 0.0));
+      PetscCall(VecSetValue(e, sd.kb[j], 1.0, INSERT_VALUES));
+      PetscCall(VecAssemblyBegin(e));
+      PetscCall(VecAssemblyEnd(e));
+      PetscCall(FETISubdomainApplyKplus(sd, e, x, PETSC_TRUE));
+      PetscCall(VecGetArrayRead(x, &xa));
+      for (PetscInt i = 0; i < nb; i++) s[(size_t)j * nb + i] = xa[sd.kb[i]];
+      PetscCall(VecRestoreArrayRead(x, &xa));
+    }
+    PetscCall(VecDestroy(&e));
+    PetscCall(VecDestroy(&x));
+    PetscCall(MatDenseRestoreArrayWrite(sd.Kplusbb, &s));
+    PetscCall(FinishBlock(sd));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(KSPGetPC(sd.ksp, &pc));
   PetscCall(PCFactorGetMatrix(pc, &factor));
   PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, nb, nb, NULL, &sd.Kplusbb));
@@ -345,7 +368,7 @@ PetscErrorCode FETIApplyKplusOnBoundary(FETI feti, Vec x, Vec y)
     if (sd.kplusimplicit) { /* two triangular solves with the factor, as FETIApplyKplus() */
       PetscCall(VecPlaceArray(sd.xa, xa + sd.localoffset));
       PetscCall(VecPlaceArray(sd.ya, ya + sd.localoffset));
-      PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya));
+      PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya, PETSC_FALSE));
       PetscCall(VecResetArray(sd.xa));
       PetscCall(VecResetArray(sd.ya));
       continue;

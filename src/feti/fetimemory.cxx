@@ -294,10 +294,16 @@ PetscErrorCode FETISubdomainChooseKplus(FETI feti, FETISubdomain &sd, PetscInt s
   MatSolverType type;
 
   PetscFunctionBegin;
-  PetscCall(KSPGetPC(sd.ksp, &pc));
-  PetscCall(PCFactorGetMatrix(pc, &factor));
-  PetscCall(MatFactorGetSolverType(factor, &type));
-  known = type && (!strcmp(type, MATSOLVERCHOLMOD) || !strcmp(type, MATSOLVERMUMPS) || !strcmp(type, MATSOLVERPETSC)) ? PETSC_TRUE : PETSC_FALSE;
+  if (sd.ffactor.nb) { /* the double factor was replaced by its float copy (-feti_kplus_precision single): its entries as measured before */
+    entries  = sd.factorentries;
+    measured = entries > 0 ? PETSC_TRUE : PETSC_FALSE;
+    known    = PETSC_FALSE;
+  } else {
+    PetscCall(KSPGetPC(sd.ksp, &pc));
+    PetscCall(PCFactorGetMatrix(pc, &factor));
+    PetscCall(MatFactorGetSolverType(factor, &type));
+    known = type && (!strcmp(type, MATSOLVERCHOLMOD) || !strcmp(type, MATSOLVERMUMPS) || !strcmp(type, MATSOLVERPETSC)) ? PETSC_TRUE : PETSC_FALSE;
+  }
   if (known) { /* the packages whose factors report their size to MatGetInfo() */
     PetscCall(MatGetInfo(factor, MAT_LOCAL, &info));
     entries  = (PetscReal)info.nz_used;

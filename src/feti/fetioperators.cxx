@@ -32,8 +32,9 @@ PetscErrorCode FETIFromMat(Mat A, FETI *feti)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* y = K+ x on the global primal vectors, subdomain by subdomain */
-PetscErrorCode FETIApplyKplus(FETI feti, Vec x, Vec y)
+/* y = K+ x on the global primal vectors, subdomain by subdomain. exact: K+ of K_s to double accuracy even where the
+   factor is stored in float (-feti_kplus_precision single: refined against Kreg); else the F products' K+ */
+PetscErrorCode FETIApplyKplus(FETI feti, Vec x, Vec y, PetscBool exact)
 {
   FETI_Impl         &impl = *feti->impl;
   const PetscScalar *xa;
@@ -46,7 +47,7 @@ PetscErrorCode FETIApplyKplus(FETI feti, Vec x, Vec y)
   for (FETISubdomain &sd : impl.sub) {
     PetscCall(VecPlaceArray(sd.xa, xa + sd.localoffset));
     PetscCall(VecPlaceArray(sd.ya, ya + sd.localoffset));
-    PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya));
+    PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya, exact));
     PetscCall(VecResetArray(sd.xa));
     PetscCall(VecResetArray(sd.ya));
   }
@@ -234,7 +235,7 @@ static PetscErrorCode MatMult_F(Mat A, Vec x, Vec y)
   PetscCall(PetscLogEventBegin(FETI_MultF, feti, 0, 0, 0));
   PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp1));
   if (impl.kplusexplicit) PetscCall(FETIApplyKplusOnBoundary(feti, impl.wp1, impl.wp2)); /* B' x lives on the dofs B touches */
-  else PetscCall(FETIApplyKplus(feti, impl.wp1, impl.wp2));
+  else PetscCall(FETIApplyKplus(feti, impl.wp1, impl.wp2, PETSC_FALSE));
   PetscCall(FETIRowSumApply(impl.Bsum, impl.wp2, y));
   PetscCall(PetscLogEventEnd(FETI_MultF, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -266,7 +267,7 @@ static PetscErrorCode MatMult_Kplus(Mat A, Vec x, Vec y)
 
   PetscFunctionBegin;
   PetscCall(ShellGetFETI(A, &feti));
-  PetscCall(FETIApplyKplus(feti, x, y));
+  PetscCall(FETIApplyKplus(feti, x, y, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

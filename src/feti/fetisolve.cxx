@@ -146,7 +146,7 @@ PetscErrorCode FETIRecoverPrimal(FETI feti, Vec lambda, Vec alpha, Vec u)
   PetscCall(PetscLogEventBegin(FETI_PrimalRecovery, feti, 0, 0, 0));
   PetscCall(FETIRowSumApply(impl.Btsum, lambda, impl.wp1));
   PetscCall(VecAYPX(impl.wp1, -1.0, impl.f));
-  PetscCall(FETIApplyKplus(feti, impl.wp1, u));
+  PetscCall(FETIApplyKplus(feti, impl.wp1, u, PETSC_TRUE));
   if (impl.ncoarse) PetscCall(MatMultAdd(impl.R, alpha, u, u));
   { /* prescribed values of Dirichlet dofs kept in the primal (K+ and R vanish there) */
     PetscScalar *ua;

@@ -29,12 +29,77 @@ PetscErrorCode FETISubdomainApplyK(FETISubdomain &sd, Vec x, Vec y)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* y = K+ x = [K_NN^-1 0; 0 0] x */
-PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &sd, Vec x, Vec y)
+/* out = (factor)^-1 in with the float copy of the factor, both of length n in the dof order; in is read as zero at
+   the removed dofs (out is zero there: Kreg decouples them) */
+static PetscErrorCode FloatSolve(FETISubdomain &sd, const PetscScalar *in, PetscScalar *out)
+{
+  PetscScalar *ta;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayWrite(sd.x, &ta));
+  for (PetscInt k = 0; k < sd.n; k++) ta[k] = in[sd.perm[k]];
+  for (PetscInt r : sd.removed) ta[sd.iperm[r]] = 0;
+  PetscCall(FETIFloatFactorSolve(sd.ffactor, ta));
+  for (PetscInt k = 0; k < sd.n; k++) out[sd.perm[k]] = ta[k];
+  PetscCall(VecRestoreArrayWrite(sd.x, &ta));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The largest number of refinement steps of an exact K+ x with the float factor. Each step gains about
+   -log10(cond(K_s) * 6e-8) digits (3 to 4 on the brick's cubes), so 2 to 4 steps reach the double solve's accuracy */
+#define FETI_FLOAT_REFINE_MAX 12
+
+/* y = K+ x with the float factor; exact: refined against Kreg in double, y += solve(x - Kreg y), until the
+   correction stops shrinking or is at the double rounding of y */
+static PetscErrorCode ApplyKplusFloat(FETISubdomain &sd, Vec x, Vec y, PetscBool exact)
+{
+  const PetscScalar *xa;
+  PetscScalar       *ya;
+  PetscReal          prev = PETSC_MAX_REAL;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(x, &xa));
+  PetscCall(VecGetArrayWrite(y, &ya));
+  PetscCall(FloatSolve(sd, xa, ya));
+  PetscCall(VecRestoreArrayWrite(y, &ya));
+  for (PetscInt it = 0; exact && it < FETI_FLOAT_REFINE_MAX; it++) {
+    const PetscScalar *ra;
+    PetscReal          dnorm = 0, ynorm = 0;
+    PetscCall(MatMult(sd.Kreg, y, sd.y)); /* y vanishes at the removed dofs, whose residual FloatSolve() skips */
+    PetscCallCXX(sd.work.resize(sd.n));
+    PetscCall(VecGetArrayRead(sd.y, &ra));
+    for (PetscInt i = 0; i < sd.n; i++) sd.work[i] = xa[i] - ra[i];
+    PetscCall(VecRestoreArrayRead(sd.y, &ra));
+    PetscCall(FloatSolve(sd, sd.work.data(), sd.work.data()));
+    PetscCall(VecGetArray(y, &ya));
+    for (PetscInt i = 0; i < sd.n; i++) {
+      ya[i] += sd.work[i];
+      dnorm = PetscMax(dnorm, PetscAbsScalar(sd.work[i]));
+      ynorm = PetscMax(ynorm, PetscAbsScalar(ya[i]));
+    }
+    PetscCall(VecRestoreArray(y, &ya));
+    PetscCheck(it > 0 || dnorm <= 0.5 * ynorm, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
+               "-feti_kplus_precision single: the float factor of a subdomain is too inaccurate to be refined (first correction %g of the solution %g: cond(K_s) near 1e7 or above); use "
+               "-feti_kplus_precision double",
+               (double)dnorm, (double)ynorm);
+    if (dnorm <= 4 * PETSC_MACHINE_EPSILON * ynorm || dnorm > 0.5 * prev) break;
+    prev = dnorm;
+  }
+  PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = K+ x = [K_NN^-1 0; 0 0] x. exact matters with a float factor only (-feti_kplus_precision single): F products
+   take its solve as it is, everything else (exact) the refined one */
+PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &sd, Vec x, Vec y, PetscBool exact)
 {
   PetscScalar *a;
 
   PetscFunctionBegin;
+  if (sd.ffactor.nb) {
+    PetscCall(ApplyKplusFloat(sd, x, y, exact));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   if (sd.factor) { /* a factor of Kreg permuted by nodes: permute in and out around one MatSolve (no KSPSolve bookkeeping per call) */
     const PetscScalar *xa, *ya;
     PetscScalar       *ta;
@@ -187,7 +252,7 @@ static PetscErrorCode KernelResidual(FETISubdomain &sd, const std::vector<char> 
    in floating point it is about cond(K_NN) * eps, so it exposes a K_NN made (nearly) singular by a
    zero-energy mode missing from the kernel basis, which K K+ K = K alone would not: there the huge
    component K+ puts along the missing mode is annihilated again by K. */
-static PetscErrorCode RegularizationResidual(FETISubdomain &sd, PetscReal *res)
+static PetscErrorCode RegularizationResidual(FETISubdomain &sd, PetscBool exact, PetscReal *res)
 {
   Vec          x, kx, w;
   PetscRandom  rnd;
@@ -207,7 +272,7 @@ static PetscErrorCode RegularizationResidual(FETISubdomain &sd, PetscReal *res)
   for (PetscInt r : sd.removed) a[r] = 0;
   PetscCall(VecRestoreArray(x, &a));
   PetscCall(FETISubdomainApplyK(sd, x, kx));
-  PetscCall(FETISubdomainApplyKplus(sd, kx, w));
+  PetscCall(FETISubdomainApplyKplus(sd, kx, w, exact));
   PetscCall(VecAXPY(w, -1.0, x));
   PetscCall(VecNorm(w, NORM_2, &norm));
   PetscCall(VecNorm(x, NORM_2, &normx));
@@ -402,6 +467,65 @@ static PetscErrorCode PermuteByNodes(Mat Kreg, MatOrderingType type, std::vector
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -feti_kplus_precision single: replace the subdomain's double block Cholesky factor by its float copy and free it.
+   With -feti_check, the copy's solve is compared with MatSolve() (a wrong reading of PETSc's layout would differ
+   by O(1); the rounding to float by about cond(K_s) 6e-8) and K+ K x = x is checked again with the refined solve. */
+static PetscErrorCode FactorToFloat(FETI feti, FETISubdomain &sd, PetscInt s)
+{
+  FETI_Impl  &impl = *feti->impl;
+  MatInfo     info;
+  PC          pc;
+  Vec         x = nullptr, wd = nullptr, wf = nullptr;
+  PetscRandom rnd;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetInfo(sd.factor, MAT_LOCAL, &info));
+  sd.factorentries = (PetscReal)info.nz_used; /* FETISubdomainChooseKplus() reads it once the factor is gone */
+  if (impl.check) {
+    PetscScalar *a;
+    PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &x));
+    PetscCall(VecDuplicate(x, &wd));
+    PetscCall(VecDuplicate(x, &wf));
+    PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
+    PetscCall(PetscRandomSetSeed(rnd, 54321));
+    PetscCall(PetscRandomSeed(rnd));
+    PetscCall(VecSetRandom(x, rnd));
+    PetscCall(PetscRandomDestroy(&rnd));
+    PetscCall(VecGetArray(x, &a));
+    for (PetscInt r : sd.removed) a[r] = 0;
+    PetscCall(VecRestoreArray(x, &a));
+    PetscCall(FETISubdomainApplyKplus(sd, x, wd, PETSC_FALSE)); /* the double factor still */
+  }
+  PetscCall(FETIFloatFactorCreate(sd.factor, sd.ffactor));
+  if (impl.check) {
+    PetscReal diff, norm, res, resf;
+    PetscCall(FETISubdomainApplyKplus(sd, x, wf, PETSC_FALSE));
+    PetscCall(VecAXPY(wf, -1.0, wd));
+    PetscCall(VecNorm(wf, NORM_2, &diff));
+    PetscCall(VecNorm(wd, NORM_2, &norm));
+    diff = norm > 0 ? diff / norm : diff;
+    PetscCheck(diff <= 0.25, PETSC_COMM_SELF, PETSC_ERR_LIB,
+               "-feti_kplus_precision single: subdomain %" PetscInt_FMT ": the float copy of the factor solves %g away from MatSolve() (relative): this PETSc's block Cholesky factor is not laid "
+               "out as expected; use -feti_kplus_precision double",
+               s, (double)diff);
+    PetscCall(RegularizationResidual(sd, PETSC_FALSE, &resf));
+    PetscCall(RegularizationResidual(sd, PETSC_TRUE, &res));
+    PetscCheck(res <= impl.checktol, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
+               "-feti_kplus_precision single: subdomain %" PetscInt_FMT ": ||K+ K x - x|| / ||x|| = %g with the refined float factor exceeds -feti_check_tol %g; use -feti_kplus_precision double", s,
+               (double)res, (double)impl.checktol);
+    PetscCall(PetscInfo(NULL, "Subdomain %" PetscInt_FMT ": float factor %.2f MB (double %.2f MB): solve %.2e from MatSolve(), ||K+ K x - x|| / ||x|| = %.2e unrefined, %.2e refined\n", s,
+                        FETIFloatFactorBytes(sd.ffactor) / 1048576.0, sd.ffactor.doublebytes / 1048576.0, (double)diff, (double)resf, (double)res));
+    PetscCall(VecDestroy(&x));
+    PetscCall(VecDestroy(&wd));
+    PetscCall(VecDestroy(&wf));
+  }
+  /* nothing reads the double factor any more: FETIView() asks the PC for the package's name only */
+  sd.factor = nullptr;
+  PetscCall(KSPGetPC(sd.ksp, &pc));
+  PetscCall(PCReset(pc));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Kreg (in place when nobody else holds K_s) and its sparse Cholesky factorization, prefix feti_sub_ */
 PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, PetscInt s)
 {
@@ -499,13 +623,24 @@ PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, Pet
   PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, sd.n, NULL, &sd.ya));
   if (impl.check) {
     PetscReal res;
-    PetscCall(RegularizationResidual(sd, &res));
+    PetscCall(RegularizationResidual(sd, PETSC_TRUE, &res));
     PetscCheck(res <= impl.checktol, PETSC_COMM_SELF, PETSC_ERR_CONV_FAILED,
                "Subdomain %" PetscInt_FMT
                ": ||K+ K x - x|| / ||x|| = %g exceeds -feti_check_tol %g: the regularized K_s is (nearly) singular, so K_s has zero-energy modes outside its kernel basis of dimension %" PetscInt_FMT
                " (a disconnected subdomain, a mechanism, wrong coordinates?)",
                s, (double)res, (double)impl.checktol, sd.nkernel);
     PetscCall(PetscInfo(NULL, "Subdomain %" PetscInt_FMT ": kernel dimension %" PetscInt_FMT ", ||K+ K x - x|| / ||x|| = %g\n", s, sd.nkernel, (double)res));
+  }
+  if (sd.factor) { /* PETSc's block Cholesky: its memory, kept as it is or as a float copy */
+    if (impl.kplusprecision == FETI_KPLUS_PRECISION_SINGLE) PetscCall(FactorToFloat(feti, sd, s));
+    else {
+      const PetscInt *ai, *aj; /* the double factor's size, from its structure alone */
+      PetscInt        mbs;
+      PetscBool       done;
+      PetscCall(MatGetRowIJ(sd.factor, 0, PETSC_FALSE, PETSC_TRUE, &mbs, &ai, &aj, &done));
+      if (done) sd.ffactor.doublebytes = (double)9 * ai[mbs] * sizeof(PetscScalar) + (double)ai[mbs] * sizeof(PetscInt) + (double)(mbs + 1) * sizeof(PetscInt);
+      PetscCall(MatRestoreRowIJ(sd.factor, 0, PETSC_FALSE, PETSC_TRUE, &mbs, &ai, &aj, &done));
+    }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -521,7 +656,9 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(VecDestroy(&sd.uD));
   PetscCall(MatDestroy(&sd.Kreg));
   PetscCall(MatDestroy(&sd.correction));
-  sd.factor = nullptr; /* the KSP's */
+  sd.factor  = nullptr; /* the KSP's */
+  sd.ffactor = FETIFloatFactor();
+  PetscCallCXX(std::vector<PetscScalar>().swap(sd.work));
   PetscCall(KSPDestroy(&sd.ksp));
   PetscCall(VecDestroy(&sd.x));
   PetscCall(VecDestroy(&sd.y));

@@ -181,6 +181,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   PetscCall(FETIGetSizes(feti, &s->n_primal, &s->m, &s->rigid_modes));
   PetscCall(FETIGetKplusExplicit(feti, &s->kplus_explicit, &s->kplus_fallback));
   PetscCall(FETIGetKplusType(feti, &s->kplus_type, &s->kplus_blocks));
+  PetscCall(FETIGetKplusPrecision(feti, &s->kplus_precision, &s->kplus_single, &s->kplus_factor_bytes, &s->kplus_factor_double_bytes));
   PetscCall(FEMGetNumSubdomains(impl.fem, &s->subdomains, NULL, NULL));
   PetscCall(FETIGetConstraints(feti, &B, &c, &kinds));
   PetscCall(ContactModelGetSolution(impl.cm, &lambda, NULL));
@@ -546,6 +547,10 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
     Str(out, "kplus", kplus);
   }
   Int(out, "kplus_blocks", s->kplus_blocks);
+  Str(out, "kplus_precision", FETIKplusPrecisions[s->kplus_precision]);
+  Int(out, "kplus_single", s->kplus_single);
+  Real(out, "kplus_factor_mb", s->kplus_factor_bytes / 1048576.0);
+  Real(out, "kplus_factor_double_mb", s->kplus_factor_double_bytes / 1048576.0);
   Int(out, "friction_polygon", s->friction_polygon);
   Real(out, "fixed_point", s->fixed_point);
   Real(out, "feasibility", s->feasibility);

@@ -22,6 +22,7 @@ FIELDS = {
     "n_A_other": int, "n_A_estimate": int, "norm_F": float, "time_setup": float, "time_solve": float, "time_phases": dict,
     "contact_nodes": int, "separated": int, "stick": int, "slip": int, "fixed_point": float, "feasibility": float,
     "acceptance": float, "refinements": int, "residuals": dict, "kplus": str, "kplus_blocks": int,
+    "kplus_precision": str, "kplus_single": int, "kplus_factor_mb": float, "kplus_factor_double_mb": float,
 }
 PROGRESS = re.compile(r"^(setup|solve): ")
 RESIDUALS = ["equilibrium", "gluing", "penetration", "normal_sign", "complementarity", "friction_cone", "slip_rule", "max"]

@@ -7,7 +7,16 @@
 #include <conefeti/private/progress.h>
 #include <conefeti/compat.h>
 
+#include <cstdint>
 #include <vector>
+
+/* A subdomain's block Cholesky factor (U' D U, block size 3) with its values in float (fetifloatfactor.cxx) */
+struct FETIFloatFactor {
+  PetscInt                  nb = 0;          /* block rows (nodes); 0: no float factor */
+  std::vector<std::int32_t> rowstart, col;   /* off-diagonal blocks of block row k: rowstart[k] .. rowstart[k+1]-1, their block columns */
+  std::vector<float>        diag, off;       /* D_k^-1 and the off-diagonal blocks of -U, 9 numbers each, column-major */
+  double                    doublebytes = 0; /* what PETSc's double factor it was copied from took */
+};
 
 /* One subdomain owned by this rank */
 struct FETISubdomain {
@@ -33,6 +42,9 @@ struct FETISubdomain {
   KSP                      ksp        = nullptr;               /* KSPPREONLY + PCCHOLESKY on Kreg, prefix feti_sub_ */
   Mat                      factor     = nullptr;               /* the KSP's factor when it is of Kreg permuted by nodes (borrowed), else NULL */
   std::vector<PetscInt>    perm, iperm;                        /* that permutation: row k of the factor is dof perm[k], dof i is row iperm[i]; empty: none */
+  FETIFloatFactor          ffactor;                            /* -feti_kplus_precision single: the float copy that replaces that factor (factor is NULL then) */
+  std::vector<PetscScalar> work;                               /* length n, for the refinement of the float solves */
+  PetscReal                factorentries = -1;                 /* entries of the factor as MatGetInfo() measured them; -1: not measured */
   Vec                      x = nullptr, y = nullptr;           /* work vectors of length n (own storage) */
   Vec                      xa = nullptr, ya = nullptr;         /* vectors of length n without storage (VecPlaceArray) */
 
@@ -94,18 +106,22 @@ struct FETI_Impl {
   PetscInt  nprimal = 0, nlocalprimal = 0, ncoarse = 0, nlocalcoarse = 0;
 
   /* options */
-  PetscReal      kerneltol          = 1e-8;       /* -feti_kernel_tol */
-  PetscReal      checktol           = 1e-6;       /* -feti_check_tol */
-  PetscBool      check              = PETSC_TRUE; /* -feti_check */
-  PetscInt       nfixingcandidates  = 8;          /* -feti_fixing_nodes */
-  char           subsolver[64]      = "";
-  FETIKplusType  kplustype          = FETI_KPLUS_IMPLICIT; /* -feti_kplus, -feti_kplus_explicit */
-  PetscReal      kplusratio         = 1.0;                 /* -feti_kplus_memory_ratio (auto) */
-  PetscBool      kplusexplicit      = PETSC_FALSE;         /* blocks may be built (before setup: kplustype is not implicit), are used in some subdomain (after) */
-  PetscBool      kplusschur         = PETSC_TRUE;          /* -feti_kplus_explicit_schur */
-  FETICoarseMode coarsemode         = FETI_COARSE_AUTO;    /* -feti_coarse_mode */
-  PetscInt       coarseparalleldim  = 50000;               /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
-  PetscInt       coarseredundantdim = 10000;               /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
+  PetscReal          kerneltol          = 1e-8;       /* -feti_kernel_tol */
+  PetscReal          checktol           = 1e-6;       /* -feti_check_tol */
+  PetscBool          check              = PETSC_TRUE; /* -feti_check */
+  PetscInt           nfixingcandidates  = 8;          /* -feti_fixing_nodes */
+  char               subsolver[64]      = "";
+  FETIKplusType      kplustype          = FETI_KPLUS_IMPLICIT;         /* -feti_kplus, -feti_kplus_explicit */
+  PetscReal          kplusratio         = 1.0;                         /* -feti_kplus_memory_ratio (auto) */
+  FETIKplusPrecision kplusprecision     = FETI_KPLUS_PRECISION_DOUBLE; /* -feti_kplus_precision */
+  PetscInt           nkplussingle       = 0;                           /* after setup: subdomains (all ranks) whose factor is stored in float */
+  PetscReal          kplusfactorbytes   = 0;                           /* after setup: bytes (all ranks) of the PETSc block Cholesky factors as kept (float copies or double factors) */
+  PetscReal          kplusdoublebytes   = 0;                           /* the same factors in double, as PETSc stores them */
+  PetscBool          kplusexplicit      = PETSC_FALSE;                 /* blocks may be built (before setup: kplustype is not implicit), are used in some subdomain (after) */
+  PetscBool          kplusschur         = PETSC_TRUE;                  /* -feti_kplus_explicit_schur */
+  FETICoarseMode     coarsemode         = FETI_COARSE_AUTO;            /* -feti_coarse_mode */
+  PetscInt           coarseparalleldim  = 50000;                       /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
+  PetscInt           coarseredundantdim = 10000;                       /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
 
   /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
   PetscReal memfactors = -1, memblocks = -1, membudget = -1; /* bytes; -1: not estimated (budget: unknown) */
@@ -154,13 +170,18 @@ PETSC_INTERN PetscErrorCode FETIChooseFixingDofs(PetscInt, PetscInt, const std::
 PETSC_INTERN PetscErrorCode FETISubdomainSetUpKernel(FETI, FETISubdomain &, PetscInt);
 PETSC_INTERN PetscErrorCode FETISubdomainSetUpFactorization(FETI, FETISubdomain &, PetscInt);
 PETSC_INTERN PetscErrorCode FETISubdomainApplyK(FETISubdomain &, Vec, Vec);
-PETSC_INTERN PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &, Vec, Vec, PetscBool);
 PETSC_INTERN PetscErrorCode FETISubdomainDestroy(FETISubdomain &);
 /* the row of the subdomain's factor that holds dof i (for solves with the factor itself, FETISubdomainSetUpFactorization()) */
 static inline PetscInt FETISubdomainFactorRow(const FETISubdomain &sd, PetscInt i) { return sd.iperm.empty() ? i : sd.iperm[i]; }
 
+/* fetifloatfactor.cxx */
+PETSC_INTERN PetscErrorCode FETIFloatFactorCreate(Mat, FETIFloatFactor &);
+PETSC_INTERN PetscErrorCode FETIFloatFactorSolve(const FETIFloatFactor &, PetscScalar *);
+PETSC_INTERN double         FETIFloatFactorBytes(const FETIFloatFactor &);
+
 /* fetioperators.cxx */
-PETSC_INTERN PetscErrorCode FETIApplyKplus(FETI, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETIApplyKplus(FETI, Vec, Vec, PetscBool);
 PETSC_INTERN PetscErrorCode FETIApplyP(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyG(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIApplyGt(FETI, Vec, Vec);
