@@ -19,9 +19,9 @@
    The cost of one application: smalxe projects around it (P M' P + Q/rho: two coarse solves, Q g and Q z, each with
    G and G'), so the FETI preconditioner is applied without its own P on both sides (PCFETISetProjected()): M' =
    R M R + (c/||F||)(I - R) with M = B K_bb B' (lumped: one product with K_s per subdomain, no solve) or B S_bb B'
-   (Dirichlet: one interior solve and two products). Without the mask (-contact_pc_contact_rows_scaled 0) that is
-   the same operator, P P M P P = P M P; with it, R M R replaces R P M P R. -contact_pc_inner_projector restores
-   FETI's pair (two coarse solves more per application). */
+   (Dirichlet: one interior solve, one product with K_s and one with its block K_bi). Without the mask
+   (-contact_pc_contact_rows_scaled 0) that is the same operator, P P M P P = P M P; with it, R M R replaces
+   R P M P R. -contact_pc_inner_projector restores FETI's pair (two coarse solves more per application). */
 #include <conefeti/private/contactimpl.h>
 #include <conefeti/private/reproduciblesum.h>
 
