@@ -93,6 +93,7 @@ PETSC_EXTERN PetscLogEvent FETI_SetUp, FETI_Assembly, FETI_Factorization, FETI_M
 /* Preconditioner types for the projected CG on P F P, applied as P M^-1 P (-feti_pc_type) */
 #define PCFETILUMPED    "lumped"
 #define PCFETIDIRICHLET "dirichlet"
+PETSC_EXTERN PetscErrorCode PCFETISetProjected(PC, PetscBool);
 
 PETSC_EXTERN PetscErrorCode FETICreate(MPI_Comm, FETI *);
 PETSC_EXTERN PetscErrorCode FETIDestroy(FETI *);

@@ -14,7 +14,14 @@
    preconditioning'). The gluing rows are never active, and the contact rows' scaled identity commutes with their
    bounds and disks: the preconditioned CG in face is then CG on the problem in the variables M^-1/2 l of the
    gluing rows, bounds and disks unchanged. c puts the contact rows' spectrum, (c/||F||) F_cc in (0, c], beside the
-   preconditioned gluing rows' (about [1, (1 + log(H/h))^2] with the Dirichlet preconditioner). */
+   preconditioned gluing rows' (about [1, (1 + log(H/h))^2] with the Dirichlet preconditioner).
+
+   The cost of one application: smalxe projects around it (P M' P + Q/rho: two coarse solves, Q g and Q z, each with
+   G and G'), so the FETI preconditioner is applied without its own P on both sides (PCFETISetProjected()): M' =
+   R M R + (c/||F||)(I - R) with M = B K_bb B' (lumped: one product with K_s per subdomain, no solve) or B S_bb B'
+   (Dirichlet: one interior solve, one product with K_s and one with its block K_bi). Without the mask
+   (-contact_pc_contact_rows_scaled 0) that is the same operator, P P M P P = P M P; with it, R M R replaces
+   R P M P R. -contact_pc_inner_projector restores FETI's pair (two coarse solves more per application). */
 #include <conefeti/private/contactimpl.h>
 #include <conefeti/private/reproduciblesum.h>
 
@@ -88,7 +95,8 @@ PetscErrorCode ContactPCDestroy(PC pc)
   Options Database Keys:
 + -contact_pc_type <none,lumped,dirichlet>  - its type (none unless the caller chose one; a `ContactModel` leaves it none)
 . -contact_pc_contact_scale <30>            - c: the contact rows are scaled by c/||F|| instead of preconditioned by M
-- -contact_pc_contact_rows_scaled <true>    - false: M on every row, contact rows too (costs F products on the brick)
+. -contact_pc_contact_rows_scaled <true>    - false: M on every row, contact rows too (costs F products on the brick)
+- -contact_pc_inner_projector <false>       - true: FETI's M applied with its own P on both sides, P M P (two coarse solves more per application)
 
   Notes:
   Used only in the projector form (`ContactProblemSetProjector()`) and with one inner solver (every pipeline but
@@ -96,8 +104,9 @@ PetscErrorCode ContactPCDestroy(PC pc)
   preconditioned in face by P M' P + Q/rho (`TaoSMALXESetProjectedPreconditioner()`), which replaces the penalty
   preconditioner, with M' = R M R + (c/||F||)(I - R), R the mask of the rows that are not contact rows (gluing,
   Dirichlet): M preconditions only the rows that are never active, and the contact rows keep a scaled identity,
-  which commutes with their bounds and disks. It changes the path, not the solution: expansion, proportioning and
-  the stopping tests stay unpreconditioned. The FETI types need F to be a FETI operator (`FETIGetOperators()`).
+  which commutes with their bounds and disks. Smalxe's P on both sides is the only projection by default: a FETI
+  M is applied without its own (`PCFETISetProjected()`), two coarse solves per application instead of four. It
+  changes the path, not the solution: expansion, proportioning and the stopping tests stay unpreconditioned. The FETI types need F to be a FETI operator (`FETIGetOperators()`).
   Measurements: docs/scale.md, 'Why n_A grows: preconditioning'.
 
   Level: intermediate
@@ -134,6 +143,8 @@ PetscErrorCode ContactProblemPCOptions_Private(ContactProblem cp, CONEFETI_OPTIO
                              &d->pc_contact_scale, NULL));
   PetscCall(PetscOptionsBool("-contact_pc_contact_rows_scaled", "With -contact_pc_type: scale the contact rows (true) or precondition them like the gluing rows (false)", "ContactProblemGetPC",
                              d->pc_contact_rows_scaled, &d->pc_contact_rows_scaled, NULL));
+  PetscCall(PetscOptionsBool("-contact_pc_inner_projector", "With -contact_pc_type: FETI's M with its own projector on both sides, P M P (true, two coarse solves more per application), or M alone",
+                             "ContactProblemGetPC", d->pc_inner_projector, &d->pc_inner_projector, NULL));
   PetscCheck(d->pc_contact_scale > 0 && !PetscIsInfOrNanReal(d->pc_contact_scale), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_pc_contact_scale must be finite and > 0, got %g", (double)d->pc_contact_scale);
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -165,6 +176,8 @@ PetscErrorCode ContactProblemSetUpPC_Private(ContactProblem cp)
   PetscCall(PetscObjectTypeCompare((PetscObject)d->pc, PCNONE, &none));
   if (none) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PCSetOperators(d->pc, d->F, d->F));
+  /* smalxe projects around it: FETI's own pair only when asked (see the top) */
+  PetscCall(PCFETISetProjected(d->pc, d->pc_inner_projector));
   if (!d->pc_contact_rows_scaled) {
     PetscCall(TaoSMALXESetProjectedPreconditioner(d->tao, d->pc));
     PetscFunctionReturn(PETSC_SUCCESS);

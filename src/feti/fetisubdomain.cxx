@@ -667,8 +667,10 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(ISDestroy(&sd.boundary));
   PetscCall(ISDestroy(&sd.interior));
   PetscCall(MatDestroy(&sd.Fii));
+  PetscCall(MatDestroy(&sd.Kbi));
   PetscCall(VecDestroy(&sd.xi));
   PetscCall(VecDestroy(&sd.yi));
+  PetscCall(VecDestroy(&sd.yb));
   PetscCall(MatDestroy(&sd.Kplusbb));
   PetscCall(VecDestroy(&sd.kx));
   PetscCall(VecDestroy(&sd.ky));

@@ -60,6 +60,9 @@ struct ContactProblemData {
   PetscBool pc_contact_rows_scaled = PETSC_TRUE; /* -contact_pc_contact_rows_scaled */
   PetscBool kkt_check              = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
 
+  /* -contact_pc_inner_projector: FETI's M as P M P (smalxe projects around it anyway; contactpc.cxx) */
+  PetscBool pc_inner_projector = PETSC_FALSE;
+
   ContactStatistics stats = {};
 
   ConeFETIProgress progress;                      /* ContactProblemSetProgress(): outer iterations of the solve */

@@ -48,10 +48,12 @@ struct FETISubdomain {
   Vec                      x = nullptr, y = nullptr;           /* work vectors of length n (own storage) */
   Vec                      xa = nullptr, ya = nullptr;         /* vectors of length n without storage (VecPlaceArray) */
 
-  /* preconditioner data (boundary = dofs touched by B); K_bb, K_bi are applied through K_V itself */
+  /* preconditioner data (boundary = dofs touched by B); K_bb and K_ib are applied through K_V itself */
   IS  boundary = nullptr, interior = nullptr;
   Mat Fii = nullptr;              /* Cholesky factor of K_ii (K_ii itself is not kept) */
+  Mat Kbi = nullptr;              /* K_bi (SeqAIJ): the boundary's coupling to the interior, a small part of K, for the Schur product's second half */
   Vec xi = nullptr, yi = nullptr; /* interior-sized work vectors */
+  Vec yb = nullptr;               /* boundary-sized work vector */
 
   /* explicit K+ on the dofs touched by B (-feti_kplus_explicit) */
   std::vector<PetscInt> kb;                          /* those dofs, without the removed ones */

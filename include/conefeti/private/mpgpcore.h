@@ -55,6 +55,9 @@ struct MPGPCore {
   PetscInt  bb_rejected     = 0;                                                                /* BB steps that did not decrease q and fell back to the fixed length */
   PetscInt  projcg_rejected = 0;                                                                /* projected CG steps not kept (q above the feasible half step's) */
 
+  /* with a preconditioner: the restart direction M phi is due, computed when a CG or expansion step needs it */
+  PetscBool pending = PETSC_FALSE;
+
   /* state after a solve: g = A x - b is valid for the returned x */
   PetscInt   its    = 0;
   PetscReal  f      = 0;
