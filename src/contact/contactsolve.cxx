@@ -363,10 +363,11 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_kkt_check <true>             - recompute the KKT residual before saying converged (a `ContactModel` turns it off: it judges by the mechanics)
 . -contact_acceptance_factor <10>       - converged only when the KKT residual recomputed from the multipliers (`ContactProblemComputeKKTResidual()`) is at most this times -contact_rtol
 . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
-. -contact_start_rtol <0>              - a cold solve (one that does not recycle the previous solve's multiplier) first runs projected CG on the problem without the contact inequalities (contact nodes
-bonded) to this relative residual, and starts from its multipliers (0: from the given ones; projector form only) . -contact_start_max_it <100>           - most CG steps of that start .
--contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; see `ContactProblemGetPC()`) . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the
-multiplier update (0: Dostal's plain update); default 1 for monolithic, 0 for merged's blocks, 3 otherwise; see `TaoSMALXESetAnderson()`
+. -contact_start_rtol <0>              - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`)
+. -contact_start_max_it <100>           - most CG steps of that start
+. -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum |l_n| presses
+. -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; see `ContactProblemGetPC()`)
+. -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
 
   Level: beginner
@@ -633,6 +634,14 @@ static PetscErrorCode ProgressMonitor(Tao tao, void *ctx)
   met with admissible contact forces (e.g. a free body under a shear beyond the friction bound).
   Counters: Iter (outer iterations), n_A^QPP (mprgp products), n_A^QPQ (mpgp products), and products
   outside the inner solvers, each separately.
+
+  A cold solve (one that does not recycle the previous solve's multiplier, `TaoSetRecycleHistory()`) with
+  -contact_start_rtol r > 0 first runs projected CG on the problem without the contact inequalities (every
+  contact node bonded, projector form only) to the relative residual r, at most -contact_start_max_it steps,
+  and starts from its multipliers: a contact pressure where the bodies press (docs/scale.md, "Lever: a bonded
+  start"). When less than -contact_start_compressive of its sum |l_n| is compressive (checked from its second
+  step on: curved bodies, whose bonded zone reaches far beyond the contact, are mostly in tension), the start is
+  abandoned and the given multipliers kept. Its products with F are counted in products_other.
 
   Before it says converged, the solve recomputes the KKT residual from the multipliers
   (`ContactProblemComputeKKTResidual()`, two products with F, counted in products_other): above

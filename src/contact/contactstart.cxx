@@ -24,6 +24,26 @@ PetscErrorCode Project(Mat Q, Vec x, Vec y, Vec work)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* the share of the normal multipliers' total |l_n| that is compressive (l_n > 0); 1 without normal multipliers */
+PetscErrorCode CompressiveShare(ContactProblem cp, Vec lambda, PetscReal *share)
+{
+  ContactProblemData *d = cp->data;
+  const PetscScalar  *l;
+  PetscReal           sums[2] = {0, 0};
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(lambda, &l));
+  for (size_t j = 0; j < d->normal.size(); j++) {
+    const PetscReal v = PetscRealPart(l[d->normal[j] - d->rstart]);
+    sums[0] += PetscMax(v, 0.0);
+    sums[1] += PetscAbsReal(v);
+  }
+  PetscCall(VecRestoreArrayRead(lambda, &l));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums, 2, MPIU_REAL, MPIU_SUM, PetscObjectComm((PetscObject)cp)));
+  *share = sums[1] > 0 ? sums[0] / sums[1] : 1.0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 /* -contact_start_rtol, -contact_start_max_it (read in ContactProblemSetFromOptions()'s block) */
@@ -38,6 +58,10 @@ PetscErrorCode ContactProblemStartOptions_Private(ContactProblem cp, CONEFETI_OP
   PetscCall(PetscOptionsInt("-contact_start_max_it", "Most CG steps of that start (-contact_start_rtol)", "ContactProblemSolve", d->start_max_it, &d->start_max_it, NULL));
   PetscCheck(d->start_rtol >= 0 && d->start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_start_rtol must be in [0, 1) (0: no start solve), got %g",
              (double)d->start_rtol);
+  PetscCall(PetscOptionsReal("-contact_start_compressive", "The start is abandoned (the given multipliers kept) when less than this share of its normal force sum |l_n| is compressive",
+                             "ContactProblemSolve", d->start_compressive, &d->start_compressive, NULL));
+  PetscCheck(d->start_compressive >= 0 && d->start_compressive <= 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_start_compressive must be in [0, 1], got %g",
+             (double)d->start_compressive);
   PetscCheck(d->start_max_it >= 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_start_max_it must be >= 1, got %" PetscInt_FMT, d->start_max_it);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -48,8 +72,8 @@ PetscErrorCode ContactProblemStartOptions_Private(ContactProblem cp, CONEFETI_OP
 PetscErrorCode ContactProblemStart_Private(ContactProblem cp, Vec lambda, PetscInt *products)
 {
   ContactProblemData *d = cp->data;
-  Vec                 r, p, w, t, q;
-  PetscReal           rr, rr0, rrnew, pw;
+  Vec                 r, p, w, t, q, lambda0;
+  PetscReal           rr, rr0, rrnew, pw, share = 1;
   PetscInt            its = 0;
 
   PetscFunctionBegin;
@@ -60,6 +84,8 @@ PetscErrorCode ContactProblemStart_Private(ContactProblem cp, Vec lambda, PetscI
   PetscCall(VecDuplicate(lambda, &w));
   PetscCall(VecDuplicate(lambda, &t));
   PetscCall(VecDuplicate(lambda, &q));
+  PetscCall(VecDuplicate(lambda, &lambda0));
+  PetscCall(VecCopy(lambda, lambda0));
   PetscCall(MatMult(d->F, lambda, t));
   ++*products;
   PetscCall(VecAYPX(t, -1.0, d->h)); /* h - F lambda */
@@ -80,13 +106,20 @@ PetscErrorCode ContactProblemStart_Private(ContactProblem cp, Vec lambda, PetscI
     PetscCall(ReproducibleAYPX(p, rrnew / rr, r));
     rr = rrnew;
     its++;
+    if (its >= 2) { /* two steps tell (docs/scale.md): a bonded zone far from the contact zone is mostly in tension */
+      PetscCall(CompressiveShare(cp, lambda, &share));
+      if (share < d->start_compressive) break;
+    }
   }
-  PetscCall(PetscInfo(cp, "Start: %" PetscInt_FMT " CG steps on the problem without the contact inequalities, residual %g of its start (-contact_start_rtol %g)\n", its,
-                      (double)(rr0 > 0 ? PetscSqrtReal(rr / rr0) : 0), (double)d->start_rtol));
+  PetscCall(CompressiveShare(cp, lambda, &share));
+  if (share < d->start_compressive) PetscCall(VecCopy(lambda0, lambda));
+  PetscCall(PetscInfo(cp, "Start: %" PetscInt_FMT " CG steps on the problem without the contact inequalities, residual %g of its start (-contact_start_rtol %g), compressive share of |l_n| %g: %s\n",
+                      its, (double)(rr0 > 0 ? PetscSqrtReal(rr / rr0) : 0), (double)d->start_rtol, (double)share, share < d->start_compressive ? "abandoned (-contact_start_compressive)" : "kept"));
   PetscCall(VecDestroy(&r));
   PetscCall(VecDestroy(&p));
   PetscCall(VecDestroy(&w));
   PetscCall(VecDestroy(&t));
   PetscCall(VecDestroy(&q));
+  PetscCall(VecDestroy(&lambda0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
