@@ -9,7 +9,10 @@
    "Why n_A grows: the outer loop"). The bonded problem is linear and FETI-scalable: a loose CG on it gives
    normal multipliers that are a contact pressure where the bodies press, negative where they would separate
    (the inner solver's projection sets those to 0), and tangential ones that the projection onto the disks of
-   radius F max(l_n, 0) cuts to slip. */
+   radius F max(l_n, 0) cuts to slip. On curved contacts (a sphere on a plane) the bonded zone reaches far beyond the
+   contact and most of its normal force is tension; started from there the brick's gain turns into a loss (up to
+   +64% products on the hemisphere), so the start is abandoned when too little of it presses
+   (-contact_start_compressive). Measurements: docs/scale.md, "Lever: a bonded start". */
 #include <conefeti/private/contactimpl.h>
 #include <conefeti/private/reproduciblesum.h>
 
@@ -46,7 +49,7 @@ PetscErrorCode CompressiveShare(ContactProblem cp, Vec lambda, PetscReal *share)
 
 } // namespace
 
-/* -contact_start_rtol, -contact_start_max_it (read in ContactProblemSetFromOptions()'s block) */
+/* -contact_start_rtol, -contact_start_max_it, -contact_start_compressive (read in ContactProblemSetFromOptions()'s block) */
 PetscErrorCode ContactProblemStartOptions_Private(ContactProblem cp, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
   ContactProblemData *d = cp->data;
