@@ -363,7 +363,7 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_kkt_check <true>             - recompute the KKT residual before saying converged (a `ContactModel` turns it off: it judges by the mechanics)
 . -contact_acceptance_factor <10>       - converged only when the KKT residual recomputed from the multipliers (`ContactProblemComputeKKTResidual()`) is at most this times -contact_rtol
 . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
-. -contact_start_rtol <0>              - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`)
+. -contact_start_rtol <0.1>            - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`)
 . -contact_start_max_it <100>           - most CG steps of that start
 . -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum |l_n| presses
 . -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; see `ContactProblemGetPC()`)
@@ -636,7 +636,7 @@ static PetscErrorCode ProgressMonitor(Tao tao, void *ctx)
   outside the inner solvers, each separately.
 
   A cold solve (one that does not recycle the previous solve's multiplier, `TaoSetRecycleHistory()`) with
-  -contact_start_rtol r > 0 first runs projected CG on the problem without the contact inequalities (every
+  -contact_start_rtol r > 0 (default 0.1) first runs projected CG on the problem without the contact inequalities (every
   contact node bonded, projector form only) to the relative residual r, at most -contact_start_max_it steps,
   and starts from its multipliers: a contact pressure where the bodies press (docs/scale.md, "Lever: a bonded
   start"). When less than -contact_start_compressive of its sum |l_n| is compressive (checked from its second
