@@ -363,9 +363,11 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_kkt_check <true>             - recompute the KKT residual before saying converged (a `ContactModel` turns it off: it judges by the mechanics)
 . -contact_acceptance_factor <10>       - converged only when the KKT residual recomputed from the multipliers (`ContactProblemComputeKKTResidual()`) is at most this times -contact_rtol
 . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
+. -contact_start_rtol <0.1>            - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`)
+. -contact_start_max_it <100>           - most CG steps of that start
+. -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum |l_n| presses
 . -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; see `ContactProblemGetPC()`)
-. -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); default 1 for monolithic, 0 for merged's blocks, 3 otherwise; see
-`TaoSMALXESetAnderson()`
+. -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
 
   Level: beginner
@@ -398,7 +400,8 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
                              "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, NULL));
   PetscCall(PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance (-1: -contact_rtol)", "ContactProblemSolve", d->fixed_point_rtol,
                              &d->fixed_point_rtol, NULL));
-  PetscCall(ContactProblemPCOptions_Private(cp, PetscOptionsObject)); /* -contact_pc_contact_scale ... (contactpc.cxx) */
+  PetscCall(ContactProblemPCOptions_Private(cp, PetscOptionsObject));    /* -contact_pc_contact_scale ... (contactpc.cxx) */
+  PetscCall(ContactProblemStartOptions_Private(cp, PetscOptionsObject)); /* -contact_start_rtol ... (contactstart.cxx) */
   PetscOptionsEnd();
   PetscCall(ContactProblemSetFromOptionsPC_Private(cp)); /* -contact_pc_type ... (contactpc.cxx) */
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
@@ -632,6 +635,14 @@ static PetscErrorCode ProgressMonitor(Tao tao, void *ctx)
   Counters: Iter (outer iterations), n_A^QPP (mprgp products), n_A^QPQ (mpgp products), and products
   outside the inner solvers, each separately.
 
+  A cold solve (one that does not recycle the previous solve's multiplier, `TaoSetRecycleHistory()`) with
+  -contact_start_rtol r > 0 (default 0.1) first runs projected CG on the problem without the contact inequalities (every
+  contact node bonded, projector form only) to the relative residual r, at most -contact_start_max_it steps,
+  and starts from its multipliers: a contact pressure where the bodies press (docs/scale.md, "Lever: a bonded
+  start"). When less than -contact_start_compressive of its sum |l_n| is compressive (checked from its second
+  step on: curved bodies, whose bonded zone reaches far beyond the contact, are mostly in tension), the start is
+  abandoned and the given multipliers kept. Its products with F are counted in products_other.
+
   Before it says converged, the solve recomputes the KKT residual from the multipliers
   (`ContactProblemComputeKKTResidual()`, two products with F, counted in products_other): above
   -contact_acceptance_factor times -contact_rtol the solve has not converged (failed_check "dual_kkt" or
@@ -646,7 +657,8 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
 {
   ContactProblemData *d;
   TaoConvergedReason  reason;
-  PetscInt            its = 0, outer = 0, al = 0;
+  PetscInt            its = 0, outer = 0, al = 0, start_products = 0;
+  PetscBool           warm;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
@@ -654,6 +666,10 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
   PetscCall(ContactProblemSetUp(cp));
   d = cp->data;
   PetscCall(PetscLogEventBegin(CONTACT_Solve, cp, 0, 0, 0));
+  /* a warm solve (the previous solve's multiplier recycled) starts where it is; a cold one may first solve the
+     bonded problem loosely (-contact_start_rtol, contactstart.cxx) */
+  PetscCall(TaoGetRecycleHistory(d->tao, &warm));
+  if (!warm) PetscCall(ContactProblemStart_Private(cp, lambda, &start_products));
   PetscCall(TaoSetSolution(d->tao, lambda));
   PetscCall(TaoQPResetCounters(d->tao));
   d->stats             = ContactStatistics{};
@@ -728,6 +744,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
     }
     PetscCall(DescribeReason(cp, reason, its + 1));
   }
+  d->stats.products_other += start_products;
   PetscCall(CheckKKT(cp, lambda));
   PetscCall(PetscLogEventEnd(CONTACT_Solve, cp, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)cp, NULL, "-contact_view"));

@@ -59,6 +59,9 @@ struct ContactProblemData {
   PetscReal pc_contact_scale       = 30;         /* -contact_pc_contact_scale: the contact rows get c/||F|| in the preconditioner (contactpc.cxx) */
   PetscBool pc_contact_rows_scaled = PETSC_TRUE; /* -contact_pc_contact_rows_scaled */
   PetscBool kkt_check              = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
+  PetscReal start_rtol             = 0.1;        /* -contact_start_rtol: a cold solve starts with CG on the bonded problem to this (0: off; contactstart.cxx) */
+  PetscInt  start_max_it           = 100;        /* -contact_start_max_it */
+  PetscReal start_compressive      = 0.6;        /* -contact_start_compressive: the start is kept only if this share of its sum |l_n| presses */
 
   /* -contact_pc_inner_projector: FETI's M as P M P (smalxe projects around it anyway; contactpc.cxx) */
   PetscBool pc_inner_projector = PETSC_FALSE;
@@ -79,6 +82,8 @@ PETSC_INTERN PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem, Ve
 PETSC_INTERN PetscErrorCode ContactProblemSetUpPC_Private(ContactProblem);
 PETSC_INTERN PetscErrorCode ContactProblemPCOptions_Private(ContactProblem, CONEFETI_OPTIONS_ITEMS);
 PETSC_INTERN PetscErrorCode ContactProblemSetFromOptionsPC_Private(ContactProblem);
+PETSC_INTERN PetscErrorCode ContactProblemStartOptions_Private(ContactProblem, CONEFETI_OPTIONS_ITEMS);
+PETSC_INTERN PetscErrorCode ContactProblemStart_Private(ContactProblem, Vec, PetscInt *);
 
 /* The friction polygon of k directions (contactpolygon.cxx): direction j is (cos, sin)(j pi / k) in the node's
    (t1, t2) frame, each multiplier is bounded by ContactPolygonBoundFactor(k) g. */
