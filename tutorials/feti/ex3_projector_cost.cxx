@@ -26,7 +26,7 @@ int main(int argc, char **argv)
   Vec          d1, d2, c1, c2;
   PetscRandom  rnd;
   PetscInt     repeat = 100, nprimal, m, ncoarse;
-  double       t[5] = {0, 0, 0, 0, 0}; /* F, G, G', coarse, Q */
+  double       t[5]   = {0, 0, 0, 0, 0}; /* F, G, G', coarse, Q */
 
   PetscCall(PetscInitialize(&argc, &argv, NULL, "CPU time of the FETI projector's parts against F"));
   PetscCall(ConeFETIInitializePackage());
