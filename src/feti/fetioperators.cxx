@@ -1,7 +1,7 @@
 /* The FETI operators as MATSHELLs (created by FETISetUp(), feti.cxx):
      K+  primal -> primal  block diagonal generalized inverse
      F   dual -> dual      B K+ B' (one B' product, one solve per subdomain, one B product; never formed)
-     G   dual -> coarse    R'B' (a B' product, then R' subdomain by subdomain; never formed)
+     G   dual -> coarse    R'B' (a B' product, then R' on the rows of R at the dofs B touches; never formed)
      P   dual -> dual      I - Gt (G Gt)^-1 G, the orthogonal projector onto Ker G
      Q   dual -> dual      I - P
    The coarse matrix G G' is assembled from Gt = B R and factorized once; Gt is not kept. The products
