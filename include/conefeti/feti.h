@@ -113,6 +113,7 @@ PETSC_EXTERN PetscErrorCode FETIViewFromOptions(FETI, PetscObject, const char[])
 PETSC_EXTERN PetscErrorCode FETIGetNumSubdomains(FETI, PetscInt *, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode FETIGetSubdomainOffset(FETI, PetscInt, PetscInt *, PetscInt *);
 PETSC_EXTERN PetscErrorCode FETIGetSizes(FETI, PetscInt *, PetscInt *, PetscInt *);
+PETSC_EXTERN PetscErrorCode FETIGetCoarseSolveCount(FETI, PetscInt *);
 PETSC_EXTERN PetscErrorCode FETIGetSubdomainKernel(FETI, PetscInt, Mat *);
 PETSC_EXTERN PetscErrorCode FETIGetSubdomainFixingDofs(FETI, PetscInt, IS *);
 

@@ -68,6 +68,7 @@ typedef struct {
 . n_A           - n_A^QPP + n_A^QPQ + n_A^other: Hessian (F) products of the solve
 . n_A_qpp, n_A_qpq, n_A_other - products in the bound-constrained (mprgp) solves, the disk-constrained (mpgp) solves, and elsewhere
 . n_A_estimate  - products spent estimating ||F|| (not in n_A)
+. coarse_solves - solves with G G' since the FETI setup (`FETIGetCoarseSolveCount()`: every product with P or Q takes one)
 . norm_F        - the ||F|| estimate the solver used (0 for the linear pipeline)
 . time_setup    - seconds: mesh, FETI operators and factorizations, contact problem
 . time_solve    - seconds: the solve with primal recovery
@@ -113,7 +114,7 @@ typedef struct {
   ContactCoulombAlgorithm  algorithm;
   char                     description[256];
   PetscInt                 n, n_primal, m, m_gluing, m_dirichlet, m_normal, m_tangential, subdomains, rigid_modes, contact_nodes;
-  PetscInt                 iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate;
+  PetscInt                 iter, al_iter, n_A, n_A_qpp, n_A_qpq, n_A_other, n_A_estimate, coarse_solves;
   PetscReal                norm_F, time_setup, time_solve, fixed_point, feasibility, rtol, acceptance;
   PetscReal                time_phases[CONEFETI_PHASE_COUNT];
   PetscInt                 refinements;

@@ -23,6 +23,12 @@ static PetscErrorCode FETIReset(FETI feti)
   PetscCall(VecDestroy(&impl.f));
   PetscCall(MatDestroy(&impl.R));
   PetscCall(MatDestroy(&impl.Gt));
+  PetscCallCXX(std::vector<PetscInt>().swap(impl.grows));
+  PetscCallCXX(std::vector<PetscInt>().swap(impl.gptr));
+  PetscCallCXX(std::vector<PetscInt>().swap(impl.gcols));
+  PetscCallCXX(std::vector<PetscScalar>().swap(impl.gvals));
+  impl.growsset      = PETSC_FALSE;
+  impl.ncoarsesolves = 0;
   PetscCall(FETICoarseSolverDestroy(impl.coarse));
   PetscCall(MatDestroy(&impl.F));
   PetscCall(MatDestroy(&impl.G));

@@ -3,6 +3,7 @@
 #include <conefeti/private/fetiimpl.h>
 
 PetscClassId  FETI_CLASSID;
+PetscLogEvent FETI_ApplyG, FETI_ApplyGt;
 PetscLogEvent FETI_SetUp, FETI_Assembly, FETI_Factorization, FETI_MultF, FETI_CoarseSolve, FETI_ApplyKplus, FETI_PrimalRecovery, FETI_Preconditioner;
 PetscLogEvent FETI_Kernels, FETI_Reorder;
 
@@ -23,6 +24,8 @@ PetscErrorCode ConeFETIFETIInitializePackage(void)
   PetscCall(PetscLogEventRegister("FETI_MultF", FETI_CLASSID, &FETI_MultF));
   PetscCall(PetscLogEventRegister("FETIApplyKplus", FETI_CLASSID, &FETI_ApplyKplus));
   PetscCall(PetscLogEventRegister("FETICoarseSolve", FETI_CLASSID, &FETI_CoarseSolve));
+  PetscCall(PetscLogEventRegister("FETIApplyG", FETI_CLASSID, &FETI_ApplyG));
+  PetscCall(PetscLogEventRegister("FETIApplyGt", FETI_CLASSID, &FETI_ApplyGt));
   PetscCall(PetscLogEventRegister("FETIPrimalRecov", FETI_CLASSID, &FETI_PrimalRecovery));
   PetscCall(PetscLogEventRegister("FETIPCApply", FETI_CLASSID, &FETI_Preconditioner));
   PetscCall(PCRegister(PCFETILUMPED, PCCreate_FETILumped));

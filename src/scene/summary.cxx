@@ -202,10 +202,11 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   s->n_A          = st.products_qpp + st.products_qpq;
   s->n_A_other    = st.products_other;
   s->n_A_estimate = st.products_estimate;
-  s->fixed_point  = st.fixed_point;
-  s->feasibility  = st.feasibility;
-  s->acceptance   = st.acceptance;
-  s->refinements  = st.refinements;
+  PetscCall(FETIGetCoarseSolveCount(feti, &s->coarse_solves));
+  s->fixed_point = st.fixed_point;
+  s->feasibility = st.feasibility;
+  s->acceptance  = st.acceptance;
+  s->refinements = st.refinements;
   PetscCall(PetscStrncpy(s->failed_check, st.failed_check, sizeof(s->failed_check)));
   s->time_setup = impl.time_setup;
   s->time_solve = impl.time_solve;
@@ -485,6 +486,7 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Int(out, "n_A_qpq", s->n_A_qpq);
   Int(out, "n_A_other", s->n_A_other);
   Int(out, "n_A_estimate", s->n_A_estimate);
+  Int(out, "coarse_solves", s->coarse_solves);
   Real(out, "norm_F", s->norm_F);
   Real(out, "time_setup", s->time_setup);
   Real(out, "time_solve", s->time_solve);

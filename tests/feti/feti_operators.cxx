@@ -3,6 +3,7 @@
      K K+ K = K                    (generalized inverse, random vectors)
      F symmetric positive semidefinite on random vectors; P^2 = P, P symmetric, G P = 0
      G' = B R                      (stored G' against B times R)
+     G x = R'(B' x), G' c = B R c  (the shells against PETSc's products; on one rank G to the last bit)
      x'K_p y = (Ex)'K (Ey)         (subdomain matrices consistent with the assembled global matrix,
                                     E copies global nodal values to the subdomain copies)
      B B' = I                      (Helmert gluing and identity Dirichlet rows are orthonormal)
@@ -128,6 +129,39 @@ int main(int argc, char **argv)
     PetscCall(VecNorm(d2, NORM_2, &a));
     PetscCall(VecNorm(d1, NORM_2, &b));
     PetscCall(Report("G' = B R", a / b, tol, &ok));
+    /* the shell G (the rows of R where B' x lives, fetioperators.cxx) against PETSc's R'(B' x): on one rank the
+       same sums in the same order, so the same bits (FETI's B' sums each column of B in row order, as PETSc's
+       MatMultTranspose() does); on more ranks PETSc adds the other ranks' parts in its own order */
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
+    PetscCall(VecSetRandom(d1, rnd));
+    PetscCall(MatMult(G, d1, c1));
+    PetscCall(MatMultTranspose(B, d1, p1));
+    PetscCall(MatMultTranspose(R, p1, c2));
+    if (size == 1) {
+      const PetscScalar *u, *v;
+      PetscInt           n, differ = 0;
+      PetscCall(VecGetLocalSize(c1, &n));
+      PetscCall(VecGetArrayRead(c1, &u));
+      PetscCall(VecGetArrayRead(c2, &v));
+      for (PetscInt i = 0; i < n; i++) differ += u[i] != v[i];
+      PetscCall(VecRestoreArrayRead(c2, &v));
+      PetscCall(VecRestoreArrayRead(c1, &u));
+      PetscCall(Report("G x = R'(B' x), entries not bitwise equal", (PetscReal)differ, 0, &ok));
+    }
+    PetscCall(VecAXPY(c2, -1.0, c1));
+    PetscCall(VecNorm(c2, NORM_2, &a));
+    PetscCall(VecNorm(c1, NORM_2, &b));
+    PetscCall(Report("G x = R'(B' x)", a / b, tol, &ok));
+    /* G' c through the same rows against B (R c) */
+    PetscCall(VecSetRandom(c1, rnd));
+    PetscCall(MatMultTranspose(G, c1, d1));
+    PetscCall(MatMult(R, c1, p1));
+    PetscCall(MatMult(B, p1, d2));
+    PetscCall(VecAXPY(d2, -1.0, d1));
+    PetscCall(VecNorm(d2, NORM_2, &a));
+    PetscCall(VecNorm(d1, NORM_2, &b));
+    PetscCall(Report("G' c = B (R c)", a / b, tol, &ok));
   }
   /* subdomain matrices against the assembled global matrix: y'K_g x = (E y)'K_p (E x) for global x, y vanishing
      at the Dirichlet dofs (E copies nodal values to every copy of the node) */

@@ -84,6 +84,8 @@ typedef enum {
   FETI_COARSE_AUTO /* redundant below -feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim, parallel from there (resolved in FETICoarseSolverCreate()) */
 } FETICoarseMode;
 PETSC_INTERN const char *const FETICoarseModes[];
+/* the two halves of a product with Q = G'(G G')^-1 G besides the coarse solve (-log_view) */
+PETSC_INTERN PetscLogEvent FETI_ApplyG, FETI_ApplyGt;
 
 /* setup events inside FETISetUp beside the public ones of feti.h: the subdomain kernels (rigid modes, fixing dofs,
    checks) and the node reordering of K_s for PETSc's block Cholesky */
@@ -141,6 +143,14 @@ struct FETI_Impl {
   Vec              h = nullptr, e = nullptr, lambdatilde = nullptr;
   KSP              ksp          = nullptr; /* prefix feti_ for FETISolveLinear() */
   Vec              boundarymask = nullptr; /* primal: 1 at dofs touched by B */
+
+  /* G and G' through the rows of R at the dofs B touches (fetioperators.cxx, FETISetUpCoarseRows()): local primal
+     index of each such row (increasing), CSR of those rows of R's diagonal block (local coarse columns) */
+  std::vector<PetscInt>    grows, gptr, gcols;
+  std::vector<PetscScalar> gvals;
+  PetscBool                gpairs        = PETSC_FALSE; /* R's products sum each row in pairs (PETSc's inode kernel): so do ours */
+  PetscBool                growsset      = PETSC_FALSE; /* FETISetUpCoarseRows() ran; grows empty then: PETSc's products */
+  PetscInt                 ncoarsesolves = 0;           /* coarse solves since FETISetUp() (FETIGetCoarseSolveCount()) */
 
   /* work vectors */
   Vec wp1 = nullptr, wp2 = nullptr, wd1 = nullptr, wd2 = nullptr, wc1 = nullptr, wc2 = nullptr;

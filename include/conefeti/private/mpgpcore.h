@@ -70,6 +70,9 @@ PETSC_INTERN PetscErrorCode MPGPCoreSolve(MPGPCore *, Vec);
 PETSC_INTERN PetscErrorCode MPGPCoreReset(MPGPCore *);
 
 PETSC_INTERN PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate;
+/* the QP's own work between the Hessian products (-log_view): the preconditioner in face, smalxe's |Cx - d|
+   and multiplier update, the rank-independent dot products and updates (reproduciblesum.cxx) */
+PETSC_INTERN PetscLogEvent QP_Precondition, QP_Feasibility, QP_MultiplierUpdate, QP_VecReproducible;
 
 /* How ||A|| is obtained for the fixed step length, shared by the TAO and KSP wrappers. */
 struct QPNormSettings {

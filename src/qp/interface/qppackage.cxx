@@ -20,6 +20,10 @@ PetscErrorCode ConeFETIQPInitializePackage(void)
   PetscCall(PetscLogEventRegister("QPSolve", qp_classid, &QP_Solve));
   PetscCall(PetscLogEventRegister("QPHessianMult", qp_classid, &QP_HessianMult));
   PetscCall(PetscLogEventRegister("QPNormEstimate", qp_classid, &QP_NormEstimate));
+  PetscCall(PetscLogEventRegister("QPPrecondition", qp_classid, &QP_Precondition));
+  PetscCall(PetscLogEventRegister("QPFeasibility", qp_classid, &QP_Feasibility));
+  PetscCall(PetscLogEventRegister("QPMultUpdate", qp_classid, &QP_MultiplierUpdate));
+  PetscCall(PetscLogEventRegister("QPVecReproduc", qp_classid, &QP_VecReproducible));
   PetscCall(PetscLogEventRegister("QPProject", SEPARABLESET_CLASSID, &QP_Project));
   PetscCall(PetscLogEventRegister("QPSplitGradient", SEPARABLESET_CLASSID, &QP_Split));
   PetscCall(ReproducibleSumSetFromOptions());

@@ -1,5 +1,6 @@
 /* Rank-count independent sums (see reproduciblesum.h). */
 #include <conefeti/private/reproduciblesum.h>
+#include <conefeti/private/mpgpcore.h>
 #include <conefeti/compat.h>
 #include <petscvec.h>
 #include <vector>
@@ -104,6 +105,7 @@ PetscErrorCode ReproducibleDot2(Vec x1, Vec y1, Vec x2, Vec y2, PetscReal *d1, P
   DoubleDouble       s[2];
 
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(QP_VecReproducible, 0, 0, 0, 0));
   PetscCall(VecGetLocalSize(x1, &n));
   PetscCall(VecGetArrayRead(x1, &a));
   PetscCall(VecGetArrayRead(y1, &b));
@@ -125,6 +127,7 @@ PetscErrorCode ReproducibleDot2(Vec x1, Vec y1, Vec x2, Vec y2, PetscReal *d1, P
   PetscCall(ReproducibleAllreduce(s, x2 ? 2 : 1, PetscObjectComm((PetscObject)x1)));
   *d1 = s[0].value();
   if (x2) *d2 = s[1].value();
+  PetscCall(PetscLogEventEnd(QP_VecReproducible, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -142,6 +145,7 @@ PetscErrorCode ReproducibleAXPY(Vec y, PetscReal a, Vec x)
   PetscInt           n;
 
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(QP_VecReproducible, 0, 0, 0, 0));
   PetscCall(VecGetLocalSize(y, &n));
   PetscCall(VecGetArray(y, &ya));
   PetscCall(VecGetArrayRead(x, &xa));
@@ -149,6 +153,7 @@ PetscErrorCode ReproducibleAXPY(Vec y, PetscReal a, Vec x)
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(PetscLogFlops(2.0 * n));
+  PetscCall(PetscLogEventEnd(QP_VecReproducible, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -159,6 +164,7 @@ PetscErrorCode ReproducibleAYPX(Vec y, PetscReal a, Vec x)
   PetscInt           n;
 
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(QP_VecReproducible, 0, 0, 0, 0));
   PetscCall(VecGetLocalSize(y, &n));
   PetscCall(VecGetArray(y, &ya));
   PetscCall(VecGetArrayRead(x, &xa));
@@ -166,5 +172,6 @@ PetscErrorCode ReproducibleAYPX(Vec y, PetscReal a, Vec x)
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(PetscLogFlops(2.0 * n));
+  PetscCall(PetscLogEventEnd(QP_VecReproducible, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -41,7 +41,7 @@
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/private/reproduciblesum.h>
 
-PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate;
+PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate, QP_Precondition, QP_Feasibility, QP_MultiplierUpdate, QP_VecReproducible;
 
 static PetscErrorCode MPGPCoreMult(MPGPCore *c, Vec x, Vec y)
 {
@@ -125,8 +125,10 @@ static PetscErrorCode MPGPCoreSplit(MPGPCore *c, Vec x, PetscReal alpha, Vec Ap,
 static PetscErrorCode MPGPCorePrecondition(MPGPCore *c)
 {
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(QP_Precondition, 0, 0, 0, 0));
   PetscCall(c->precondition(c->precondition_ctx, c->phi, c->z));
   PetscCall(SeparableSetMaskFree_Private(c->set, c->z));
+  PetscCall(PetscLogEventEnd(QP_Precondition, 0, 0, 0, 0));
   c->counters->pc_applications++;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -122,6 +122,13 @@ struct TaoSMALXE {
   /* work: hq, hp, hr for products with H; bin, bout for block products; wf for feasibility; w for the rest */
   Vec hq = nullptr, hp = nullptr, hr = nullptr, r = nullptr, bin = nullptr, bout = nullptr, wf = nullptr, w = nullptr;
 
+  /* projector form: which vector (object id and state) hq holds Q of (the last product with H), and wf Q - x~ of
+     with its norm: |Qx - x~| of an iterate whose gradient was just computed (an expansion or proportioning step,
+     the end of an inner solve) then costs no product with Q, and gives the same bits (Q's own product, reused) */
+  PetscInt64       hq_id = -1, wf_id = -1;
+  PetscObjectState hq_state = 0, wf_state = 0;
+  PetscReal        wf_norm = 0;
+
   QPCounters counters = {};
   PetscBool  setup    = PETSC_FALSE;
 };
@@ -150,6 +157,8 @@ PetscErrorCode MultH(TaoSMALXE *s, Vec x, Vec y)
   PetscFunctionBegin;
   if (s->projector) {
     PetscCall(MatMult(s->Q, x, s->hq));
+    PetscCall(PetscObjectGetId((PetscObject)x, &s->hq_id));
+    PetscCall(PetscObjectStateGet((PetscObject)x, &s->hq_state));
     PetscCall(VecWAXPY(s->hp, -1.0, s->hq, x)); /* P x */
     PetscCall(MatMult(A, s->hp, y));
     PetscCall(MatMult(s->Q, y, s->hp));
@@ -223,15 +232,28 @@ PetscErrorCode QFromCMult(Mat Qm, Vec x, Vec y)
 PetscErrorCode Feasibility(TaoSMALXE *s, Vec x, PetscReal *e)
 {
   PetscFunctionBegin;
+  PetscCall(PetscLogEventBegin(QP_Feasibility, 0, 0, 0, 0));
   if (s->projector) {
-    PetscCall(MatMult(s->Q, x, s->wf));
-    PetscCall(VecAXPY(s->wf, -1.0, s->xt));
-    PetscCall(Norm(s->wf, e));
+    PetscInt64       id;
+    PetscObjectState state;
+    PetscCall(PetscObjectGetId((PetscObject)x, &id));
+    PetscCall(PetscObjectStateGet((PetscObject)x, &state));
+    if (id == s->wf_id && state == s->wf_state) *e = s->wf_norm; /* wf holds Q x - x~ already */
+    else {
+      if (id == s->hq_id && state == s->hq_state) PetscCall(VecCopy(s->hq, s->wf)); /* Q x from the last product with H */
+      else PetscCall(MatMult(s->Q, x, s->wf));
+      PetscCall(VecAXPY(s->wf, -1.0, s->xt));
+      PetscCall(Norm(s->wf, e));
+      s->wf_id    = id;
+      s->wf_state = state;
+      s->wf_norm  = *e;
+    }
   } else {
     PetscCall(MatMult(s->C, x, s->r));
     PetscCall(VecAXPY(s->r, -1.0, s->d));
     PetscCall(Norm(s->r, e));
   }
+  PetscCall(PetscLogEventEnd(QP_Feasibility, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -321,6 +343,7 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
   const PetscInt depth = AndersonDepth(s);
 
   PetscFunctionBegin;
+  s->wf_id = -1; /* res is scaled below: no longer Q x - x~ */
   if (depth <= 0) {
     PetscCall(ReproducibleAXPY(mult, s->rho, res));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -432,7 +455,6 @@ PetscErrorCode InnerConvergenceTest(Tao sub, void *ctx)
     PetscCall(VecScatterEnd(blk.scatter, sub->solution, s->w, INSERT_VALUES, SCATTER_REVERSE));
     xfull = s->w;
   } else xfull = sub->solution;
-  PetscCall(Feasibility(s, xfull, &e));
   PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
   /* blocks of a Gauss-Seidel sweep are only worth a relative reduction: the next sweep moves their data.
      No inner solve needs to go below a fraction of the final gradient tolerance: the outer loop ends on
@@ -441,8 +463,13 @@ PetscErrorCode InnerConvergenceTest(Tao sub, void *ctx)
   /* the floor scales with rho below its default: an inner solve to |gP| leaves |Cx - d| near |gP| / rho,
      which must stay below tol_e */
   const PetscReal rho_default = s->normA / (s->projector ? 1.0 : s->normC2), floor = s->inner_floor * tol_g * PetscMin(1.0, s->rho / rho_default);
-  if (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e) || gp <= floor || (blk.is && s->block_rtol > 0 && sub->niter > 0 && gp <= s->block_rtol * sub->gnorm0))
-    PetscCall(TaoSetConvergedReason(sub, TAO_CONVERGED_USER));
+  PetscBool       stop = (gp <= floor || (blk.is && s->block_rtol > 0 && sub->niter > 0 && gp <= s->block_rtol * sub->gnorm0)) ? PETSC_TRUE : PETSC_FALSE;
+  /* |Cx - d| (a product with Q or C) only when it can decide: both tests that use it need gp <= eta or gp <= tol_g */
+  if (!stop && (gp <= s->eta || gp <= tol_g)) {
+    PetscCall(Feasibility(s, xfull, &e));
+    stop = (gp <= PetscMin(s->M * e, s->eta) || (gp <= tol_g && e <= tol_e)) ? PETSC_TRUE : PETSC_FALSE;
+  }
+  if (stop) PetscCall(TaoSetConvergedReason(sub, TAO_CONVERGED_USER));
   else if (sub->niter >= sub->max_it) PetscCall(TaoSetConvergedReason(sub, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -1016,6 +1043,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     }
     PetscCall(VecAYPX(s->w, -1.0, s->b));
     PetscCall(MatMult(s->Q, s->w, s->hq));
+    s->hq_id = s->wf_id = -1; /* a new solve: x~ may have changed, and hq is not Q of an iterate */
     PetscCall(VecWAXPY(s->bconst, -1.0, s->hq, s->w));
     PetscCall(Norm(s->bconst, &s->beff));
     if (!RecycleMultiplier(tao, s)) PetscCall(VecSet(s->nu, 0.0));
@@ -1076,12 +1104,14 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     PetscCall(TaoLogConvergenceHistory(tao, L, gp, e, tao->ksp_its));
     PetscCall(TaoMonitor(tao, k, L, gp, e, 0.0));
     /* the multiplier update comes before the test: the returned multiplier is the updated one */
+    PetscCall(PetscLogEventBegin(QP_MultiplierUpdate, 0, 0, 0, 0));
     PetscCall(UpdateMultiplier(s, k, e));
     {
       PetscReal mn;
       PetscCall(Norm(s->projector ? s->nu : s->mu, &mn));
       PetscCallCXX(s->mult_history.push_back(mn));
     }
+    PetscCall(PetscLogEventEnd(QP_MultiplierUpdate, 0, 0, 0, 0));
     PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
     if (tao->reason != TAO_CONTINUE_ITERATING) break;
     /* semi-monotonicity: if L did not grow enough, tighten the inner precision (M) or raise rho.
