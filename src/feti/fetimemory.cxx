@@ -406,14 +406,14 @@ PetscErrorCode FETIChooseKplusBlocks(FETI feti, const std::vector<PetscInt> &gid
   PetscCallCXX(chosen.assign(gidx.size(), 0));
   for (PetscInt k = 0; k < nall; k++) {
     const PetscInt g = (PetscInt)all[4 * k];
-    for (size_t i = 0; i < gidx.size(); i++)
-      if (gidx[i] == g) {
-        const double b = nb[i], blockreads = 0.5 * b * b;
-        chosen[i] = got[k];
-        PetscCall(PetscInfo(
-            NULL, "Subdomain %" PetscInt_FMT ": %s: block (K+)_bb %.0f^2 = %.0f numbers, factor %.0f entries; reads per F product: factor %.0f, block %.0f, speedup %.3f (-feti_kplus_speedup %g)\n", g,
-            got[k] ? "dense block" : "factor", b, b * b, (double)entries[i], (double)reads[i], blockreads, b > 0 ? (double)reads[i] / blockreads : 0.0, (double)impl.kplusspeedup));
-      }
+    const size_t   i = gidx.empty() ? 0 : (size_t)(g - gidx[0]); /* the local subdomains are numbered consecutively */
+    if (i < gidx.size() && gidx[i] == g) {
+      const double b = nb[i], blockreads = 0.5 * b * b;
+      chosen[i] = got[k];
+      PetscCall(PetscInfo(
+          NULL, "Subdomain %" PetscInt_FMT ": %s: block (K+)_bb %.0f^2 = %.0f numbers, factor %.0f entries; reads per F product: factor %.0f, block %.0f, speedup %.3f (-feti_kplus_speedup %g)\n", g,
+          got[k] ? "dense block" : "factor", b, b * b, (double)entries[i], (double)reads[i], blockreads, b > 0 ? (double)reads[i] / blockreads : 0.0, (double)impl.kplusspeedup));
+    }
   }
   PetscCall(PetscInfo(feti, "-feti_kplus auto: blocks take %.0f numbers, at most %.0f allowed: -feti_kplus_memory_ratio %g times the factors' %.0f entries%s (-feti_kplus_speedup %g)\n", used, cap,
                       (double)impl.kplusratio, totalentries, impl.kplusbudget >= 0 ? ", -feti_kplus_memory_budget" : "", (double)impl.kplusspeedup));
