@@ -654,7 +654,7 @@ PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
   together stay within -feti_kplus_memory_ratio times the entries of all the factors and -feti_kplus_memory_budget.
   Those blocks come from a second, transient, MUMPS factorization that keeps the Schur complement on b (or,
   without MUMPS, |b| solves with the factor). On the brick at H/h = 6 (1029 dofs, |b| up to 654) only subdomains
-  touched on three faces qualify; on the seed paper's three large cubes all three get their blocks (docs/scale.md).
+  with |b| <= 455 qualify (30 of 1536 at 10^6, on the brick's edges); on the seed paper's three large cubes all three get their blocks (docs/scale.md).
   `FETIGetKplusType()` says how many did.
 
   explicit is the behaviour of `FETISetKplusExplicit()`: blocks in every subdomain whose block's triangle is not

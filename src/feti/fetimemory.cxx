@@ -15,8 +15,8 @@
    -feti_kplus_speedup (2) times fewer numbers of it (its triangle) than of the factor (twice, as the package
    reports its entries). Memory: the candidates that save the most reads per stored number get their blocks
    first, while all blocks together stay within -feti_kplus_memory_ratio (1) times the entries of all the factors
-   and -feti_kplus_memory_budget. On the brick at H/h = 6 (1029 dofs, |b| up to 654) only the subdomains glued on
-   three faces qualify; on the paper's three large cubes all three get blocks (docs/scale.md, lever (a)). */
+   and -feti_kplus_memory_budget. On the brick at H/h = 6 (1029 dofs, |b| up to 654) only the subdomains with
+   |b| <= 455 qualify (30 of 1536 at 10^6, on the brick's edges); on the paper's three large cubes all three get blocks (docs/scale.md, lever (a)). */
 #include <conefeti/private/fetiimpl.h>
 
 #include <algorithm>
