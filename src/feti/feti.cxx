@@ -449,12 +449,14 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_check <true>           - check K_s R_s = 0 and K_s K_s+ K_s = K_s at setup (one solve per subdomain)
 . -feti_check_tol <1e-6>       - relative tolerance of these checks
 . -feti_fixing_nodes <8>       - well-separated candidate nodes among which the fixing dofs are pivoted
-. -feti_kplus <implicit,explicit,auto> - how F products apply K+ (`FETISetKplusType()`): the factor, dense blocks on the dofs B touches, or per subdomain by their
-  memory (the contact layer's default: auto)
+. -feti_kplus <implicit,explicit,auto> - how F products apply K+ (`FETISetKplusType()`): the factor, dense blocks on the dofs B touches, or per subdomain by the
+  reads a block saves and the memory it takes (the contact layer's default: auto)
 . -feti_kplus_explicit <bool>  - the same as -feti_kplus explicit (true) or implicit (false) (`FETISetKplusExplicit()`)
-. -feti_kplus_memory_ratio <1> - auto: a subdomain gets its dense block when the block has at most this many times the entries of its sparse factor (`FETISetKplusMemoryRatio()`)
+. -feti_kplus_memory_ratio <1> - auto: all dense blocks together take at most this many times the entries of all the sparse factors (`FETISetKplusMemoryRatio()`)
 . -feti_kplus_precision <double,single> - storage of PETSc's block Cholesky factors for the F products (`FETISetKplusPrecision()`): single keeps a float copy (half the
   factor's memory traffic and memory, sums in double) and frees the double factor
+. -feti_kplus_speedup <2>     - auto: a block is a candidate when an F product reads at least this many times fewer numbers of it than of the factor (`FETISetKplusSpeedup()`)
+. -feti_kplus_memory_budget <MB> - auto: all dense blocks together take at most this many megabytes (all ranks; default: no bound but the ratio) (`FETISetKplusMemoryBudget()`)
 . -feti_kplus_explicit_schur <true> - build those blocks from a MUMPS Schur complement (when MUMPS is there); false: by solves with the subdomain factor
 . -feti_memory_budget <MB>     - memory the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup); `FETISetUp()` drops the explicit blocks when only
 they exceed it and stops when the factorizations do . -feti_view                   - view the problem after setup . -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of
@@ -486,7 +488,8 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscCall(PetscOptionsInt("-feti_fixing_nodes", "Candidate nodes for the fixing dofs of K+", "FETISetUp", impl.nfixingcandidates, &impl.nfixingcandidates, NULL));
   PetscCall(PetscOptionsEnum("-feti_kplus",
                              "How F = B K+ B' applies K+: two triangular solves with the sparse factor (implicit), a dense block on the dofs B touches (explicit: cheaper products when they "
-                             "are few, |b|^2 memory and a Schur complement at setup per subdomain), or per subdomain by their memory (auto, -feti_kplus_memory_ratio)",
+                             "are few, |b|^2 memory and a Schur complement at setup per subdomain), or per subdomain by the reads a block saves and its memory (auto, -feti_kplus_speedup, "
+                             "-feti_kplus_memory_ratio, -feti_kplus_memory_budget)",
                              "FETISetKplusType", FETIKplusTypes, (PetscEnum)impl.kplustype, (PetscEnum *)&kplustype, &typeset));
   PetscCall(PetscOptionsBool("-feti_kplus_explicit", "The same as -feti_kplus explicit (true) or implicit (false)", "FETISetKplusExplicit", kplusexplicit, &kplusexplicit, &explicitset));
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
@@ -497,26 +500,46 @@ PetscErrorCode FETISetFromOptions(FETI feti)
     kplustype = kplusexplicit ? FETI_KPLUS_EXPLICIT : FETI_KPLUS_IMPLICIT;
   }
   { /* PETSc's own message for a word that is not a number does not name the option */
-    char      text[64];
-    PetscBool given;
-    PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, prefix, "-feti_kplus_memory_ratio", text, sizeof(text), &given));
-    if (given) {
-      char *end;
-      (void)std::strtod(text, &end);
-      PetscCheck(text[0] && !*end, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_WRONG,
-                 "-%sfeti_kplus_memory_ratio %s: not a number (the ratio of a block's numbers to its factor's entries, >= 0)", prefix ? prefix : "", text);
+    const char *const names[] = {"-feti_kplus_memory_ratio", "-feti_kplus_speedup", "-feti_kplus_memory_budget"};
+    const char *const whats[] = {"the ratio of all blocks' numbers to all factors' entries, >= 0", "how many times fewer reads a block must cost than the factor, >= 1", "megabytes, > 0"};
+    for (int i = 0; i < 3; i++) {
+      char      text[64];
+      PetscBool given;
+      PetscCall(PetscOptionsGetString(((PetscObject)feti)->options, prefix, names[i], text, sizeof(text), &given));
+      if (given) {
+        char *end;
+        (void)std::strtod(text, &end);
+        PetscCheck(text[0] && !*end, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_WRONG, "-%s%s %s: not a number (%s)", prefix ? prefix : "", names[i] + 1, text, whats[i]);
+      }
     }
   }
-  PetscCall(PetscOptionsReal("-feti_kplus_memory_ratio",
-                             "-feti_kplus auto: a subdomain gets its dense block (K+)_bb when the block (|b|^2 numbers) has at most this many times the entries of its sparse factor",
+  PetscCall(PetscOptionsReal("-feti_kplus_memory_ratio", "-feti_kplus auto: all dense blocks (K+)_bb together (|b|^2 numbers each) take at most this many times the entries of all the sparse factors",
                              "FETISetKplusMemoryRatio", impl.kplusratio, &impl.kplusratio, NULL));
-  PetscCheck(impl.kplusratio >= 0 && !PetscIsInfOrNanReal(impl.kplusratio), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
-             "-%sfeti_kplus_memory_ratio %g: the ratio of a block's numbers to its factor's entries is a finite number >= 0 (0: no block; 1, the default: a block at most as large as the factor)",
-             prefix ? prefix : "", (double)impl.kplusratio);
+  PetscCheck(
+      impl.kplusratio >= 0 && !PetscIsInfOrNanReal(impl.kplusratio), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+      "-%sfeti_kplus_memory_ratio %g: the ratio of all blocks' numbers to all factors' entries is a finite number >= 0 (0: no block; 1, the default: the blocks at most as large as the factors)",
+      prefix ? prefix : "", (double)impl.kplusratio);
   PetscCall(PetscOptionsEnum("-feti_kplus_precision",
                              "Storage of PETSc's block Cholesky factors of the subdomains: double, or single (a float copy, sums in double; the double factor is freed; K+ x outside F "
                              "products is refined against Kreg)",
                              "FETISetKplusPrecision", FETIKplusPrecisions, (PetscEnum)impl.kplusprecision, (PetscEnum *)&impl.kplusprecision, NULL));
+  PetscCall(PetscOptionsReal("-feti_kplus_speedup",
+                             "-feti_kplus auto: a subdomain's block is a candidate when an F product reads at least this many times fewer numbers of it (its triangle) than of the factor (twice)",
+                             "FETISetKplusSpeedup", impl.kplusspeedup, &impl.kplusspeedup, NULL));
+  PetscCheck(impl.kplusspeedup >= 1 && !PetscIsInfOrNanReal(impl.kplusspeedup), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sfeti_kplus_speedup %g: the factor's reads per F product over the block's is a finite number >= 1 (1: every block that is not slower; 2, the default: blocks that at least halve them)",
+             prefix ? prefix : "", (double)impl.kplusspeedup);
+  {
+    PetscReal mb = impl.kplusbudget >= 0 ? impl.kplusbudget / 1048576.0 : 0;
+    PetscBool set;
+    PetscCall(PetscOptionsReal("-feti_kplus_memory_budget", "-feti_kplus auto: megabytes all dense blocks (K+)_bb together may take, all ranks (default: no bound but -feti_kplus_memory_ratio)",
+                               "FETISetKplusMemoryBudget", mb, &mb, &set));
+    if (set) {
+      PetscCheck(mb > 0 && !PetscIsInfOrNanReal(mb), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+                 "-%sfeti_kplus_memory_budget %g: the megabytes all blocks may take is a finite number > 0 (-feti_kplus_memory_ratio 0 for no block)", prefix ? prefix : "", (double)mb);
+      impl.kplusbudget = mb * 1048576.0;
+    }
+  }
   PetscCall(PetscOptionsBool("-feti_kplus_explicit_schur", "Build the explicit K+ blocks from a MUMPS Schur complement (false: by solves with the subdomain factor)", "FETISetKplusExplicit",
                              impl.kplusschur, &impl.kplusschur, NULL));
   PetscCall(PetscOptionsEnum("-feti_coarse_mode",
@@ -630,18 +653,22 @@ PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
   Options Database Keys:
 + -feti_kplus <implicit,explicit,auto> - the same; read by `FETISetFromOptions()`, overrides this call
 . -feti_kplus_explicit <bool>           - the same as explicit (true) or implicit (false)
-- -feti_kplus_memory_ratio <1>          - auto: the largest ratio of a block's numbers to its factor's entries (`FETISetKplusMemoryRatio()`)
+. -feti_kplus_speedup <2>               - auto: the least ratio of a factor's reads per F product to its block's (`FETISetKplusSpeedup()`)
+. -feti_kplus_memory_ratio <1>          - auto: the largest ratio of all blocks' numbers to all factors' entries (`FETISetKplusMemoryRatio()`)
+- -feti_kplus_memory_budget <MB>        - auto: the most megabytes all blocks may take (`FETISetKplusMemoryBudget()`)
 
   Notes:
-  auto factors every subdomain with its own package (-feti_sub_pc_factor_mat_solver_type, CHOLMOD by default), then
-  gives a subdomain its dense block, |b|^2 numbers stored square next to the factor (which products with K+
-  itself still use), only when the block has at most -feti_kplus_memory_ratio times the entries of that factor
-  as the package reports them (CHOLMOD: the nonzeros of L) and its triangle is less than the factor read twice
-  (so that its F products are faster). Those blocks come from a second, transient, MUMPS factorization that keeps
-  the Schur complement on b (or, without MUMPS, |b| solves with the factor). On the brick of cubes of 6 cells the
-  blocks are 2 to 3 times the factor and auto keeps the factor everywhere, at 3.6 to 4.3 times less memory than
-  explicit for about the same time (docs/scale.md); a subdomain touched by B on a small part of its boundary
-  (a small contact zone, a cube glued on one face) gets its block. `FETIGetKplusType()` says how many did.
+  auto factors every subdomain with its own package (the factor path's: PETSc's block Cholesky up to 3000 dofs,
+  CHOLMOD above), then chooses from counts, the same way on any number of ranks. Time: a subdomain's block is a
+  candidate when an F product reads at least -feti_kplus_speedup times fewer numbers of it (dsymv reads its
+  triangle, |b|^2/2) than of the factor (two triangular solves read its entries, as the package reports them,
+  twice). Memory: the block is |b|^2 numbers stored square next to the factor (which products with K+ itself still
+  use); the candidates that save the most reads per stored number get their blocks first, while all blocks
+  together stay within -feti_kplus_memory_ratio times the entries of all the factors and -feti_kplus_memory_budget.
+  Those blocks come from a second, transient, MUMPS factorization that keeps the Schur complement on b (or,
+  without MUMPS, |b| solves with the factor). On the brick at H/h = 6 (1029 dofs, |b| up to 654) only subdomains
+  with |b| <= 455 qualify (30 of 1536 at 10^6, on the brick's edges); on the seed paper's three large cubes all three get their blocks (docs/scale.md).
+  `FETIGetKplusType()` says how many did.
 
   explicit is the behaviour of `FETISetKplusExplicit()`: blocks in every subdomain whose block's triangle is not
   larger than twice its (estimated) factor, the subdomain's solver becomes MUMPS keeping the Schur complement
@@ -693,26 +720,27 @@ PetscErrorCode FETIGetKplusType(FETI feti, FETIKplusType *type, PetscInt *blocks
 }
 
 /*@
-  FETISetKplusMemoryRatio - With `FETI_KPLUS_AUTO`, the largest ratio of a subdomain's dense block (K+)_bb (|b|^2
-  numbers, stored square) to the entries of its sparse factor for which the subdomain gets the block.
+  FETISetKplusMemoryRatio - With `FETI_KPLUS_AUTO`, the largest ratio of all the dense blocks (K+)_bb (|b|^2
+  numbers each, stored square) to the entries of all the subdomains' sparse factors.
 
   Logically Collective
 
   Input Parameters:
 + feti  - the FETI problem
-- ratio - a finite number >= 0; 0: no block; 1 (the default): a block at most as large as the factor, i.e. at
-          most twice the subdomain's memory for F
+- ratio - a finite number >= 0; 0: no block; 1 (the default): the blocks at most as large as the factors, i.e.
+          at most twice the memory of F
 
   Options Database Key:
 . -feti_kplus_memory_ratio <1> - the same; read by `FETISetFromOptions()`, overrides this call
 
   Notes:
-  Whatever the ratio, a block whose triangle would be larger than twice the factor (slower F products) is not
-  built. The node's memory budget (-feti_memory_budget) can still drop every block.
+  Only the candidates of -feti_kplus_speedup get blocks, those that save the most reads per stored number first;
+  a candidate whose block would exceed the ratio is left out and the next ones are tried. The node's memory
+  budget (-feti_memory_budget) can still drop every block.
 
   Level: advanced
 
-.seealso: `FETISetKplusType()`, `FETIGetKplusType()`, `FETIGetMemoryEstimate()`
+.seealso: `FETISetKplusType()`, `FETIGetKplusType()`, `FETISetKplusSpeedup()`, `FETISetKplusMemoryBudget()`, `FETIGetMemoryEstimate()`
 @*/
 PetscErrorCode FETISetKplusMemoryRatio(FETI feti, PetscReal ratio)
 {
@@ -795,6 +823,79 @@ PetscErrorCode FETIGetKplusPrecision(FETI feti, FETIKplusPrecision *precision, P
   if (nsingle) *nsingle = feti->impl->setupcalled ? feti->impl->nkplussingle : 0;
   if (factorbytes) *factorbytes = feti->impl->setupcalled ? feti->impl->kplusfactorbytes : 0;
   if (doublebytes) *doublebytes = feti->impl->setupcalled ? feti->impl->kplusdoublebytes : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETISetKplusSpeedup - With `FETI_KPLUS_AUTO`, how many times fewer numbers an F product must read of a
+  subdomain's dense block (K+)_bb than of its sparse factor for the block to be a candidate.
+
+  Logically Collective
+
+  Input Parameters:
++ feti    - the FETI problem
+- speedup - a finite number >= 1; 1: every block that is not slower; 2 (the default): blocks that at least halve
+            the reads
+
+  Options Database Key:
+. -feti_kplus_speedup <2> - the same; read by `FETISetFromOptions()`, overrides this call
+
+  Notes:
+  The reads are counts, not timings (the choice is the same on every run and number of ranks): the factor's
+  entries as its package reports them, read twice (forward and backward solve; PETSc's block Cholesky counts its
+  column indices too), against the block's triangle, |b|^2/2 numbers. The candidates then share the memory of
+  `FETISetKplusMemoryRatio()` and `FETISetKplusMemoryBudget()`.
+
+  Level: advanced
+
+.seealso: `FETISetKplusType()`, `FETISetKplusMemoryRatio()`, `FETISetKplusMemoryBudget()`
+@*/
+PetscErrorCode FETISetKplusSpeedup(FETI feti, PetscReal speedup)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(feti, speedup, 2);
+  PetscCheck(speedup >= 1 && !PetscIsInfOrNanReal(speedup), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+             "FETISetKplusSpeedup() (-feti_kplus_speedup) %g: the speedup is a finite number >= 1", (double)speedup);
+  PetscCheck(!feti->impl->setupcalled || feti->impl->kplusspeedup == speedup, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
+             "FETISetKplusSpeedup() (-feti_kplus_speedup) must come before FETISetUp()");
+  feti->impl->kplusspeedup = speedup;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETISetKplusMemoryBudget - With `FETI_KPLUS_AUTO`, the most megabytes all the dense blocks (K+)_bb together may
+  take, over all ranks.
+
+  Logically Collective
+
+  Input Parameters:
++ feti - the FETI problem
+- mb   - megabytes, a finite number > 0; `PETSC_DETERMINE`: no bound but `FETISetKplusMemoryRatio()` (the default)
+
+  Options Database Key:
+. -feti_kplus_memory_budget <MB> - the same; read by `FETISetFromOptions()`, overrides this call
+
+  Notes:
+  A bound in absolute terms beside the ratio to the factors; the tighter of the two holds. Not the node's budget
+  of -feti_memory_budget, which bounds the factors and blocks of each node before they are built.
+
+  Level: advanced
+
+.seealso: `FETISetKplusType()`, `FETISetKplusMemoryRatio()`, `FETISetKplusSpeedup()`
+@*/
+PetscErrorCode FETISetKplusMemoryBudget(FETI feti, PetscReal mb)
+{
+  PetscReal bytes = mb == (PetscReal)PETSC_DETERMINE ? -1 : mb * 1048576.0;
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidLogicalCollectiveReal(feti, mb, 2);
+  PetscCheck(mb == (PetscReal)PETSC_DETERMINE || (mb > 0 && !PetscIsInfOrNanReal(mb)), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+             "FETISetKplusMemoryBudget() (-feti_kplus_memory_budget) %g: megabytes, a finite number > 0 (or PETSC_DETERMINE: no bound)", (double)mb);
+  PetscCheck(!feti->impl->setupcalled || feti->impl->kplusbudget == bytes, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
+             "FETISetKplusMemoryBudget() (-feti_kplus_memory_budget) must come before FETISetUp()");
+  feti->impl->kplusbudget = bytes;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -928,9 +1029,10 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
                                        " dofs), two triangular solves with the factor in %" PetscInt_FMT "\n",
                                        impl.nkplusblocks, impl.nglobalsub, nbmax, impl.nkplusimplicit));
       PetscCall(PetscViewerASCIIPrintf(viewer,
-                                       "  a block where its |b|^2 numbers are at most %g times its factor's entries (-feti_kplus_memory_ratio) and its triangle less than twice the factor; "
-                                       "factors %.1f MB, blocks %.1f MB (all ranks, 8 bytes per entry)\n",
-                                       (double)impl.kplusratio, 8.0 * impl.kplusfactorentries / 1048576.0, 8.0 * impl.kplusblockentries / 1048576.0));
+                                       "  a block where an F product reads at least %g times fewer numbers of it than of the factor (-feti_kplus_speedup), the most reads saved per number "
+                                       "first, all blocks within %g times the factors' entries (-feti_kplus_memory_ratio)%s; factors %.1f MB, blocks %.1f MB (all ranks, 8 bytes per entry)\n",
+                                       (double)impl.kplusspeedup, (double)impl.kplusratio, impl.kplusbudget >= 0 ? " and -feti_kplus_memory_budget" : "", 8.0 * impl.kplusfactorentries / 1048576.0,
+                                       8.0 * impl.kplusblockentries / 1048576.0));
     } else if (impl.kplusexplicit) {
       PetscInt nbmax = 0;
       for (const FETISubdomain &sd : impl.sub) nbmax = std::max(nbmax, (PetscInt)sd.kb.size());

@@ -283,9 +283,10 @@ static PetscErrorCode SubdomainExplicitKplusBySchur(FETI feti, FETISubdomain &sd
 }
 
 /* Build (K+)_bb for every local subdomain; after the factorizations and B are set up. With -feti_kplus auto,
-   first choose per subdomain (FETISubdomainChooseKplus(): the block against the factor just built); the
-   chosen blocks come from a second, transient, MUMPS factorization (or solves with the factor), so that
-   the subdomain keeps only its own factor and the block, not MUMPS's factor and workspace as well. */
+   first choose (FETIChooseKplusBlocks(): every subdomain's block against the factor just built, by the reads an
+   F product saves and the memory, the same choice on any number of ranks); the chosen blocks come from a second,
+   transient, MUMPS factorization (or solves with the factor), so that the subdomain keeps only its own factor
+   and the block, not MUMPS's factor and workspace as well. */
 PetscErrorCode FETISetUpExplicitKplus(FETI feti)
 {
   FETI_Impl         &impl = *feti->impl;
@@ -293,27 +294,40 @@ PetscErrorCode FETISetUpExplicitKplus(FETI feti)
   const PetscBool    autochoice = impl.kplustype == FETI_KPLUS_AUTO ? PETSC_TRUE : PETSC_FALSE;
   PetscInt           counts[2]  = {0, 0}; /* auto: subdomains with a block, subdomains that keep the factor for F */
   double             entries[2] = {0, 0}; /* auto: factor entries, block entries */
+  std::vector<char>  chosen;              /* auto: the local subdomains that get a block */
 
   PetscFunctionBegin;
   PetscCall(FETISetUpBoundaryMask(feti));
   PetscCall(VecGetArrayRead(impl.boundarymask, &mask));
+  if (autochoice) {
+    std::vector<PetscInt>  gidx;
+    std::vector<PetscReal> nb, fentries, freads;
+    for (size_t s = 0; s < impl.sub.size(); s++) {
+      FETISubdomain &sd = impl.sub[s];
+      PetscReal      e, r;
+      PetscBool      measured;
+      PetscCall(BoundaryDofs(sd, mask, sd.kb));
+      PetscCall(FETISubdomainKplusCosts(feti, sd, &e, &r, &measured));
+      PetscCallCXX(gidx.push_back(impl.firstsub + (PetscInt)s));
+      PetscCallCXX(nb.push_back((PetscReal)sd.kb.size()));
+      PetscCallCXX(fentries.push_back(e));
+      PetscCallCXX(freads.push_back(r));
+      entries[0] += e;
+    }
+    PetscCall(FETIChooseKplusBlocks(feti, gidx, nb, fentries, freads, chosen));
+  }
   for (size_t s = 0; s < impl.sub.size(); s++) {
     FETISubdomain &sd    = impl.sub[s];
     PetscBool      mumps = PETSC_FALSE, interior;
     if (s) PetscCall(ConeFETIProgressStep_Private(impl.progress, (PetscInt)s)); /* the ones before are done */
     if (autochoice) {
-      PetscBool blocks;
-      PetscReal factorentries;
-      PetscCall(BoundaryDofs(sd, mask, sd.kb));
-      PetscCall(FETISubdomainChooseKplus(feti, sd, impl.firstsub + (PetscInt)s, (PetscInt)sd.kb.size(), &blocks, &factorentries));
-      entries[0] += factorentries;
       if (sd.kb.empty()) { /* B does not touch it: nothing to apply for F */
         sd.kplusimplicit = PETSC_FALSE;
         continue;
       }
-      sd.kplusimplicit = blocks ? PETSC_FALSE : PETSC_TRUE;
-      counts[blocks ? 0 : 1]++;
-      if (!blocks) {
+      sd.kplusimplicit = chosen[s] ? PETSC_FALSE : PETSC_TRUE;
+      counts[chosen[s] ? 0 : 1]++;
+      if (!chosen[s]) {
         PetscCallCXX(std::vector<PetscInt>().swap(sd.kb));
         continue;
       }

@@ -9,14 +9,14 @@
    (a wide slab one cell thick: B touches every node) keeps the factor for F in any case: the block would cost
    more memory, more setup (|b| solves) and more time per product than the two triangular solves it replaces.
 
-   -feti_kplus auto (the contact layer's default) chooses per subdomain after its factorization, from what is
-   really stored: the block is |b|^2 numbers (stored square, for dsymv) on top of the factor, which K+ x (h,
-   the primal recovery) needs anyway, so a subdomain gets its block only when |b|^2 is at most
-   -feti_kplus_memory_ratio (default 1) times the entries of its factor as the package reports them (CHOLMOD:
-   the nonzeros of L, MatGetInfo()), and when reading its triangle is faster than reading the factor twice.
-   On the brick's cubes of 6 cells (1029 dofs, |b| up to 654, docs/scale.md) the blocks are 2 to 3 times
-   the factor: the factor everywhere, 3.6 to 4.3 times less memory than the blocks for about the same time;
-   on a body with a small contact zone or the paper's three large cubes, blocks. */
+   -feti_kplus auto (the contact layer's default) chooses after the factorizations, from what is really stored
+   and read (FETIChooseKplusBlocks()): the block is |b|^2 numbers (stored square, for dsymv) on top of the factor,
+   which K+ x (h, the primal recovery) needs anyway. Time: a block is a candidate when an F product reads at least
+   -feti_kplus_speedup (2) times fewer numbers of it (its triangle) than of the factor (twice, as the package
+   reports its entries). Memory: the candidates that save the most reads per stored number get their blocks
+   first, while all blocks together stay within -feti_kplus_memory_ratio (1) times the entries of all the factors
+   and -feti_kplus_memory_budget. On the brick at H/h = 6 (1029 dofs, |b| up to 654) only the subdomains with
+   |b| <= 455 qualify (30 of 1536 at 10^6, on the brick's edges); on the paper's three large cubes all three get blocks (docs/scale.md, lever (a)). */
 #include <conefeti/private/fetiimpl.h>
 
 #include <algorithm>
@@ -25,13 +25,22 @@
 #include <cstring>
 #include <unistd.h>
 
-/* Bytes a sparse Cholesky factor of a 3D finite element matrix takes: nested dissection gives about
-   c |K|_half n^(1/3) entries, at most the dense triangle; c = 0.75 and 12 bytes per entry (values, integer
-   structure, workspace) as MUMPS measures them on the brick's cubes (-feti_sub_mat_mumps_icntl_4 2: n = 6591,
-   |K|_half = 134034: 1.9M entries (INFOG(29)), 22 MB used (INFOG(22)); n = 2187: 5 MB). */
-static PetscReal FactorEntries(PetscReal n, PetscReal nnzhalf) { return std::min(0.5 * n * (n + 1), std::max(nnzhalf, 0.75 * nnzhalf * std::cbrt(n))); }
+/* Entries of a sparse Cholesky factor of a 3D finite element matrix with n dofs and nnzhalf nonzeros in one
+   triangle, at most the dense triangle. Above FETI_BLOCK_CHOLESKY_MAX_DOFS (CHOLMOD or MUMPS, nested dissection):
+   about 0.75 nnzhalf n^(1/3), as MUMPS measures them on the brick's cubes (-feti_sub_mat_mumps_icntl_4 2:
+   n = 6591: 1.9M entries (INFOG(29)), 22 MB used (INFOG(22)); n = 2187: 5 MB), 12 bytes each (values, integer
+   structure, workspace). Up to it (PETSc's block Cholesky of the node graph in AMD order, the factor path's
+   default there, fetisubdomain.cxx): BLOCK_COEF nnzhalf n^(1/2), fitted to the entries it reports on the brick's
+   cubes of 4, 6 and 8 cells (375, 1029, 2187 dofs; docs/feti.md gives the error), 8 bytes of value and 4 of
+   column index per 3x3 block: 8.5 bytes each. */
+#define BLOCK_COEF 0.155
+static PetscReal FactorEntries(PetscReal n, PetscReal nnzhalf)
+{
+  const PetscReal fill = n <= FETI_BLOCK_CHOLESKY_MAX_DOFS ? BLOCK_COEF * std::sqrt(n) : 0.75 * std::cbrt(n);
+  return std::min(0.5 * n * (n + 1), std::max(nnzhalf, fill * nnzhalf));
+}
 
-static PetscReal FactorBytes(PetscReal n, PetscReal nnzhalf) { return 12.0 * FactorEntries(n, nnzhalf); }
+static PetscReal FactorBytes(PetscReal n, PetscReal nnzhalf) { return (n <= FETI_BLOCK_CHOLESKY_MAX_DOFS ? 8.5 : 12.0) * FactorEntries(n, nnzhalf); }
 
 /*@
   FETIEstimateFactorMemory - A rough estimate of the memory a subdomain's sparse Cholesky factorization takes.
@@ -46,8 +55,12 @@ static PetscReal FactorBytes(PetscReal n, PetscReal nnzhalf) { return 12.0 * Fac
 . bytes - the estimate
 
   Notes:
-  Nested dissection of a 3D mesh gives about 0.75 nnzhalf n^(1/3) factor entries (measured with MUMPS on
-  the brick's cubes), at most the dense triangle, at 12 bytes each (values, integer structure, MUMPS's workspace). Meant to stop a scene that cannot fit before it is assembled, not to size anything.
+  The estimate is of the factor the factor path uses by default. Up to 3000 dofs PETSc's block Cholesky (SBAIJ,
+  block size 3, AMD order of the nodes): about 0.155 nnzhalf n^(1/2) entries (fitted to the entries it reports on
+  the brick's cubes of 375 to 2187 dofs) at 8.5 bytes each (values, one column index per 3x3 block). Above, CHOLMOD
+  or MUMPS with nested dissection: about 0.75 nnzhalf n^(1/3) entries (measured with MUMPS on the brick's cubes)
+  at 12 bytes each (values, integer structure, MUMPS's workspace). At most the dense triangle. Meant to stop a
+  scene that cannot fit before it is assembled, not to size anything.
 
   Level: developer
 
@@ -185,7 +198,8 @@ PetscErrorCode FETICheckMemory(FETI feti)
   PetscMPIInt rank;
   double      mine[2] = {0, 0}, onnode[2]; /* factors, explicit blocks: this rank, this node */
   PetscInt    nmax = 0, nbmax = 0, nimplicit = 0, nexplicit;
-  int         fits[2], allfit[2]; /* factors fit, factors and blocks fit: this node, every node */
+  double      autoentries = 0, autoblocks = 0; /* auto: estimated factor entries, candidate blocks' bytes (this rank) */
+  int         fits[2], allfit[2];              /* factors fit, factors and blocks fit: this node, every node */
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -207,9 +221,13 @@ PetscErrorCode FETICheckMemory(FETI feti)
       for (PetscInt d : sd.dirichletdofs) isD[d] = 1;
       for (PetscInt k = 0; k < sd.n; k++)
         if (mask[sd.localoffset + k] != 0.0 && !isD[k]) nb++;
-      if (impl.kplustype == FETI_KPLUS_AUTO) { /* the blocks the estimated factor would let through: for the budget only */
+      if (impl.kplustype == FETI_KPLUS_AUTO) { /* the candidates the estimated factor would let through, capped below: for the budget only */
         const PetscReal entries = FactorEntries(sd.n, nnzhalf);
-        if ((double)nb * nb > impl.kplusratio * entries || 0.5 * (double)nb * nb > 2.0 * entries) continue;
+        autoentries += entries;
+        if (!(nb > 0 && 2.0 * entries >= impl.kplusspeedup * 0.5 * (double)nb * nb)) continue;
+        autoblocks += 8.0 * (double)nb * nb;
+        nbmax = std::max(nbmax, nb);
+        continue;
       } else if (0.5 * (double)nb * nb > 2.0 * FactorEntries(sd.n, nnzhalf)) { /* dsymv reads the triangle, nb^2/2 numbers; the two triangular solves read the factor twice */
         sd.kplusimplicit = PETSC_TRUE;
         nimplicit++;
@@ -220,6 +238,11 @@ PetscErrorCode FETICheckMemory(FETI feti)
     }
   }
   if (mask) PetscCall(VecRestoreArrayRead(impl.boundarymask, &mask));
+  if (impl.kplustype == FETI_KPLUS_AUTO) { /* FETIChooseKplusBlocks() keeps them within the ratio and the budget (of all ranks: a bound of this rank's share) */
+    double cap = impl.kplusratio * 8.0 * autoentries;
+    if (impl.kplusbudget >= 0) cap = std::min(cap, impl.kplusbudget);
+    mine[1] += std::min(autoblocks, cap);
+  }
   PetscCallMPI(MPI_Comm_split_type(comm, MPI_COMM_TYPE_SHARED, 0, MPI_INFO_NULL, &node));
   PetscCallMPI(MPI_Allreduce(mine, onnode, 2, MPI_DOUBLE, MPI_SUM, node));
   PetscCallMPI(MPI_Comm_free(&node));
@@ -277,48 +300,131 @@ PetscErrorCode FETICheckMemory(FETI feti)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* -feti_kplus auto, after the subdomain's factorization: a dense block (K+)_bb on its nb dofs where B touches it,
-   or its factor for F. The block is stored beside the factor (K+ x needs it anyway): it is worth its memory
-   when its nb^2 numbers (square storage) are at most -feti_kplus_memory_ratio times the factor's entries, and
-   its time when dsymv's triangle, nb^2/2 numbers, is less than the two triangular solves read, twice the
-   factor. The factor's entries are those its package reports after the factorization (CHOLMOD: the nonzeros
-   of L; MUMPS: INFOG(20)), else the estimate from the nonzeros of K_s. */
-PetscErrorCode FETISubdomainChooseKplus(FETI feti, FETISubdomain &sd, PetscInt s, PetscInt nb, PetscBool *blocks, PetscReal *factorentries)
+/* Reads (8-byte numbers) one F product costs a subdomain: its factor, read twice by the forward and the backward
+   triangular solve, at c numbers per entry (PETSc's block Cholesky stores one 4-byte column index per bs x bs
+   block beside the values; CHOLMOD's supernodes and MUMPS's fronts are dense panels: c = 1), against the
+   block's triangle, |b|^2/2 numbers (dsymv reads one triangle). Counts, not timings: the choice must be the same
+   on every run and every number of ranks. */
+static PetscReal FactorReadsPerEntry(Mat factor, PetscBool petsc)
 {
-  FETI_Impl    &impl = *feti->impl;
+  PetscInt bs = 1;
+
+  if (!petsc || MatGetBlockSize(factor, &bs) != PETSC_SUCCESS || bs < 1) return 1.0;
+  return 1.0 + 0.5 / ((PetscReal)bs * bs);
+}
+
+/* -feti_kplus auto, after the subdomain's factorization: the size of its factor (as the package reports it after
+   the factorization: CHOLMOD the nonzeros of L, MUMPS INFOG(20), PETSc's block Cholesky its stored entries; else
+   the estimate from the nonzeros of K_s) and what one F product reads of it */
+PetscErrorCode FETISubdomainKplusCosts(FETI feti, FETISubdomain &sd, PetscReal *factorentries, PetscReal *factorreads, PetscBool *measured)
+{
   PC            pc;
   Mat           factor;
   MatInfo       info;
-  PetscReal     entries  = 0;
-  PetscBool     measured = PETSC_FALSE, known;
+  PetscReal     entries = 0, nnzhalf;
   MatSolverType type;
+  PetscBool     known, petsc = PETSC_FALSE;
 
   PetscFunctionBegin;
-  if (sd.ffactor.nb) { /* the double factor was replaced by its float copy (-feti_kplus_precision single): its entries as measured before */
-    entries  = sd.factorentries;
-    measured = entries > 0 ? PETSC_TRUE : PETSC_FALSE;
-    known    = PETSC_FALSE;
-  } else {
-    PetscCall(KSPGetPC(sd.ksp, &pc));
-    PetscCall(PCFactorGetMatrix(pc, &factor));
-    PetscCall(MatFactorGetSolverType(factor, &type));
-    known = type && (!strcmp(type, MATSOLVERCHOLMOD) || !strcmp(type, MATSOLVERMUMPS) || !strcmp(type, MATSOLVERPETSC)) ? PETSC_TRUE : PETSC_FALSE;
+  (void)feti;
+  *measured = PETSC_FALSE;
+  if (sd.ffactor.nb) { /* the double factor was replaced by its float copy (-feti_kplus_precision single): its entries as measured
+                          before, each read as half a number, and half a number per 3 x 3 block for its column index */
+    entries        = sd.factorentries;
+    *measured      = entries > 0 ? PETSC_TRUE : PETSC_FALSE;
+    *factorentries = entries > 0 ? entries : FactorEntries(sd.n, 0);
+    *factorreads   = 2.0 * (0.5 + 0.5 / 9.0) * *factorentries;
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
+  PetscCall(KSPGetPC(sd.ksp, &pc));
+  PetscCall(PCFactorGetMatrix(pc, &factor));
+  PetscCall(MatFactorGetSolverType(factor, &type));
+  if (type) petsc = !strcmp(type, MATSOLVERPETSC) ? PETSC_TRUE : PETSC_FALSE;
+  known = type && (!strcmp(type, MATSOLVERCHOLMOD) || !strcmp(type, MATSOLVERMUMPS) || petsc) ? PETSC_TRUE : PETSC_FALSE;
   if (known) { /* the packages whose factors report their size to MatGetInfo() */
     PetscCall(MatGetInfo(factor, MAT_LOCAL, &info));
-    entries  = (PetscReal)info.nz_used;
-    measured = entries > 0 ? PETSC_TRUE : PETSC_FALSE;
+    entries   = (PetscReal)info.nz_used;
+    *measured = entries > 0 ? PETSC_TRUE : PETSC_FALSE;
   }
-  if (!measured) {
-    PetscReal nnzhalf;
-    PetscCall(HalfNonzeros(sd.Kreg, sd.n, &nnzhalf));
-    entries = FactorEntries(sd.n, nnzhalf);
-  }
+  PetscCall(HalfNonzeros(sd.Kreg, sd.n, &nnzhalf)); /* K_s's pattern (the removed dofs' rows and columns are zeroed in place) */
+  if (!*measured) entries = FactorEntries(sd.n, nnzhalf);
+  else
+    PetscCall(PetscInfo(NULL, "Factor of %" PetscInt_FMT " dofs (%s): %.0f entries measured, %.0f estimated by FETIEstimateFactorMemory() from %.0f nonzeros in a triangle of K_s (%+.0f%%)\n", sd.n,
+                        type, (double)entries, (double)FactorEntries(sd.n, nnzhalf), (double)nnzhalf, 100.0 * (FactorEntries(sd.n, nnzhalf) / entries - 1.0)));
   *factorentries = entries;
-  *blocks        = nb > 0 && (double)nb * nb <= impl.kplusratio * entries && 0.5 * (double)nb * nb <= 2.0 * entries ? PETSC_TRUE : PETSC_FALSE;
-  PetscCall(PetscInfo(NULL, "Subdomain %" PetscInt_FMT ": %s: block (K+)_bb %" PetscInt_FMT "^2 = %.0f numbers, factor %.0f entries (%s), ratio %.2f (-feti_kplus_memory_ratio %g)\n", s,
-                      *blocks ? "dense block" : "factor", nb, (double)nb * nb, (double)entries, measured ? "measured" : "estimated", entries > 0 ? (double)nb * nb / entries : 0.0,
-                      (double)impl.kplusratio));
+  *factorreads   = 2.0 * FactorReadsPerEntry(factor, *measured ? petsc : PETSC_FALSE) * entries;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* -feti_kplus auto: which subdomains get their dense block (K+)_bb, from every subdomain's counts (collective).
+   A block is a candidate when one F product reads at least -feti_kplus_speedup (2) times less of it than of the
+   factor (the time); the candidates get their blocks in decreasing order of the reads saved per F product per
+   number stored (the time bought per byte), skipping a block that does not fit, while all blocks together stay
+   within -feti_kplus_memory_ratio (1) times the entries of all factors and within -feti_kplus_memory_budget
+   (the memory). Every rank sees the counts of every subdomain in the order of their global numbers and makes the
+   same choice, whatever the number of ranks. gidx, nb (|b|), entries, reads: of the local subdomains. */
+PetscErrorCode FETIChooseKplusBlocks(FETI feti, const std::vector<PetscInt> &gidx, const std::vector<PetscReal> &nb, const std::vector<PetscReal> &entries, const std::vector<PetscReal> &reads,
+                                     std::vector<char> &chosen)
+{
+  FETI_Impl          &impl = *feti->impl;
+  MPI_Comm            comm = PetscObjectComm((PetscObject)feti);
+  PetscMPIInt         size, mine = (PetscMPIInt)(4 * gidx.size());
+  std::vector<int>    counts, displs;
+  std::vector<double> local, all;
+  PetscInt            nall;
+  double              totalentries = 0, cap, used = 0;
+  std::vector<size_t> order;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallCXX(counts.resize(size));
+  PetscCallCXX(displs.resize(size));
+  for (size_t i = 0; i < gidx.size(); i++) PetscCallCXX(local.insert(local.end(), {(double)gidx[i], (double)nb[i], (double)entries[i], (double)reads[i]}));
+  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
+  {
+    int off = 0;
+    for (PetscMPIInt r = 0; r < size; r++) {
+      displs[r] = off;
+      off += counts[r];
+    }
+    PetscCallCXX(all.resize(off));
+  }
+  PetscCallMPI(MPI_Allgatherv(local.data(), mine, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, comm));
+  nall = (PetscInt)(all.size() / 4);
+  for (PetscInt k = 0; k < nall; k++) totalentries += all[4 * k + 2]; /* in the ranks' order = the global numbers' order */
+  cap = impl.kplusratio * totalentries;
+  if (impl.kplusbudget >= 0) cap = std::min(cap, impl.kplusbudget / 8.0);
+  for (PetscInt k = 0; k < nall; k++) {
+    const double b = all[4 * k + 1], blockreads = 0.5 * b * b;
+    if (b > 0 && all[4 * k + 3] >= impl.kplusspeedup * blockreads) PetscCallCXX(order.push_back((size_t)k));
+  }
+  auto saving = [&](size_t k) { return (all[4 * k + 3] - 0.5 * all[4 * k + 1] * all[4 * k + 1]) / (all[4 * k + 1] * all[4 * k + 1]); };
+  PetscCallCXX(std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+    const double sa = saving(a), sb = saving(b);
+    return sa != sb ? sa > sb : all[4 * a] < all[4 * b];
+  }));
+  std::vector<char> got(nall, 0);
+  for (size_t k : order) {
+    const double numbers = all[4 * k + 1] * all[4 * k + 1];
+    if (used + numbers <= cap) {
+      got[k] = 1;
+      used += numbers;
+    }
+  }
+  PetscCallCXX(chosen.assign(gidx.size(), 0));
+  for (PetscInt k = 0; k < nall; k++) {
+    const PetscInt g = (PetscInt)all[4 * k];
+    const size_t   i = gidx.empty() ? 0 : (size_t)(g - gidx[0]); /* the local subdomains are numbered consecutively */
+    if (i < gidx.size() && gidx[i] == g) {
+      const double b = nb[i], blockreads = 0.5 * b * b;
+      chosen[i] = got[k];
+      PetscCall(PetscInfo(
+          NULL, "Subdomain %" PetscInt_FMT ": %s: block (K+)_bb %.0f^2 = %.0f numbers, factor %.0f entries; reads per F product: factor %.0f, block %.0f, speedup %.3f (-feti_kplus_speedup %g)\n", g,
+          got[k] ? "dense block" : "factor", b, b * b, (double)entries[i], (double)reads[i], blockreads, b > 0 ? (double)reads[i] / blockreads : 0.0, (double)impl.kplusspeedup));
+    }
+  }
+  PetscCall(PetscInfo(feti, "-feti_kplus auto: blocks take %.0f numbers, at most %.0f allowed: -feti_kplus_memory_ratio %g times the factors' %.0f entries%s (-feti_kplus_speedup %g)\n", used, cap,
+                      (double)impl.kplusratio, totalentries, impl.kplusbudget >= 0 ? ", -feti_kplus_memory_budget" : "", (double)impl.kplusspeedup));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -355,10 +355,10 @@ PetscErrorCode FETISubdomainSetUpKernel(FETI feti, FETISubdomain &sd, PetscInt s
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The largest subdomain (dofs) whose factor for F is PETSc's block Cholesky by default: it factors more slowly
+/* FETI_BLOCK_CHOLESKY_MAX_DOFS (private/fetiimpl.h), the largest subdomain (dofs) whose factor for F is PETSc's
+   block Cholesky by default: it factors more slowly
    than CHOLMOD (no supernodes, no BLAS 3), which its cheaper solves repay only for small subdomains (the brick
    measured at 1029, 2187 and 3993 dofs: docs/scale.md, "Memory of the factor path") */
-#define FETI_BLOCK_CHOLESKY_MAX_DOFS 3000
 
 /* Kreg as SBAIJ with block size 3, its nodes reordered by a fill-reducing ordering of the node graph (PETSc's
    own Cholesky of SBAIJ takes the natural order only, so the order is put into the matrix): perm[k] is the dof
@@ -480,7 +480,7 @@ static PetscErrorCode FactorToFloat(FETI feti, FETISubdomain &sd, PetscInt s)
 
   PetscFunctionBegin;
   PetscCall(MatGetInfo(sd.factor, MAT_LOCAL, &info));
-  sd.factorentries = (PetscReal)info.nz_used; /* FETISubdomainChooseKplus() reads it once the factor is gone */
+  sd.factorentries = (PetscReal)info.nz_used; /* FETISubdomainKplusCosts() reads it once the factor is gone */
   if (impl.check) {
     PetscScalar *a;
     PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &x));

@@ -1,10 +1,13 @@
 #!/usr/bin/python3
-"""usage: kplus-auto.py [--mixed] [--ratio r] -- conefeti-command... -info :sys,feti
+"""usage: kplus-auto.py [--mixed] [--ratio r] [--speedup s] [--budget MB] -- conefeti-command... -info :sys,feti
 
--feti_kplus auto chose each subdomain's K+ as its rule says (fetimemory.cxx, FETISubdomainChooseKplus()): a
-dense block (K+)_bb exactly where the block has nb^2 <= r times the factor's entries and its triangle is at most
-twice the factor (nb^2 <= 4 entries), the factor's entries measured by its package (not the estimate), and the
-JSON summary counts the blocks as the -info lines do. --mixed: some subdomains got blocks and some the factor."""
+-feti_kplus auto chose each subdomain's K+ as its rule says (fetimemory.cxx, FETIChooseKplusBlocks()), recomputed
+here from the counts the -info lines give: a subdomain is a candidate when its factor's reads per F product are at
+least s times its block's (the triangle, |b|^2/2); the candidates get their blocks in decreasing order of
+(factor reads - block reads) / |b|^2 (ties: lower subdomain number first), a block that does not fit being
+skipped, while all blocks' numbers stay within r times all factors' entries and the budget (MB / 8 bytes). Also:
+every factor's entries were measured by its package (not estimated), the blocks together respect the bound, and
+the JSON summary counts the blocks as the -info lines do. --mixed: some subdomains got blocks and some the factor."""
 import json
 import re
 import subprocess
@@ -12,40 +15,70 @@ import sys
 
 args = sys.argv[1:sys.argv.index("--")]
 cmd = sys.argv[sys.argv.index("--") + 1:]
-ratio = float(args[args.index("--ratio") + 1]) if "--ratio" in args else 1.0
+
+
+def opt(name, default):
+    return float(args[args.index(name) + 1]) if name in args else default
+
+
+ratio, speedup, budget = opt("--ratio", 1.0), opt("--speedup", 2.0), opt("--budget", -1.0)
 proc = subprocess.run(cmd, capture_output=True, text=True)
 out = proc.stdout + proc.stderr
 fail = []
 if proc.returncode != 0:
     fail.append("exit status %d" % proc.returncode)
-choices = {}
-pattern = re.compile(r"Subdomain (\d+): (dense block|factor): block \(K\+\)_bb (\d+)\^2 = (\d+) numbers, factor (\d+) entries \((measured|estimated)\), ratio [0-9.]+ "
-                     r"\(-feti_kplus_memory_ratio ([0-9.e+-]+)\)")
+subs = {}
+pattern = re.compile(r"Subdomain (\d+): (dense block|factor): block \(K\+\)_bb (\d+)\^2 = (\d+) numbers, factor (\d+) entries; reads per F product: factor (\d+), "
+                     r"block (\d+), speedup [0-9.]+ \(-feti_kplus_speedup ([0-9.e+-]+)\)")
 for line in out.splitlines():
     m = pattern.search(line)
     if not m:
         continue
-    s, choice, nb, numbers, entries, how, r = int(m.group(1)), m.group(2), int(m.group(3)), int(m.group(4)), int(m.group(5)), m.group(6), float(m.group(7))
-    choices[s] = choice
-    print("subdomain %d: %s, |b| = %d, block %d, factor %d (%s)" % (s, choice, nb, numbers, entries, how))
+    s, choice = int(m.group(1)), m.group(2)
+    nb, numbers, entries, freads, breads = (int(m.group(i)) for i in range(3, 8))
+    sp = float(m.group(8))
+    subs[s] = dict(choice=choice, nb=nb, entries=entries, freads=freads, breads=breads)
+    print("subdomain %d: %s, |b| = %d, block %d, factor %d entries, reads %d against %d" % (s, choice, nb, numbers, entries, freads, breads))
     if numbers != nb * nb:
         fail.append("subdomain %d: the block has %d numbers, not |b|^2 = %d" % (s, numbers, nb * nb))
-    if how != "measured":
-        fail.append("subdomain %d: the factor's entries were estimated, not read from the factor" % s)
-    if r != ratio:
-        fail.append("subdomain %d: ratio %g used, %g given" % (s, r, ratio))
-    want = "dense block" if nb > 0 and numbers <= ratio * entries and numbers <= 4 * entries else "factor"
-    if choice != want:
-        fail.append("subdomain %d: %s chosen, the rule gives %s" % (s, choice, want))
+    if abs(breads - nb * nb / 2) > 1:
+        fail.append("subdomain %d: the block reads %d numbers, not |b|^2/2 = %g" % (s, breads, nb * nb / 2))
+    if freads < 2 * entries - 1:
+        fail.append("subdomain %d: the factor reads %d numbers, less than its entries twice (%d)" % (s, freads, 2 * entries))
+    if sp != speedup:
+        fail.append("subdomain %d: speedup %g used, %g given" % (s, sp, speedup))
+measured = len(re.findall(r"Factor of \d+ dofs \(\w+\): \d+ entries measured", out))
+if measured != len(subs):
+    fail.append("%d factors measured by their package, %d subdomains" % (measured, len(subs)))
+# the rule, from the counts
+total = sum(d["entries"] for d in subs.values())
+cap = ratio * total
+if budget > 0:
+    cap = min(cap, budget * 1048576.0 / 8)
+cands = [s for s, d in subs.items() if d["nb"] > 0 and d["freads"] >= speedup * d["breads"]]
+cands.sort(key=lambda s: (-(subs[s]["freads"] - subs[s]["breads"]) / subs[s]["nb"] ** 2, s))
+used, want = 0, set()
+for s in cands:
+    if used + subs[s]["nb"] ** 2 <= cap:
+        want.add(s)
+        used += subs[s]["nb"] ** 2
+got = {s for s, d in subs.items() if d["choice"] == "dense block"}
+for s in sorted(set(subs)):
+    if (s in got) != (s in want):
+        fail.append("subdomain %d: %s chosen, the rule gives %s" % (s, subs[s]["choice"], "dense block" if s in want else "factor"))
+blocknumbers = sum(subs[s]["nb"] ** 2 for s in got)
+print("candidates %s, blocks %s: %d numbers, bound %.0f (%d factor entries)" % (sorted(cands), sorted(got), blocknumbers, cap, total))
+if blocknumbers > cap * (1 + 1e-12):
+    fail.append("the blocks take %d numbers, more than the bound %.0f" % (blocknumbers, cap))
 lines = [l for l in out.splitlines() if l.startswith('{"conefeti":')]
 if len(lines) != 1:
     fail.append("%d JSON summary lines, expected 1" % len(lines))
 else:
     d = json.loads(lines[0])
-    blocks = sum(1 for c in choices.values() if c == "dense block")
-    print("JSON: kplus %r, kplus_blocks %d, subdomains %d; -info: %d blocks in %d subdomains" % (d["kplus"], d["kplus_blocks"], d["subdomains"], blocks, len(choices)))
-    if len(choices) != d["subdomains"]:
-        fail.append("-info gave the choice of %d subdomains, the scene has %d" % (len(choices), d["subdomains"]))
+    blocks = len(got)
+    print("JSON: kplus %r, kplus_blocks %d, subdomains %d; -info: %d blocks in %d subdomains" % (d["kplus"], d["kplus_blocks"], d["subdomains"], blocks, len(subs)))
+    if len(subs) != d["subdomains"]:
+        fail.append("-info gave the choice of %d subdomains, the scene has %d" % (len(subs), d["subdomains"]))
     if d["kplus_blocks"] != blocks:
         fail.append("JSON kplus_blocks %d, -info counts %d blocks" % (d["kplus_blocks"], blocks))
     if d["kplus"] != "auto: blocks in %d of %d subdomains" % (blocks, d["subdomains"]):

@@ -116,7 +116,9 @@ struct FETI_Impl {
   PetscInt           nfixingcandidates  = 8;          /* -feti_fixing_nodes */
   char               subsolver[64]      = "";
   FETIKplusType      kplustype          = FETI_KPLUS_IMPLICIT;         /* -feti_kplus, -feti_kplus_explicit */
-  PetscReal          kplusratio         = 1.0;                         /* -feti_kplus_memory_ratio (auto) */
+  PetscReal          kplusratio         = 1.0;                         /* -feti_kplus_memory_ratio (auto): all blocks together at most this times all factors' entries */
+  PetscReal          kplusspeedup       = 2.0;                         /* -feti_kplus_speedup (auto): a block must cut a subdomain's reads per F product by at least this */
+  PetscReal          kplusbudget        = -1;                          /* -feti_kplus_memory_budget (auto): bytes all blocks may take (all ranks); negative: no such bound */
   FETIKplusPrecision kplusprecision     = FETI_KPLUS_PRECISION_DOUBLE; /* -feti_kplus_precision */
   PetscInt           nkplussingle       = 0;                           /* after setup: subdomains (all ranks) whose factor is stored in float */
   PetscReal          kplusfactorbytes   = 0;                           /* after setup: bytes (all ranks) of the PETSc block Cholesky factors as kept (float copies or double factors) */
@@ -215,8 +217,13 @@ PETSC_INTERN PetscErrorCode FETISubdomainSetSchurDofs(FETI, FETISubdomain &);
 PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &);
 
 /* fetimemory.cxx */
+/* The largest subdomain (dofs) whose factor for F is PETSc's block Cholesky by default (fetisubdomain.cxx chooses
+   it; fetimemory.cxx estimates its size) */
+#define FETI_BLOCK_CHOLESKY_MAX_DOFS 3000
 PETSC_INTERN PetscErrorCode FETICheckMemory(FETI);
-PETSC_INTERN PetscErrorCode FETISubdomainChooseKplus(FETI, FETISubdomain &, PetscInt, PetscInt, PetscBool *, PetscReal *);
+PETSC_INTERN PetscErrorCode FETISubdomainKplusCosts(FETI, FETISubdomain &, PetscReal *, PetscReal *, PetscBool *);
+PETSC_INTERN PetscErrorCode FETIChooseKplusBlocks(FETI, const std::vector<PetscInt> &, const std::vector<PetscReal> &, const std::vector<PetscReal> &, const std::vector<PetscReal> &,
+                                                  std::vector<char> &);
 
 /* fetirowsum.cxx */
 PETSC_INTERN PetscErrorCode FETICreateCoarseMatrix(FETI, Vec, Mat *);
