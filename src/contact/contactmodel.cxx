@@ -632,6 +632,10 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
      |b|^2 numbers beside the factor; auto gives it to the subdomains where it is no larger than the factor
      (-feti_kplus, -feti_kplus_memory_ratio; -feti_kplus_explicit 1 puts it everywhere, as before) */
   if (!d->zones.empty()) PetscCall(FETISetKplusType(d->feti, FETI_KPLUS_AUTO));
+  /* the F products' triangular solves are bound by memory traffic: float copies of the block Cholesky factors
+     halve it and the factors' memory; Iter stays and n_A moves within 2% on the brick from 10^3 to 10^6
+     unknowns (docs/scale.md, lever (e); -feti_kplus_precision double restores the double factors) */
+  if (!d->zones.empty()) PetscCall(FETISetKplusPrecision(d->feti, FETI_KPLUS_PRECISION_SINGLE));
   PetscCall(FETISetFromOptions(d->feti));
   PetscCall(ConeFETIProgressEnd_Private(d->progress));
   PetscCall(FETISetProgress(d->feti, d->progress.fn, d->progress.ctx));
@@ -642,6 +646,15 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
     PetscCall(BuildContactProblem(cm));
     PetscCall(ContactProblemSetProgress(d->cp, d->progress.fn, d->progress.ctx));
     d->cp->data->kkt_check = PETSC_FALSE; /* the model judges by the mechanical residuals of u and lambda (ContactModelSolve()) */
+    {
+      /* contact solves need hundreds of F products whose count grows with the contact zone: FETI's Dirichlet
+         preconditioner in face halves them at 10^6 unknowns and flattens their growth, for about one F
+         product's flops per application (docs/scale.md, 'Why n_A grows: preconditioning'; -contact_pc_type none
+         restores the unpreconditioned inner solves) */
+      PC pc;
+      PetscCall(ContactProblemGetPC(d->cp, &pc));
+      PetscCall(PCSetType(pc, PCFETIDIRICHLET));
+    }
     PetscCall(ContactProblemSetFromOptions(d->cp));
     PetscCall(ContactProblemSetUp(d->cp));
     PetscCall(ContactProblemGetPipeline(d->cp, &d->pipeline));

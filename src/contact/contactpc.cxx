@@ -93,7 +93,7 @@ PetscErrorCode ContactPCDestroy(PC pc)
 . pc - the preconditioner (borrowed); options prefix that of the problem followed by contact_
 
   Options Database Keys:
-+ -contact_pc_type <none,lumped,dirichlet>  - its type (none unless the caller chose one; a `ContactModel` leaves it none)
++ -contact_pc_type <none,lumped,dirichlet>  - its type (none unless the caller chose one; a `ContactModel` chooses dirichlet)
 . -contact_pc_contact_scale <30>            - c: the contact rows are scaled by c/||F|| instead of preconditioned by M
 . -contact_pc_contact_rows_scaled <true>    - false: M on every row, contact rows too (costs F products on the brick)
 - -contact_pc_inner_projector <false>       - true: FETI's M applied with its own P on both sides, P M P (two coarse solves more per application)
@@ -175,7 +175,30 @@ PetscErrorCode ContactProblemSetUpPC_Private(ContactProblem cp)
   if (!d->pc || !d->Q) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscObjectTypeCompare((PetscObject)d->pc, PCNONE, &none));
   if (none) PetscFunctionReturn(PETSC_SUCCESS);
+  if (d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED) { /* its Gauss-Seidel blocks take none */
+    PetscCall(PetscInfo(cp, "Coulomb's merged algorithm: the preconditioner in face (-contact_pc_type) is not used\n"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(PCSetOperators(d->pc, d->F, d->F));
+  {
+    /* a preconditioner in face goes with the projected CG expansion, as mprgp/mpgp choose for an assembled
+       Hessian with ICC: the preconditioned CG steps hit the bounds and disks more often, and the projected full
+       step adds every constraint it crosses at once (docs/scale.md, 'Why n_A grows: preconditioning'). An option
+       of the inner solver's wins. */
+    Tao         sub;
+    const char *subprefix;
+    PetscBool   given = PETSC_FALSE, g;
+
+    PetscCall(TaoSMALXEGetSubsolver(d->tao, &sub));
+    if (sub) {
+      PetscCall(TaoGetOptionsPrefix(sub, &subprefix));
+      for (const char *name : {"-tao_mpgp_expansion_projcg", "-tao_mprgp_expansion_projcg"}) {
+        PetscCall(PetscOptionsHasName(((PetscObject)sub)->options, subprefix, name, &g));
+        given = given || g ? PETSC_TRUE : PETSC_FALSE;
+      }
+      if (!given) PetscCall(TaoQPSetExpansionProjCG(sub, PETSC_TRUE));
+    }
+  }
   /* smalxe projects around it: FETI's own pair only when asked (see the top) */
   PetscCall(PCFETISetProjected(d->pc, d->pc_inner_projector));
   if (!d->pc_contact_rows_scaled) {
