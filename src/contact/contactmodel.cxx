@@ -634,8 +634,16 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   if (!d->zones.empty()) PetscCall(FETISetKplusType(d->feti, FETI_KPLUS_AUTO));
   /* the F products' triangular solves are bound by memory traffic: float copies of the block Cholesky factors
      halve it and the factors' memory; Iter stays and n_A moves within 2% on the brick from 10^3 to 10^6
-     unknowns (docs/scale.md, lever (e); -feti_kplus_precision double restores the double factors) */
-  if (!d->zones.empty()) PetscCall(FETISetKplusPrecision(d->feti, FETI_KPLUS_PRECISION_SINGLE));
+     unknowns (docs/scale.md, lever (e)). They perturb F by about 1e-7 relative, which is also the floor of the
+     mechanical residuals they reach: a tolerance below CONTACT_SINGLE_PRECISION_MIN_RTOL keeps the double
+     factors (-feti_kplus_precision chooses either way) */
+  if (!d->zones.empty()) {
+    PetscReal   rtol = CONTACT_DEFAULT_RTOL;
+    const char *prefix;
+    PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cm, &prefix));
+    PetscCall(PetscOptionsGetReal(((PetscObject)cm)->options, prefix, "-contact_rtol", &rtol, NULL));
+    if (rtol >= CONTACT_SINGLE_PRECISION_MIN_RTOL) PetscCall(FETISetKplusPrecision(d->feti, FETI_KPLUS_PRECISION_SINGLE));
+  }
   PetscCall(FETISetFromOptions(d->feti));
   PetscCall(ConeFETIProgressEnd_Private(d->progress));
   PetscCall(FETISetProgress(d->feti, d->progress.fn, d->progress.ctx));

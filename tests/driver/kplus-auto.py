@@ -43,7 +43,8 @@ for line in out.splitlines():
         fail.append("subdomain %d: the block has %d numbers, not |b|^2 = %d" % (s, numbers, nb * nb))
     if abs(breads - nb * nb / 2) > 1:
         fail.append("subdomain %d: the block reads %d numbers, not |b|^2/2 = %g" % (s, breads, nb * nb / 2))
-    if freads < 2 * entries - 1:
+    floatcopy = abs(freads - 2 * (0.5 + 0.5 / 9) * entries) <= 1  # -feti_kplus_precision single: half a number per entry and per block index
+    if freads < 2 * entries - 1 and not floatcopy:
         fail.append("subdomain %d: the factor reads %d numbers, less than its entries twice (%d)" % (s, freads, 2 * entries))
     if sp != speedup:
         fail.append("subdomain %d: speedup %g used, %g given" % (s, sp, speedup))

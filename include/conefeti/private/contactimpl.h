@@ -11,6 +11,12 @@ struct _ContactProblemOps {
   PetscErrorCode (*unused)(void);
 };
 
+/* the contact solve's default relative tolerance (-contact_rtol) */
+#define CONTACT_DEFAULT_RTOL 1e-6
+/* the smallest -contact_rtol at which a ContactModel stores the subdomains' factors in float (they perturb F by
+   about 1e-7 relative, the floor of the mechanical residuals they reach) */
+#define CONTACT_SINGLE_PRECISION_MIN_RTOL 1e-6
+
 struct ContactProblemData {
   /* the problem */
   Mat F  = nullptr;
@@ -48,8 +54,8 @@ struct ContactProblemData {
   PetscBool               setup = PETSC_FALSE;
 
   /* options */
-  PetscReal rtol                   = 1e-6; /* smalxe: |gP| and feasibility relative to |h| */
-  PetscReal msa_rtol               = -1;   /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| (< 0: rtol) */
+  PetscReal rtol                   = CONTACT_DEFAULT_RTOL; /* -contact_rtol; smalxe: |gP| and feasibility relative to |h| */
+  PetscReal msa_rtol               = -1;                   /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| (< 0: rtol) */
   PetscInt  msa_max_it             = 100;
   PetscReal msa_start_rtol         = 1e-2;       /* MSA: tolerance of the first Tresca solve (bounds of the initial multipliers) */
   PetscBool msa_recycle            = PETSC_TRUE; /* MSA: Tresca solves after the first keep the equality's multiplier */
