@@ -656,12 +656,19 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
     d->cp->data->kkt_check = PETSC_FALSE; /* the model judges by the mechanical residuals of u and lambda (ContactModelSolve()) */
     {
       /* contact solves need hundreds of F products whose count grows with the contact zone: FETI's Dirichlet
-         preconditioner in face halves them at 10^6 unknowns and flattens their growth, for about one F
-         product's flops per application (docs/scale.md, 'Why n_A grows: preconditioning'; -contact_pc_type none
-         restores the unpreconditioned inner solves) */
-      PC pc;
+         preconditioner in face halves them at 10^6 unknowns and flattens their growth, for about one
+         factor-based F product's reads per application (docs/scale.md, 'Why n_A grows: preconditioning'). Where
+         most subdomains' F products use dense blocks (-feti_kplus auto chose them because they read at least
+         -feti_kplus_speedup times less than the factor: large subdomains, few of them, as the paper's cubes),
+         an application costs several F products and the products it saves do not pay for it (docs/scale.md,
+         'The contact defaults'). -contact_pc_type chooses either way. */
+      PC       pc;
+      PetscInt nblocks, nsub;
+      PetscCall(FETIGetKplusType(d->feti, NULL, &nblocks));
+      PetscCall(FETIGetNumSubdomains(d->feti, &nsub, NULL, NULL));
       PetscCall(ContactProblemGetPC(d->cp, &pc));
-      PetscCall(PCSetType(pc, PCFETIDIRICHLET));
+      if (2 * nblocks <= nsub) PetscCall(PCSetType(pc, PCFETIDIRICHLET));
+      PetscCall(PetscInfo(cm, "Preconditioner in face by default: %s (%" PetscInt_FMT " of %" PetscInt_FMT " subdomains use dense K+ blocks in F)\n", 2 * nblocks <= nsub ? "dirichlet" : "none", nblocks, nsub));
     }
     PetscCall(ContactProblemSetFromOptions(d->cp));
     PetscCall(ContactProblemSetUp(d->cp));
