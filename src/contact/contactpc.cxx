@@ -93,7 +93,7 @@ PetscErrorCode ContactPCDestroy(PC pc)
 . pc - the preconditioner (borrowed); options prefix that of the problem followed by contact_
 
   Options Database Keys:
-+ -contact_pc_type <none,lumped,dirichlet>  - its type (none unless the caller chose one; a `ContactModel` chooses dirichlet)
++ -contact_pc_type <none,lumped,dirichlet>  - its type (none unless the caller chose one; a `ContactModel` chooses dirichlet when at most half the subdomains use dense K+ blocks in F)
 . -contact_pc_contact_scale <30>            - c: the contact rows are scaled by c/||F|| instead of preconditioned by M
 . -contact_pc_contact_rows_scaled <true>    - false: M on every row, contact rows too (costs F products on the brick)
 - -contact_pc_inner_projector <false>       - true: FETI's M applied with its own P on both sides, P M P (two coarse solves more per application)
