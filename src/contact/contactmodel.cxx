@@ -668,7 +668,8 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
       PetscCall(FETIGetNumSubdomains(d->feti, &nsub, NULL, NULL));
       PetscCall(ContactProblemGetPC(d->cp, &pc));
       if (2 * nblocks <= nsub) PetscCall(PCSetType(pc, PCFETIDIRICHLET));
-      PetscCall(PetscInfo(cm, "Preconditioner in face by default: %s (%" PetscInt_FMT " of %" PetscInt_FMT " subdomains use dense K+ blocks in F)\n", 2 * nblocks <= nsub ? "dirichlet" : "none", nblocks, nsub));
+      PetscCall(PetscInfo(cm, "Preconditioner in face by default: %s (%" PetscInt_FMT " of %" PetscInt_FMT " subdomains use dense K+ blocks in F)\n", 2 * nblocks <= nsub ? "dirichlet" : "none",
+                          nblocks, nsub));
     }
     PetscCall(ContactProblemSetFromOptions(d->cp));
     PetscCall(ContactProblemSetUp(d->cp));
