@@ -252,25 +252,35 @@ static PetscErrorCode KernelResidual(FETISubdomain &sd, const std::vector<char> 
    in floating point it is about cond(K_NN) * eps, so it exposes a K_NN made (nearly) singular by a
    zero-energy mode missing from the kernel basis, which K K+ K = K alone would not: there the huge
    component K+ puts along the missing mode is annihilated again by K. */
-static PetscErrorCode RegularizationResidual(FETISubdomain &sd, PetscBool exact, PetscReal *res)
+/* a random vector of the subdomain's dofs (a fixed seed: the checks are the same on every run) that vanishes on
+   the removed dofs, where K_s and its generalized inverse act as the identity */
+static PetscErrorCode CheckVector(FETISubdomain &sd, unsigned long seed, Vec *x)
 {
-  Vec          x, kx, w;
   PetscRandom  rnd;
-  PetscReal    norm, normx;
   PetscScalar *a;
 
   PetscFunctionBegin;
-  PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &x));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, x));
+  PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
+  PetscCall(PetscRandomSetSeed(rnd, seed));
+  PetscCall(PetscRandomSeed(rnd));
+  PetscCall(VecSetRandom(*x, rnd));
+  PetscCall(PetscRandomDestroy(&rnd));
+  PetscCall(VecGetArray(*x, &a));
+  for (PetscInt r : sd.removed) a[r] = 0;
+  PetscCall(VecRestoreArray(*x, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode RegularizationResidual(FETISubdomain &sd, PetscBool exact, PetscReal *res)
+{
+  Vec       x, kx, w;
+  PetscReal norm, normx;
+
+  PetscFunctionBegin;
+  PetscCall(CheckVector(sd, 12345, &x));
   PetscCall(VecDuplicate(x, &kx));
   PetscCall(VecDuplicate(x, &w));
-  PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
-  PetscCall(PetscRandomSetSeed(rnd, 12345));
-  PetscCall(PetscRandomSeed(rnd));
-  PetscCall(VecSetRandom(x, rnd));
-  PetscCall(PetscRandomDestroy(&rnd));
-  PetscCall(VecGetArray(x, &a));
-  for (PetscInt r : sd.removed) a[r] = 0;
-  PetscCall(VecRestoreArray(x, &a));
   PetscCall(FETISubdomainApplyK(sd, x, kx));
   PetscCall(FETISubdomainApplyKplus(sd, kx, w, exact));
   PetscCall(VecAXPY(w, -1.0, x));
@@ -472,28 +482,18 @@ static PetscErrorCode PermuteByNodes(Mat Kreg, MatOrderingType type, std::vector
    by O(1); the rounding to float by about cond(K_s) 6e-8) and K+ K x = x is checked again with the refined solve. */
 static PetscErrorCode FactorToFloat(FETI feti, FETISubdomain &sd, PetscInt s)
 {
-  FETI_Impl  &impl = *feti->impl;
-  MatInfo     info;
-  PC          pc;
-  Vec         x = nullptr, wd = nullptr, wf = nullptr;
-  PetscRandom rnd;
+  FETI_Impl &impl = *feti->impl;
+  MatInfo    info;
+  PC         pc;
+  Vec        x = nullptr, wd = nullptr, wf = nullptr;
 
   PetscFunctionBegin;
   PetscCall(MatGetInfo(sd.factor, MAT_LOCAL, &info));
   sd.factorentries = (PetscReal)info.nz_used; /* FETISubdomainKplusCosts() reads it once the factor is gone */
   if (impl.check) {
-    PetscScalar *a;
-    PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &x));
+    PetscCall(CheckVector(sd, 54321, &x));
     PetscCall(VecDuplicate(x, &wd));
     PetscCall(VecDuplicate(x, &wf));
-    PetscCall(PetscRandomCreate(PETSC_COMM_SELF, &rnd));
-    PetscCall(PetscRandomSetSeed(rnd, 54321));
-    PetscCall(PetscRandomSeed(rnd));
-    PetscCall(VecSetRandom(x, rnd));
-    PetscCall(PetscRandomDestroy(&rnd));
-    PetscCall(VecGetArray(x, &a));
-    for (PetscInt r : sd.removed) a[r] = 0;
-    PetscCall(VecRestoreArray(x, &a));
     PetscCall(FETISubdomainApplyKplus(sd, x, wd, PETSC_FALSE)); /* the double factor still */
   }
   PetscCall(FETIFloatFactorCreate(sd.factor, sd.ffactor));
