@@ -13,10 +13,13 @@ each conefeti run and a PNG (time and memory against n, with the GAMG line), wri
 "<!-- bench-scale begin -->" and "<!-- bench-scale end -->" of --doc (default docs/scale.md; created if missing)
 and to --png; also printed.
 
-usage: scripts/bench-scale.py [--sizes 2,4] [--full] [--ranks 1,2] [--hh 6] [--friction 0.3] [--extra "-opt v ..."]
+usage: scripts/bench-scale.py [--sizes 2,4] [--full] [--ranks 1,2] [--repeat 1] [--hh 6] [--friction 0.3] [--extra "-opt v ..."]
                               [--build build] [--doc docs/scale.md] [--png docs/figures/scale.png] [--hugepages 1]
   --sizes p,...  subdomains 3p x p x p (default 2,4: n = 18252, 135000); --full adds p = 8 (n = 1037232, about 3 min
                  and 13 GB with the defaults of the time of writing: run it alone on the machine)
+  --repeat r     r runs per size and rank count (the rank counts alternate: 1, 2, 1, 2, ...); the run with the
+                 median solve time stands for its rank count, and the speed-up line gives the median and range of
+                 the r ratios of back-to-back pairs (the shared host's speed drifts by 10-30%)
   --extra        options for the conefeti driver only (the levers: -feti_kplus_explicit 0, ...)
   --no-doc       print only
   --save f.json  also write the rows (with every -log_view event) to f.json; --load a.json,b.json adds saved rows to
@@ -84,6 +87,7 @@ def main():
     ap.add_argument("--no-doc", action="store_true")
     ap.add_argument("--save", default="")
     ap.add_argument("--load", default="")
+    ap.add_argument("--repeat", type=int, default=1, help="runs per size and rank count, alternating the rank counts; the median solve stands for them")
     ap.add_argument("--hugepages", type=int, default=1, help="1: transparent huge pages (scripts/hugepages.py), 0: without")
     a = ap.parse_args()
     sizes = [int(p) for p in a.sizes.split(",") if p]
@@ -97,16 +101,26 @@ def main():
     for p in sizes:
         k = a.hh * p
         scene = ["-options_file", BRICK, "-scene_refine", str(k), "-scene_body0_subdomains", "%d,%d,%d" % (3 * p, p, p), "-scene_zone0_friction", a.friction]
+        # the rank counts alternate (1, 2, 1, 2, ...) so that a slow spell of the shared host hits both alike
+        runs = {r: [] for r in ranks}
+        for i in range(a.repeat):
+            for r in ranks:
+                c, cmem, cout, crc = run(command(a.build, "conefeti", r) + scene + ["-summary_table", "0", "-log_view"] + a.extra.split(), env, "conefeti")
+                g, gmem, _, _ = run(command(a.build, "gamg", r) + scene, env, "gamg")
+                runs[r].append((c, cmem, cout, crc, g, gmem))
         for r in ranks:
-            c, cmem, cout, crc = run(command(a.build, "conefeti", r) + scene + ["-summary_table", "0", "-log_view"] + a.extra.split(), env, "conefeti")
+            # the run with the median solve time stands for the rank count; every solve time is kept
+            ordered = sorted(runs[r], key=lambda t: t[0]["time_solve"])
+            c, cmem, cout, crc, _, _ = ordered[(len(ordered) - 1) // 2]
+            gordered = sorted(runs[r], key=lambda t: t[4]["time"])
+            g, gmem = gordered[(len(gordered) - 1) // 2][4:6]
             top, events = log_events(cout)
-            g, gmem, _, _ = run(command(a.build, "gamg", r) + scene, env, "gamg")
             F = events.get("FETI_MultF", (0, 0.0))
-            row = dict(p=p, k=k, hh=a.hh, options=a.extra, ranks=r, n=c["n"], subdomains=c["subdomains"], iter=c["iter"], nA=c["n_A"], converged=c["converged"] and crc == 0, setup=c["time_setup"],
-                       solve=c["time_solve"], cpu=c["cpu"], mem=cmem, kplus=c.get("kplus", "?"), res=c["residuals"]["max"], F=F, top=top, events=events, gamg=g, gmem=gmem)
+            row = dict(p=p, k=k, hh=a.hh, options=a.extra, ranks=r, n=c["n"], subdomains=c["subdomains"], iter=c["iter"], nA=c["n_A"], converged=all(t[0]["converged"] and t[3] == 0 for t in runs[r]), setup=c["time_setup"],
+                       solve=c["time_solve"], solves=[t[0]["time_solve"] for t in runs[r]], cpu=c["cpu"], mem=cmem, kplus=c.get("kplus", "?"), res=c["residuals"]["max"], F=F, top=top, events=events, gamg=g, gmem=gmem)
             rows.append(row)
-            print("p=%d ranks=%d n=%d: conefeti Iter %d n_A %d setup %.2f solve %.2f mem %s (%s); gamg %d its %.2f s mem %s" % (
-                p, r, row["n"], row["iter"], row["nA"], row["setup"], row["solve"], fmt_bytes(cmem), row["kplus"], g["iter"], g["time"], fmt_bytes(gmem)), flush=True)
+            print("p=%d ranks=%d n=%d: conefeti Iter %d n_A %d setup %.2f solve %.2f (of %s) mem %s (%s); gamg %d its %.2f s mem %s" % (
+                p, r, row["n"], row["iter"], row["nA"], row["setup"], row["solve"], ", ".join("%.2f" % x for x in row["solves"]), fmt_bytes(cmem), row["kplus"], g["iter"], g["time"], fmt_bytes(gmem)), flush=True)
 
     if a.save:
         with open(a.save, "w") as f:
@@ -129,6 +143,18 @@ def main():
             fmt_bytes(w["mem"]), w["mem"] / w["n"] / 1e3, g["iter"], g["time_mesh"], g["time_assembly"], g["time_setup"], g["time_solve"], g["time"], g["cpu"], fmt_bytes(w["gmem"]),
             w["gmem"] / g["n"] / 1e3, (w["setup"] + w["solve"]) / g["time"], w["cpu"] / g["cpu"], w["res"]))
     out.append("")
+    speedups = []
+    for w in rows:
+        one = next((v for v in rows if v["n"] == w["n"] and v["ranks"] == 1 and v.get("options") == w.get("options")), None)
+        if w["ranks"] > 1 and one:
+            pairs = [x / y for x, y in zip(one.get("solves", [one["solve"]]), w.get("solves", [w["solve"]]))]
+            pairs.sort()
+            speedups.append("n = %d%s: %d ranks %.2fx (median of %d back-to-back pair%s%s)" % (
+                w["n"], ", " + w["options"] if w.get("options") else "", w["ranks"], pairs[(len(pairs) - 1) // 2] if len(pairs) % 2 else 0.5 * (pairs[len(pairs) // 2 - 1] + pairs[len(pairs) // 2]),
+                len(pairs), "s" if len(pairs) > 1 else "", ", range %.2f-%.2f" % (pairs[0], pairs[-1]) if len(pairs) > 1 else ""))
+    if speedups:
+        out.append("Solve phase on several ranks against one (the ratio of the solve times of runs made one after the other): " + "; ".join(speedups) + ".")
+        out.append("")
     out.append("Where the time goes (conefeti, -log_view: the 8 events with the largest max time over the ranks, wrappers left out; events nest, so times overlap; (count)):")
     out.append("")
     for w in rows:
