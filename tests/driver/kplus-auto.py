@@ -8,10 +8,14 @@ least s times its block's (the triangle, |b|^2/2); the candidates get their bloc
 skipped, while all blocks' numbers stay within r times all factors' entries and the budget (MB / 8 bytes). Also:
 every factor's entries were measured by its package (not estimated), the blocks together respect the bound, and
 the JSON summary counts the blocks as the -info lines do. --mixed: some subdomains got blocks and some the factor."""
+import glob
 import json
+import os
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 
 args = sys.argv[1:sys.argv.index("--")]
 cmd = sys.argv[sys.argv.index("--") + 1:]
@@ -22,8 +26,18 @@ def opt(name, default):
 
 
 ratio, speedup, budget = opt("--ratio", 1.0), opt("--speedup", 2.0), opt("--budget", -1.0)
+# each rank writes its -info lines to a file of its own (PETSc appends the rank): on 2 ranks, lines that both ranks
+# write to one pipe can be cut and interleaved, which lost a subdomain's line now and then
+tmp = tempfile.mkdtemp(prefix="kplus-auto-")
+if "-info" in cmd:
+    i = cmd.index("-info")
+    if i + 1 < len(cmd) and cmd[i + 1].startswith(":"):
+        cmd[i + 1] = os.path.join(tmp, "info") + cmd[i + 1]
 proc = subprocess.run(cmd, capture_output=True, text=True)
 out = proc.stdout + proc.stderr
+for f in sorted(glob.glob(os.path.join(tmp, "info*"))):
+    out += "\n" + open(f).read()
+shutil.rmtree(tmp, ignore_errors=True)
 fail = []
 if proc.returncode != 0:
     fail.append("exit status %d" % proc.returncode)
