@@ -455,6 +455,7 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_kplus_memory_ratio <1> - auto: all dense blocks together take at most this many times the entries of all the sparse factors (`FETISetKplusMemoryRatio()`)
 . -feti_kplus_precision <double,single> - storage of PETSc's block Cholesky factors for the F products (`FETISetKplusPrecision()`): single keeps a float copy (half the
   factor's memory traffic and memory, sums in double) and frees the double factor
+. -feti_dirichlet_pc_precision <single,double> - storage of the Dirichlet preconditioner's block Cholesky factors of K_ii (`PCFETIDIRICHLET`): single (the default) keeps float copies
 . -feti_kplus_speedup <2>     - auto: a block is a candidate when an F product reads at least this many times fewer numbers of it than of the factor (`FETISetKplusSpeedup()`)
 . -feti_kplus_memory_budget <MB> - auto: all dense blocks together take at most this many megabytes (all ranks; default: no bound but the ratio) (`FETISetKplusMemoryBudget()`)
 . -feti_kplus_explicit_schur <true> - build those blocks from a MUMPS Schur complement (when MUMPS is there); false: by solves with the subdomain factor
@@ -523,6 +524,10 @@ PetscErrorCode FETISetFromOptions(FETI feti)
                              "Storage of PETSc's block Cholesky factors of the subdomains: double, or single (a float copy, sums in double; the double factor is freed; K+ x outside F "
                              "products is refined against Kreg)",
                              "FETISetKplusPrecision", FETIKplusPrecisions, (PetscEnum)impl.kplusprecision, (PetscEnum *)&impl.kplusprecision, NULL));
+  PetscCall(PetscOptionsEnum("-feti_dirichlet_pc_precision",
+                             "Storage of the Dirichlet preconditioner's block Cholesky factors of the interior blocks K_ii: single (the default: a float copy, sums in double; "
+                             "a preconditioner changes the convergence rate only) or double",
+                             "PCFETIDIRICHLET", FETIKplusPrecisions, (PetscEnum)impl.pcprecision, (PetscEnum *)&impl.pcprecision, NULL));
   PetscCall(PetscOptionsReal("-feti_kplus_speedup",
                              "-feti_kplus auto: a subdomain's block is a candidate when an F product reads at least this many times fewer numbers of it (its triangle) than of the factor (twice)",
                              "FETISetKplusSpeedup", impl.kplusspeedup, &impl.kplusspeedup, NULL));

@@ -5,7 +5,7 @@
 PetscClassId  FETI_CLASSID;
 PetscLogEvent FETI_ApplyG, FETI_ApplyGt;
 PetscLogEvent FETI_SetUp, FETI_Assembly, FETI_Factorization, FETI_MultF, FETI_CoarseSolve, FETI_ApplyKplus, FETI_PrimalRecovery, FETI_Preconditioner;
-PetscLogEvent FETI_Kernels, FETI_Reorder;
+PetscLogEvent FETI_Kernels, FETI_Reorder, FETI_PCSetUp;
 
 static PetscBool feti_package_initialized = PETSC_FALSE;
 
@@ -28,6 +28,7 @@ PetscErrorCode ConeFETIFETIInitializePackage(void)
   PetscCall(PetscLogEventRegister("FETIApplyGt", FETI_CLASSID, &FETI_ApplyGt));
   PetscCall(PetscLogEventRegister("FETIPrimalRecov", FETI_CLASSID, &FETI_PrimalRecovery));
   PetscCall(PetscLogEventRegister("FETIPCApply", FETI_CLASSID, &FETI_Preconditioner));
+  PetscCall(PetscLogEventRegister("FETIPCSetUp", FETI_CLASSID, &FETI_PCSetUp));
   PetscCall(PCRegister(PCFETILUMPED, PCCreate_FETILumped));
   PetscCall(PCRegister(PCFETIDIRICHLET, PCCreate_FETIDirichlet));
   PetscFunctionReturn(PETSC_SUCCESS);

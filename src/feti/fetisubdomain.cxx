@@ -374,7 +374,7 @@ PetscErrorCode FETISubdomainSetUpKernel(FETI feti, FETISubdomain &sd, PetscInt s
    own Cholesky of SBAIJ takes the natural order only, so the order is put into the matrix): perm[k] is the dof
    at row k. The factor keeps the 3x3 blocks (one column index per block, no relaxed supernodes), so it is
    smaller and its triangular solves read less memory than CHOLMOD's supernodal factor of the same matrix. */
-static PetscErrorCode PermuteByNodes(Mat Kreg, MatOrderingType type, std::vector<PetscInt> &perm, std::vector<PetscInt> &iperm, Mat *Kperm)
+PetscErrorCode FETIPermuteByNodes(Mat Kreg, MatOrderingType type, std::vector<PetscInt> &perm, std::vector<PetscInt> &iperm, Mat *Kperm)
 {
   IS                    rows, cols;
   const PetscInt       *idx, *ia = NULL, *ja = NULL;
@@ -581,7 +581,7 @@ PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, Pet
       PetscCall(MatSetOption(Kfactor, MAT_SYMMETRIC, PETSC_TRUE));
       PetscCall(MatSetOption(Kfactor, MAT_SPD, PETSC_TRUE));
     } else if (petsc && bs == 3) {
-      PetscCall(PermuteByNodes(sd.Kreg, ordering, sd.perm, sd.iperm, &Kfactor));
+      PetscCall(FETIPermuteByNodes(sd.Kreg, ordering, sd.perm, sd.iperm, &Kfactor));
       bynodes = PETSC_TRUE;
     }
   }
@@ -667,6 +667,11 @@ PetscErrorCode FETISubdomainDestroy(FETISubdomain &sd)
   PetscCall(ISDestroy(&sd.boundary));
   PetscCall(ISDestroy(&sd.interior));
   PetscCall(MatDestroy(&sd.Fii));
+  sd.fii = FETIFloatFactor();
+  PetscCallCXX(std::vector<PetscInt>().swap(sd.iimap));
+  PetscCallCXX(std::vector<PetscScalar>().swap(sd.iiwork));
+  PetscCall(VecDestroy(&sd.wi));
+  PetscCall(VecDestroy(&sd.wi2));
   PetscCall(MatDestroy(&sd.Kbi));
   PetscCall(VecDestroy(&sd.xi));
   PetscCall(VecDestroy(&sd.yi));

@@ -49,11 +49,15 @@ struct FETISubdomain {
   Vec                      xa = nullptr, ya = nullptr;         /* vectors of length n without storage (VecPlaceArray) */
 
   /* preconditioner data (boundary = dofs touched by B); K_bb and K_ib are applied through K_V itself */
-  IS  boundary = nullptr, interior = nullptr;
-  Mat Fii = nullptr;              /* Cholesky factor of K_ii (K_ii itself is not kept) */
-  Mat Kbi = nullptr;              /* K_bi (SeqAIJ): the boundary's coupling to the interior, a small part of K, for the Schur product's second half */
-  Vec xi = nullptr, yi = nullptr; /* interior-sized work vectors */
-  Vec yb = nullptr;               /* boundary-sized work vector */
+  IS                       boundary = nullptr, interior = nullptr;
+  Mat                      Fii = nullptr; /* Cholesky factor of K_ii (K_ii itself is not kept); NULL once replaced by its float copy */
+  FETIFloatFactor          fii;           /* -feti_dirichlet_pc_precision single: the float copy of a block Cholesky Fii */
+  std::vector<PetscInt>    iimap;         /* Fii of PETSc's block Cholesky: row k is interior dof iimap[k] (its index in interior), -1 a padding dof; empty: Fii is of K_ii in interior order */
+  std::vector<PetscScalar> iiwork;        /* length of that factor, for its solves */
+  Vec                      wi = nullptr, wi2 = nullptr; /* the same length, for MatSolve() with the double block factor */
+  Mat                      Kbi = nullptr;               /* K_bi (SeqAIJ): the boundary's coupling to the interior, a small part of K, for the Schur product's second half */
+  Vec                      xi = nullptr, yi = nullptr;  /* interior-sized work vectors */
+  Vec                      yb = nullptr;                /* boundary-sized work vector */
 
   /* explicit K+ on the dofs touched by B (-feti_kplus_explicit) */
   std::vector<PetscInt> kb;                          /* those dofs, without the removed ones */
@@ -90,6 +94,8 @@ PETSC_INTERN PetscLogEvent FETI_ApplyG, FETI_ApplyGt;
 /* setup events inside FETISetUp beside the public ones of feti.h: the subdomain kernels (rigid modes, fixing dofs,
    checks) and the node reordering of K_s for PETSc's block Cholesky */
 PETSC_INTERN PetscLogEvent FETI_Kernels, FETI_Reorder;
+/* the set-up of a FETI preconditioner (boundary masks; the Dirichlet preconditioner's interior factors), inside FETISetUp's event */
+PETSC_INTERN PetscLogEvent FETI_PCSetUp;
 
 struct FETICoarseSolver {
   FETICoarseMode mode    = FETI_COARSE_SINGLE;
@@ -120,6 +126,11 @@ struct FETI_Impl {
   PetscReal          kplusspeedup       = 2.0;                         /* -feti_kplus_speedup (auto): a block must cut a subdomain's reads per F product by at least this */
   PetscReal          kplusbudget        = -1;                          /* -feti_kplus_memory_budget (auto): bytes all blocks may take (all ranks); negative: no such bound */
   FETIKplusPrecision kplusprecision     = FETI_KPLUS_PRECISION_DOUBLE; /* -feti_kplus_precision */
+  FETIKplusPrecision pcprecision        = FETI_KPLUS_PRECISION_SINGLE; /* -feti_dirichlet_pc_precision: the Dirichlet preconditioner's block Cholesky factors of K_ii */
+  PetscInt           npcsingle          = 0;                           /* after the Dirichlet preconditioner's setup: its interior factors (all ranks) stored in float */
+  PetscInt           npcblock           = 0;                           /* ... of PETSc's block Cholesky, in float or double */
+  PetscReal          pcfactorbytes      = 0;                           /* ... bytes (all ranks) of those block factors as kept */
+  PetscReal          pcdoublebytes      = 0;                           /* ... the same in double */
   PetscInt           nkplussingle       = 0;                           /* after setup: subdomains (all ranks) whose factor is stored in float */
   PetscReal          kplusfactorbytes   = 0;                           /* after setup: bytes (all ranks) of the PETSc block Cholesky factors as kept (float copies or double factors) */
   PetscReal          kplusdoublebytes   = 0;                           /* the same factors in double, as PETSc stores them */
@@ -186,6 +197,8 @@ PETSC_INTERN PetscErrorCode FETISubdomainSetUpFactorization(FETI, FETISubdomain 
 PETSC_INTERN PetscErrorCode FETISubdomainApplyK(FETISubdomain &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &, Vec, Vec, PetscBool);
 PETSC_INTERN PetscErrorCode FETISubdomainDestroy(FETISubdomain &);
+/* K (SBAIJ, or AIJ of block size 3) as SBAIJ with its nodes permuted by a fill-reducing ordering, for PETSc's block Cholesky */
+PETSC_INTERN PetscErrorCode FETIPermuteByNodes(Mat, MatOrderingType, std::vector<PetscInt> &, std::vector<PetscInt> &, Mat *);
 /* the row of the subdomain's factor that holds dof i (for solves with the factor itself, FETISubdomainSetUpFactorization()) */
 static inline PetscInt FETISubdomainFactorRow(const FETISubdomain &sd, PetscInt i) { return sd.iperm.empty() ? i : sd.iperm[i]; }
 
@@ -234,7 +247,7 @@ PETSC_INTERN PetscErrorCode FETIAssembleCoarseMatrix(Mat, Vec, Mat *);
 
 /* fetipc.cxx */
 PETSC_INTERN PetscErrorCode FETISetUpBoundaryMask(FETI);
-PETSC_INTERN PetscErrorCode FETISetUpPreconditionerData(FETI, PetscBool, const char[]);
+PETSC_INTERN PetscErrorCode FETISetUpPreconditionerData(FETI, PetscBool);
 PETSC_INTERN PetscErrorCode PCCreate_FETILumped(PC);
 PETSC_INTERN PetscErrorCode PCCreate_FETIDirichlet(PC);
 PETSC_INTERN PetscErrorCode FETIFromMat(Mat, FETI *);
