@@ -139,6 +139,7 @@ PETSC_EXTERN PetscErrorCode TaoQPGetNormEstimate(Tao, PetscReal *);
 PETSC_EXTERN PetscErrorCode TaoQPGetCounters(Tao, QPCounters *);
 PETSC_EXTERN PetscErrorCode TaoQPGetPC(Tao, PC *);
 PETSC_EXTERN PetscErrorCode TaoQPSetExpansionProjCG(Tao, PetscBool);
+PETSC_EXTERN PetscErrorCode TaoQPSetExpansionLagged(Tao, PetscBool);
 PETSC_EXTERN PetscErrorCode TaoQPResetCounters(Tao);
 
 PETSC_EXTERN PetscErrorCode TaoSMALXESetEqualityConstraints(Tao, Mat, Vec);

@@ -183,11 +183,13 @@ PetscErrorCode ContactProblemSetUpPC_Private(ContactProblem cp)
   {
     /* a preconditioner in face goes with the projected CG expansion, as mprgp/mpgp choose for an assembled
        Hessian with ICC: the preconditioned CG steps hit the bounds and disks more often, and the projected full
-       step adds every constraint it crosses at once (docs/scale.md, 'Why n_A grows: preconditioning'). An option
-       of the inner solver's wins. */
+       step adds every constraint it crosses at once (docs/scale.md, 'Why n_A grows: preconditioning'). The
+       expansions that find the active set follow one another and first try the last one's length, one product
+       each instead of two (TaoQPSetExpansionLagged(); docs/scale.md, 'Lever: the early outer iterations'). An
+       option of the inner solver's wins. */
     Tao         sub;
     const char *subprefix;
-    PetscBool   given = PETSC_FALSE, g;
+    PetscBool   given = PETSC_FALSE, given_lagged = PETSC_FALSE, g;
 
     PetscCall(TaoSMALXEGetSubsolver(d->tao, &sub));
     if (sub) {
@@ -196,7 +198,12 @@ PetscErrorCode ContactProblemSetUpPC_Private(ContactProblem cp)
         PetscCall(PetscOptionsHasName(((PetscObject)sub)->options, subprefix, name, &g));
         given = given || g ? PETSC_TRUE : PETSC_FALSE;
       }
+      for (const char *name : {"-tao_mpgp_expansion_lagged", "-tao_mprgp_expansion_lagged"}) {
+        PetscCall(PetscOptionsHasName(((PetscObject)sub)->options, subprefix, name, &g));
+        given_lagged = given_lagged || g ? PETSC_TRUE : PETSC_FALSE;
+      }
       if (!given) PetscCall(TaoQPSetExpansionProjCG(sub, PETSC_TRUE));
+      if (!given_lagged) PetscCall(TaoQPSetExpansionLagged(sub, PETSC_TRUE));
     }
   }
   /* smalxe projects around it: FETI's own pair only when asked (see the top) */

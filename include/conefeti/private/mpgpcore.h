@@ -54,6 +54,9 @@ struct MPGPCore {
   Vec       xprev = nullptr, gprev = nullptr;                                                   /* the previous iterate and gradient (Barzilai-Borwein lengths) */
   PetscInt  bb_rejected     = 0;                                                                /* BB steps that did not decrease q and fell back to the fixed length */
   PetscInt  projcg_rejected = 0;                                                                /* projected CG steps not kept (q above the feasible half step's) */
+  PetscBool lagged          = PETSC_FALSE; /* with projcg: expansions first try a lagged length, without the product A p (see MPGPCoreLaggedExpansion()) */
+  PetscReal lag = 0, lag_used = 0;         /* the length to try next (0: none) and that of the last try */
+  PetscInt  lagged_steps = 0, lagged_rejected = 0;
 
   /* with a preconditioner: the restart direction M phi is due, computed when a CG or expansion step needs it */
   PetscBool pending = PETSC_FALSE;
@@ -86,7 +89,7 @@ struct QPNormSettings {
    for an option finds where it is read; bb and arc are NULL for mprgp. The prefixes have no leading dash. */
 struct MPGPOptionNames {
   const char *title;
-  const char *gamma, *alpha, *bb, *arc, *expansion_projcg, *norm, *norm_method, *norm_margin, *counters_view;
+  const char *gamma, *alpha, *bb, *arc, *expansion_projcg, *expansion_lagged, *norm, *norm_method, *norm_margin, *counters_view;
   const char *pc_prefix;   /* the preconditioner in face: -<prefix>tao_mpgp_pc_type ... */
   const char *norm_prefix; /* the norm estimate's eigensolver: -<prefix>tao_mpgp_norm_eps_... */
 };

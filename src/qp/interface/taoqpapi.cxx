@@ -183,12 +183,13 @@ PetscErrorCode TaoQPResetCounters(Tao tao)
    while the Tao had another type (TaoQPSetConstraints() and TaoQPSetLinearTerm() keep them on the Tao). */
 PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
 {
-  PetscObject set, b, projcg;
+  PetscObject set, b, projcg, lagged;
 
   PetscFunctionBegin;
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPConstraints", &set));
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPLinearTerm", &b));
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPExpansionProjCG", &projcg));
+  PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPExpansionLagged", &lagged));
   if (set) PetscTryMethod(tao, "TaoQPSetConstraints_C", (Tao, SeparableSet), (tao, (SeparableSet)set));
   if (b) PetscTryMethod(tao, "TaoQPSetLinearTerm_C", (Tao, Vec), (tao, (Vec)b));
   if (projcg) {
@@ -196,8 +197,34 @@ PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
     PetscCall(PetscContainerGetPointer((PetscContainer)projcg, &flg));
     PetscTryMethod(tao, "TaoQPSetExpansionProjCG_C", (Tao, PetscBool), (tao, *static_cast<PetscBool *>(flg)));
   }
+  if (lagged) {
+    void *flg;
+    PetscCall(PetscContainerGetPointer((PetscContainer)lagged, &flg));
+    PetscTryMethod(tao, "TaoQPSetExpansionLagged_C", (Tao, PetscBool), (tao, *static_cast<PetscBool *>(flg)));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+namespace {
+
+/* keeps a flag on the Tao, for a QP type chosen later (TaoQPAdoptComposed_Private()) */
+PetscErrorCode ComposeFlag(Tao tao, const char *name, PetscBool flg)
+{
+  PetscContainer container;
+  PetscBool     *value;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&value));
+  *value = flg;
+  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)tao), &container));
+  PetscCall(PetscContainerSetPointer(container, value));
+  PetscCall(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
+  PetscCall(PetscObjectCompose((PetscObject)tao, name, (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
 
 /*@C
   TaoQPSetExpansionProjCG - Whether the expansion steps of TAO `mprgp` / `mpgp` first try the projected
@@ -231,20 +258,49 @@ PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
 @*/
 PetscErrorCode TaoQPSetExpansionProjCG(Tao tao, PetscBool flg)
 {
-  PetscContainer container;
-  PetscBool     *value;
-
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
   PetscValidLogicalCollectiveBool(tao, flg, 2);
-  PetscCall(PetscNew(&value));
-  *value = flg;
-  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)tao), &container));
-  PetscCall(PetscContainerSetPointer(container, value));
-  PetscCall(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
-  PetscCall(PetscObjectCompose((PetscObject)tao, "TaoQPExpansionProjCG", (PetscObject)container));
-  PetscCall(PetscContainerDestroy(&container));
+  PetscCall(ComposeFlag(tao, "TaoQPExpansionProjCG", flg));
   PetscTryMethod(tao, "TaoQPSetExpansionProjCG_C", (Tao, PetscBool), (tao, flg));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  TaoQPSetExpansionLagged - Whether the projected CG expansion steps of TAO `mprgp` / `mpgp` first try the
+  projected step with a lagged length, without a Hessian product of their own.
+
+  Logically Collective
+
+  Input Parameters:
++ tao - the solver (of any type: a QP type chosen later adopts the setting)
+- flg - `PETSC_TRUE` to try lagged lengths, `PETSC_FALSE` (the default) not to
+
+  Options Database Key:
+. -tao_mprgp_expansion_lagged <bool> - (or -tao_mpgp_expansion_lagged) overrides the setting
+
+  Notes:
+  Only with the projected CG expansion (`TaoQPSetExpansionProjCG()`). A projected CG expansion takes two
+  products: A p for the CG length g'p/p'Ap and the gradient at the projected point. While the active set grows,
+  expansions follow one another and their CG lengths vary little; a lagged expansion reuses the last length
+  (scaled by the exact line minimum along the step it took, within [1/2, 2]) for P(x - a p), one product, and is
+  kept when q falls, else the ordinary expansion follows. It is tried only where the step crosses the boundary
+  (an expansion would follow anyway). It saves products on the dual contact problems with FETI's Dirichlet
+  preconditioner in face (the contact layer turns it on there) and costs products on the obstacle and journal
+  bearing QPs with ICC in face (bearing 316^2: 719 -> 923), where it stays off: docs/scale.md, "Lever: the early
+  outer iterations".
+
+  Level: intermediate
+
+.seealso: `TAOMPRGP`, `TAOMPGP`, `TaoQPSetExpansionProjCG()`
+@*/
+PetscErrorCode TaoQPSetExpansionLagged(Tao tao, PetscBool flg)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(tao, flg, 2);
+  PetscCall(ComposeFlag(tao, "TaoQPExpansionLagged", flg));
+  PetscTryMethod(tao, "TaoQPSetExpansionLagged_C", (Tao, PetscBool), (tao, flg));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

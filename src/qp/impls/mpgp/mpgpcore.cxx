@@ -12,7 +12,8 @@
      fixed-length step adds a few: it pays on discretized PDE problems and not on random
      ill-conditioned QPs, where Dostal's proven expansion stays the default (docs/qp-benchmark.md). With
      a preconditioner the CG directions hit the boundary more often and the projected CG step matters
-     more;
+     more. With -tao_mpgp_expansion_lagged (TaoQPSetExpansionLagged()) a projected step with the last
+     expansion's length is tried first, without the product A p (MPGPCoreLaggedExpansion());
    - proportioning step when not proportional: along the chopped gradient with exact line search
      (MPRGP; cut at the opposite bound of a box), or a projected gradient step (MPGP, which is what curved
      boundaries need), of Kucera's fixed length alpha.
@@ -202,6 +203,51 @@ static PetscErrorCode MPGPCoreProjectedGradientStep(MPGPCore *c, Vec x, PetscRea
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Lagged expansion (-tao_mpgp_expansion_lagged, with the projected CG expansion): the projected step P(x - a p)
+   along the (preconditioned) direction p with a length a from the last expansion instead of its own CG length
+   g'p/p'Ap, so without the product A p: one product per step instead of two. While the active set is being
+   found, successive expansions are steepest descent steps in the preconditioner's metric, whose CG lengths vary
+   little (on the brick's dual contact problem 0.1-0.2 of c/||F|| for tens of steps), and a lagged length is what
+   Barzilai and Borwein use for steepest descent. Tried only where it crosses the boundary (the feasible step along
+   p is shorter than a: an expansion would follow anyway; a CG run stops the lagging) and kept when q falls: the
+   change of q along the step d is d'(g + g_new)/2, and its exact line minimum t = -d'g/d'(g_new - g) of d (a QP)
+   scales the next length, within [1/2, 2]. Otherwise x and g are restored and the ordinary expansion follows
+   (one product lost). Measurements: docs/scale.md, "Lever: the early outer iterations". */
+static PetscErrorCode MPGPCoreLaggedExpansion(MPGPCore *c, Vec x, PetscReal alpha, PetscReal qnoise, SeparableSplit *s, PetscBool *kept)
+{
+  PetscReal af, dg0, dg1;
+
+  PetscFunctionBegin;
+  *kept = PETSC_FALSE;
+  PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->p, &af));
+  if (!(af < c->lag)) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecCopy(x, c->xprev));
+  PetscCall(VecCopy(c->g, c->gprev));
+  PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, c->lag, c->p, x));
+  PetscCall(MPGPCoreGradient(c, x));
+  PetscCall(MPGPCoreSplit(c, x, alpha, NULL, s));
+  PetscCall(VecWAXPY(c->dx, -1.0, c->xprev, x));
+  PetscCall(ReproducibleDot2(c->dx, c->gprev, c->dx, c->g, &dg0, &dg1));
+  const PetscReal dq = 0.5 * (dg0 + dg1);
+  *kept              = (dq < -qnoise && !PetscIsInfOrNanReal(dq) && !PetscIsInfOrNanReal(s->gp2)) ? PETSC_TRUE : PETSC_FALSE;
+  PetscCall(PetscInfo(NULL, "expansion: lagged projected step %g (to the boundary %g) changes q by %g: %s\n", (double)c->lag, (double)af, (double)dq, *kept ? "kept" : "not kept"));
+  c->lag_used = c->lag;
+  if (*kept) {
+    c->lagged_steps++;
+    if (dg1 > dg0) { /* the next length: the exact line minimum along the step taken is at t = -dg0/(dg1 - dg0) of it */
+      const PetscReal t = -dg0 / (dg1 - dg0);
+      c->lag *= PetscMin(PetscMax(t, 0.5), 2.0);
+    }
+  } else {
+    c->lagged_rejected++;
+    c->lag = 0;
+    PetscCall(VecCopy(c->xprev, x));
+    PetscCall(VecCopy(c->gprev, c->g));
+    PetscCall(MPGPCoreSplit(c, x, alpha, NULL, s));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
 {
   SeparableSplit s;
@@ -227,7 +273,8 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
     PetscCall(VecDuplicate(x, &c->gsave));
   }
   PetscCall(PetscLogEventBegin(QP_Solve, 0, 0, 0, 0));
-  alpha = c->alpha_scale / c->normA;
+  alpha  = c->alpha_scale / c->normA;
+  c->lag = 0;
   if (!c->resume) c->counters->solves++;
 
   /* the initial guess is projected */
@@ -260,112 +307,123 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
         PetscCall(VecCopy(c->g, c->gprev));
       }
       PetscReal pAp, pWp = 0, gp, acg, af;
+      PetscBool lagged = PETSC_FALSE;
       PetscCall(MPGPCoreDirection(c));
       if (s.narc > 0) PetscCall(SeparableSetArcTangent_Private(c->set, x, c->p, c->Wp, &pWp));
-      PetscCall(MPGPCoreMult(c, c->p, c->Ap));
-      PetscCall(ReproducibleDot2(c->Ap, c->p, c->g, c->p, &pAp, &gp));
-      PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->p, &af));
-      const PetscReal pHp = pAp + pWp; /* the second derivative of q along the (retracted) step */
-      if (!(pHp > 0)) {
-        MPGPStatus flat;
-        PetscCall(MPGPCoreFlatDirection(c, c->p, pHp, af, &flat));
-        if (flat != MPGPStatus::STOPPED) {
-          c->status = flat;
-          break;
-        }
-        acg = PETSC_INFINITY; /* q falls linearly along -p: go to the boundary (expansion) */
-      } else acg = gp / pHp;
-      /* with arc blocks p is tangent there and af ignores them: every step along p is retracted (also where W is 0) */
-      const PetscBool along_arcs = s.narc > 0 ? PETSC_TRUE : PETSC_FALSE;
-      PetscReal       dd_arc     = 0;
-      PetscBool       rejected   = (s.narc > 0 && !(gp > 0)) ? PETSC_TRUE : PETSC_FALSE; /* made tangent, -p does not descend (rounding, an updated gradient) */
-      if (acg <= af && along_arcs && !rejected) {
-        /* q at the retracted point P(x - a p) = x - a p + d is bounded above by the second-order expansion with
-           ||A|| for d'Ad (SeparableSetArcRetraction_Private()), plus |e| |d - a p| for the error e of an updated
-           gradient: a step that may not lower q (the arc too long for the model) is not taken */
-        PetscReal dg, dd, pp;
-        PetscCall(SeparableSetArcRetraction_Private(c->set, x, acg, c->p, c->g, c->Ap, &dg, &dd));
-        dd_arc = dd;
-        PetscCall(ReproducibleDot(c->p, c->p, &pp));
-        const PetscReal dq = -acg * gp + 0.5 * acg * acg * pAp + dg + 0.5 * c->normA * dd + drift * (acg * PetscSqrtReal(pp) + PetscSqrtReal(dd));
-        rejected           = dq <= qnoise ? PETSC_FALSE : PETSC_TRUE;
-        if (rejected) PetscCall(PetscInfo(NULL, "MPGP: a CG step along arcs may raise q (bound %g): a projected gradient step instead\n", (double)dq));
-        else c->drift += c->normA * PetscSqrtReal(dd); /* the gradient update below misses A d, |A d| <= ||A|| |d| */
-      }
-      if (rejected) c->arc_rejected++;
-      if (acg <= af && !rejected) { /* conjugate gradient step */
-        PetscReal gamma_cg;
-        Vec       Aq = along_arcs ? c->ApW : c->Ap; /* conjugacy with respect to A + W */
-        PetscCall(ReproducibleAXPY(x, -acg, c->p));
-        PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
-        if (along_arcs) { /* back onto the circles: the gradient is now updated, not exact */
-          PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
-          PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
-          if (dd_arc > 0) c->updated = PETSC_TRUE;
-          c->arc_steps++;
-        }
-        PetscCall(MPGPCoreSplitKeep(c, x, alpha, Aq, PETSC_TRUE, &s));
-        if (c->precondition) {
-          PetscReal zAp;
-          PetscCall(MPGPCorePrecondition(c));
-          PetscCall(ReproducibleDot(c->z, Aq, &zAp));
-          gamma_cg = zAp / pHp;
-          PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->z));
-        } else {
-          gamma_cg = s.phiAp / pHp;
-          PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->phi));
-        }
-        step    = acg;
-        cg_step = PETSC_TRUE;
-        c->counters->cg_steps++;
-      } else if (rejected) { /* Kucera's projected gradient step, from the exact gradient */
-        if (c->updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
-        PetscCall(MPGPCoreProjectedGradientStep(c, x, alpha, &s));
-        step  = alpha;
-        exact = PETSC_TRUE;
-        c->counters->proportioning_steps++;
-      } else { /* expansion: feasible half step, then a projected step along the free gradient */
-        PetscBool projected = PETSC_FALSE;
-        if (c->projcg && acg < PETSC_INFINITY &&
-            !PetscIsNanReal(acg)) { /* PETSC_INFINITY (a flat direction) is finite */ /* first try the projected full CG step; keep it if it beats the feasible half step */
-          if (!c->bb) {
-            PetscCall(VecCopy(x, c->xprev));
-            PetscCall(VecCopy(c->g, c->gprev));
-          }
-          PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, acg, c->p, x));
-          PetscCall(MPGPCoreGradient(c, x));
-          PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
-          /* the changes of q, not q itself, are compared: late in a solve they are far below q's rounding.
-             Step d: q(x + d) - q(x) = d'(g + g_new)/2; a tie (e.g. the same point) keeps the half step */
-          PetscReal dg0, dg1;
-          PetscCall(VecWAXPY(c->dx, -1.0, c->xprev, x));
-          PetscCall(ReproducibleDot2(c->dx, c->gprev, c->dx, c->g, &dg0, &dg1));
-          const PetscReal dnew = 0.5 * (dg0 + dg1), dhalf = 0.5 * af * af * pAp - af * gp;
-          projected = (dnew <= dhalf * (1 + 1e-10) && !PetscIsInfOrNanReal(dnew) && !PetscIsInfOrNanReal(s.gp2)) ? PETSC_TRUE : PETSC_FALSE;
-          PetscCall(PetscInfo(NULL, "expansion: projected CG step %g (to the boundary %g) changes q by %g, the half step by %g: %s\n", (double)acg, (double)af, (double)dnew, (double)dhalf,
-                              projected ? "kept" : "not kept"));
-          if (!projected) {
-            c->projcg_rejected++;
-            PetscCall(VecCopy(c->xprev, x));
-            PetscCall(VecCopy(c->gprev, c->g));
-          }
-        }
-        if (projected) step = acg;
-        else {
-          PetscCall(ReproducibleAXPY(x, -af, c->p));
-          PetscCall(ReproducibleAXPY(c->g, -af, c->Ap));
-          if (along_arcs) { /* the half step moved arc blocks along their tangent: back onto the circles (g is updated) */
-            PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
-            arc_half = PETSC_TRUE;
-          }
-          PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
-          PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->phi, x));
-          PetscCall(MPGPCoreGradient(c, x));
-          PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
-          step = af;
-        }
+      if (c->lag > 0 && !updated) PetscCall(MPGPCoreLaggedExpansion(c, x, alpha, qnoise, &s, &lagged));
+      if (lagged) {
+        step = c->lag_used;
         PetscCall(MPGPCoreRestartDirection(c));
         c->counters->expansion_steps++;
+      } else {
+        PetscCall(MPGPCoreMult(c, c->p, c->Ap));
+        PetscCall(ReproducibleDot2(c->Ap, c->p, c->g, c->p, &pAp, &gp));
+        PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->p, &af));
+        const PetscReal pHp = pAp + pWp; /* the second derivative of q along the (retracted) step */
+        if (!(pHp > 0)) {
+          MPGPStatus flat;
+          PetscCall(MPGPCoreFlatDirection(c, c->p, pHp, af, &flat));
+          if (flat != MPGPStatus::STOPPED) {
+            c->status = flat;
+            break;
+          }
+          acg = PETSC_INFINITY; /* q falls linearly along -p: go to the boundary (expansion) */
+        } else acg = gp / pHp;
+        /* with arc blocks p is tangent there and af ignores them: every step along p is retracted (also where W is 0) */
+        const PetscBool along_arcs = s.narc > 0 ? PETSC_TRUE : PETSC_FALSE;
+        PetscReal       dd_arc     = 0;
+        PetscBool       rejected   = (s.narc > 0 && !(gp > 0)) ? PETSC_TRUE : PETSC_FALSE; /* made tangent, -p does not descend (rounding, an updated gradient) */
+        if (acg <= af && along_arcs && !rejected) {
+          /* q at the retracted point P(x - a p) = x - a p + d is bounded above by the second-order expansion with
+             ||A|| for d'Ad (SeparableSetArcRetraction_Private()), plus |e| |d - a p| for the error e of an updated
+             gradient: a step that may not lower q (the arc too long for the model) is not taken */
+          PetscReal dg, dd, pp;
+          PetscCall(SeparableSetArcRetraction_Private(c->set, x, acg, c->p, c->g, c->Ap, &dg, &dd));
+          dd_arc = dd;
+          PetscCall(ReproducibleDot(c->p, c->p, &pp));
+          const PetscReal dq = -acg * gp + 0.5 * acg * acg * pAp + dg + 0.5 * c->normA * dd + drift * (acg * PetscSqrtReal(pp) + PetscSqrtReal(dd));
+          rejected           = dq <= qnoise ? PETSC_FALSE : PETSC_TRUE;
+          if (rejected) PetscCall(PetscInfo(NULL, "MPGP: a CG step along arcs may raise q (bound %g): a projected gradient step instead\n", (double)dq));
+          else c->drift += c->normA * PetscSqrtReal(dd); /* the gradient update below misses A d, |A d| <= ||A|| |d| */
+        }
+        if (rejected) c->arc_rejected++;
+        if (acg <= af && !rejected) { /* conjugate gradient step */
+          PetscReal gamma_cg;
+          Vec       Aq = along_arcs ? c->ApW : c->Ap; /* conjugacy with respect to A + W */
+          PetscCall(ReproducibleAXPY(x, -acg, c->p));
+          PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
+          if (along_arcs) { /* back onto the circles: the gradient is now updated, not exact */
+            PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
+            PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
+            if (dd_arc > 0) c->updated = PETSC_TRUE;
+            c->arc_steps++;
+          }
+          PetscCall(MPGPCoreSplitKeep(c, x, alpha, Aq, PETSC_TRUE, &s));
+          if (c->precondition) {
+            PetscReal zAp;
+            PetscCall(MPGPCorePrecondition(c));
+            PetscCall(ReproducibleDot(c->z, Aq, &zAp));
+            gamma_cg = zAp / pHp;
+            PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->z));
+          } else {
+            gamma_cg = s.phiAp / pHp;
+            PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->phi));
+          }
+          step    = acg;
+          cg_step = PETSC_TRUE;
+          c->lag  = 0; /* a CG run: the face holds, no lagged expansion until the next expansion */
+          c->counters->cg_steps++;
+        } else if (rejected) { /* Kucera's projected gradient step, from the exact gradient */
+          if (c->updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+          PetscCall(MPGPCoreProjectedGradientStep(c, x, alpha, &s));
+          step  = alpha;
+          exact = PETSC_TRUE;
+          c->counters->proportioning_steps++;
+        } else { /* expansion: feasible half step, then a projected step along the free gradient */
+          PetscBool projected = PETSC_FALSE;
+          if (c->projcg && acg < PETSC_INFINITY &&
+              !PetscIsNanReal(acg)) { /* PETSC_INFINITY (a flat direction) is finite */ /* first try the projected full CG step; keep it if it beats the feasible half step */
+            if (!c->bb) {
+              PetscCall(VecCopy(x, c->xprev));
+              PetscCall(VecCopy(c->g, c->gprev));
+            }
+            PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, acg, c->p, x));
+            PetscCall(MPGPCoreGradient(c, x));
+            PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+            /* the changes of q, not q itself, are compared: late in a solve they are far below q's rounding.
+               Step d: q(x + d) - q(x) = d'(g + g_new)/2; a tie (e.g. the same point) keeps the half step */
+            PetscReal dg0, dg1;
+            PetscCall(VecWAXPY(c->dx, -1.0, c->xprev, x));
+            PetscCall(ReproducibleDot2(c->dx, c->gprev, c->dx, c->g, &dg0, &dg1));
+            const PetscReal dnew = 0.5 * (dg0 + dg1), dhalf = 0.5 * af * af * pAp - af * gp;
+            projected = (dnew <= dhalf * (1 + 1e-10) && !PetscIsInfOrNanReal(dnew) && !PetscIsInfOrNanReal(s.gp2)) ? PETSC_TRUE : PETSC_FALSE;
+            PetscCall(PetscInfo(NULL, "expansion: projected CG step %g (to the boundary %g) changes q by %g, the half step by %g: %s\n", (double)acg, (double)af, (double)dnew, (double)dhalf,
+                                projected ? "kept" : "not kept"));
+            if (!projected) {
+              c->projcg_rejected++;
+              PetscCall(VecCopy(c->xprev, x));
+              PetscCall(VecCopy(c->gprev, c->g));
+            }
+          }
+          if (projected) {
+            step = acg;
+            if (c->lagged && af < acg) c->lag = acg; /* the next expansions may reuse this length without its product */
+          } else {
+            PetscCall(ReproducibleAXPY(x, -af, c->p));
+            PetscCall(ReproducibleAXPY(c->g, -af, c->Ap));
+            if (along_arcs) { /* the half step moved arc blocks along their tangent: back onto the circles (g is updated) */
+              PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
+              arc_half = PETSC_TRUE;
+            }
+            PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+            PetscCall(SeparableSetProjectedStep_Private(c->set, x, alpha, c->phi, x));
+            PetscCall(MPGPCoreGradient(c, x));
+            PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
+            step = af;
+          }
+          PetscCall(MPGPCoreRestartDirection(c));
+          c->counters->expansion_steps++;
+        }
       }
     } else { /* proportioning */
       if (c->variant == MPGPVariant::MPRGP) {

@@ -9,6 +9,7 @@ const MPGPOptionNames MPGPOptionsTaoMPRGP = {"TAO mprgp: QP over a separable set
                                              NULL,
                                              NULL,
                                              "-tao_mprgp_expansion_projcg",
+                                             "-tao_mprgp_expansion_lagged",
                                              "-tao_mprgp_norm",
                                              "-tao_mprgp_norm_method",
                                              "-tao_mprgp_norm_margin",
@@ -21,6 +22,7 @@ const MPGPOptionNames MPGPOptionsTaoMPGP  = {"TAO mpgp: QP over a separable set 
                                              "-tao_mpgp_bb",
                                              "-tao_mpgp_arc",
                                              "-tao_mpgp_expansion_projcg",
+                                             "-tao_mpgp_expansion_lagged",
                                              "-tao_mpgp_norm",
                                              "-tao_mpgp_norm_method",
                                              "-tao_mpgp_norm_margin",
@@ -33,6 +35,7 @@ const MPGPOptionNames MPGPOptionsKSPMPRGP = {"KSP mprgp: QP over a separable set
                                              NULL,
                                              NULL,
                                              "-ksp_mprgp_expansion_projcg",
+                                             "-ksp_mprgp_expansion_lagged",
                                              "-ksp_mprgp_norm",
                                              "-ksp_mprgp_norm_method",
                                              "-ksp_mprgp_norm_margin",
@@ -45,6 +48,7 @@ const MPGPOptionNames MPGPOptionsKSPMPGP  = {"KSP mpgp: QP over a separable set 
                                              "-ksp_mpgp_bb",
                                              "-ksp_mpgp_arc",
                                              "-ksp_mpgp_expansion_projcg",
+                                             "-ksp_mpgp_expansion_lagged",
                                              "-ksp_mpgp_norm",
                                              "-ksp_mpgp_norm_method",
                                              "-ksp_mpgp_norm_margin",
@@ -91,6 +95,9 @@ PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject,
   PetscCall(PetscOptionsBool(names->expansion_projcg,
                              "Expansion steps first try the projected full CG step P(x - a_cg p), kept when q is no higher than at the feasible half step (default: Dostal's expansion only)", "MPGP",
                              core->projcg, &core->projcg, NULL));
+  PetscCall(PetscOptionsBool(names->expansion_lagged,
+                             "With the projected CG expansion: an expansion first tries the projected step with the last expansion's length, without its own product, kept when q falls",
+                             names->expansion_lagged[1] == 'k' ? "MPGP" : "TaoQPSetExpansionLagged", core->lagged, &core->lagged, NULL));
   PetscCall(PetscOptionsReal(names->norm, "Use this value of ||A|| instead of estimating it", names->norm[1] == 'k' ? "KSPQPSetNormEstimate" : "TaoQPSetNormEstimate", norm->user, &value, &set));
   if (set) {
     PetscCheck(value >= 0 && !PetscIsInfOrNanReal(value), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and > 0 (0 to estimate), got %g", Shown(prefix, names->norm).text, (double)value);
@@ -132,6 +139,8 @@ PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *core, PetscViewer viewer)
   if (core->projcg)
     PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: projected full CG step first (%" PetscInt_FMT " not kept), else feasible half step and fixed-length projected step\n", core->projcg_rejected));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: feasible half step and fixed-length projected step\n"));
+  if (core->projcg && core->lagged)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: lagged lengths tried first (%" PetscInt_FMT " kept, %" PetscInt_FMT " not kept)\n", core->lagged_steps, core->lagged_rejected));
   if (core->variant == MPGPVariant::MPGP) {
     if (core->bb)
       PetscCall(PetscViewerASCIIPrintf(viewer, "proportioning steps: Barzilai-Borwein length first, kept when q decreases (%" PetscInt_FMT " not kept), else the fixed length\n", core->bb_rejected));

@@ -489,7 +489,7 @@ PetscErrorCode TaoDestroy_MPGP(Tao tao)
   PetscCall(VecDestroy(&qp->b));
   PetscCall(PCDestroy(&qp->pc));
   for (const char *fn : {"TaoQPSetConstraints_C", "TaoQPGetConstraints_C", "TaoQPSetLinearTerm_C", "TaoQPSetNormEstimate_C", "TaoQPGetNormEstimate_C", "TaoQPGetCounters_C", "TaoQPResetCounters_C",
-                         "TaoQPGetPC_C", "TaoQPSetExpansionProjCG_C"})
+                         "TaoQPGetPC_C", "TaoQPSetExpansionProjCG_C", "TaoQPSetExpansionLagged_C"})
     PetscCall(PetscObjectComposeFunction((PetscObject)tao, fn, NULL));
   delete qp;
   tao->data = NULL;
@@ -550,6 +550,13 @@ PetscErrorCode TaoQPSetExpansionProjCG_MPGP(Tao tao, PetscBool flg)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode TaoQPSetExpansionLagged_MPGP(Tao tao, PetscBool flg)
+{
+  PetscFunctionBegin;
+  GetMPGP(tao)->core.lagged = flg;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode TaoQPGetCounters_MPGP(Tao tao, QPCounters *c)
 {
   PetscFunctionBegin;
@@ -600,6 +607,7 @@ PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *na
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPResetCounters_C", TaoQPResetCounters_MPGP));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPGetPC_C", TaoQPGetPC_MPGP));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetExpansionProjCG_C", TaoQPSetExpansionProjCG_MPGP));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetExpansionLagged_C", TaoQPSetExpansionLagged_MPGP));
   PetscCall(TaoQPAdoptComposed_Private(tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -617,6 +625,7 @@ PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *na
 . -tao_mprgp_norm_method <slepc> - slepc or power
 . -tao_mprgp_norm_margin         - safety margin on the estimate
 . -tao_mprgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian: true when assembled)
+. -tao_mprgp_expansion_lagged <false> - projected CG expansions first try the last expansion's length, without a product of their own (`TaoQPSetExpansionLagged()`)
 . -tao_mprgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries (preconditioning in face; default from the Hessian: icc when assembled, bjacobi with icc on several
 ranks, else none)
 - -tao_mprgp_counters_view       - print the counters as one JSON line after each solve
@@ -669,6 +678,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_block_type <scalar> - without `TaoQPSetConstraints()`: scalar (bounds), disk (consecutive pairs, each the disk inscribed in its bound box), cone (consecutive triples)
 . -tao_mpgp_cone_mu <1>         - the cone coefficient with -tao_mpgp_block_type cone
 . -tao_mpgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian, as for mprgp; off when the set has cones)
+. -tao_mpgp_expansion_lagged <false> - projected CG expansions first try the last expansion's length, without a product of their own (`TaoQPSetExpansionLagged()`)
 . -tao_mpgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries and interior blocks (default from the Hessian, as for mprgp; none when the set has cones)
 - -tao_mpgp_counters_view       - print the counters as one JSON line after each solve
 
