@@ -77,18 +77,29 @@ PetscErrorCode FETIRowSumCreate(Mat A, PetscBool transpose, FETIRowSum &rs)
 /* y = A x, every row summed in increasing global column order */
 PetscErrorCode FETIRowSumApply(FETIRowSum &rs, Vec x, Vec y)
 {
-  const PetscInt    *dia, *dja, *oia = nullptr, *oja = nullptr;
-  const PetscScalar *da = nullptr, *oa = nullptr, *xa, *ga = nullptr;
-  PetscScalar       *ya;
-  PetscInt           m;
+  const PetscScalar *ga = nullptr;
 
   PetscFunctionBegin;
   if (rs.scatter) {
     PetscCall(VecScatterBegin(rs.scatter, x, rs.ghosts, INSERT_VALUES, SCATTER_FORWARD));
     PetscCall(VecScatterEnd(rs.scatter, x, rs.ghosts, INSERT_VALUES, SCATTER_FORWARD));
-    PetscCall(CSR(rs.Ao, &oia, &oja, &oa));
     PetscCall(VecGetArrayRead(rs.ghosts, &ga));
   }
+  PetscCall(FETIRowSumApplyWithGhosts(rs, x, ga, y));
+  if (rs.scatter) PetscCall(VecRestoreArrayRead(rs.ghosts, &ga));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = A x with the ghost entries of x (at garray) given by the caller instead of received: no message */
+PetscErrorCode FETIRowSumApplyWithGhosts(FETIRowSum &rs, Vec x, const PetscScalar *ga, Vec y)
+{
+  const PetscInt    *dia, *dja, *oia = nullptr, *oja = nullptr;
+  const PetscScalar *da = nullptr, *oa = nullptr, *xa;
+  PetscScalar       *ya;
+  PetscInt           m;
+
+  PetscFunctionBegin;
+  if (rs.scatter) PetscCall(CSR(rs.Ao, &oia, &oja, &oa));
   PetscCall(CSR(rs.Ad, &dia, &dja, &da));
   PetscCall(MatGetLocalSize(rs.Ad, &m, NULL));
   PetscCall(VecGetArrayRead(x, &xa));
@@ -104,7 +115,6 @@ PetscErrorCode FETIRowSumApply(FETIRowSum &rs, Vec x, Vec y)
   }
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(VecRestoreArrayRead(x, &xa));
-  if (rs.scatter) PetscCall(VecRestoreArrayRead(rs.ghosts, &ga));
   PetscCall(PetscLogFlops(2.0 * (dia[m] + (oia ? oia[m] : 0))));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
