@@ -72,6 +72,7 @@ struct FETIRowSum {
   const PetscInt       *garray = nullptr;  /* global columns of Ao, ascending */
   PetscInt              cstart = 0;        /* first local column */
   std::vector<PetscInt> split;             /* per row: Ao's entries before it have columns below cstart */
+  std::vector<PetscInt> ghosted;           /* the rows with entries in Ao (summed once the ghosts arrived) */
   VecScatter            scatter = nullptr; /* x -> ghosts */
   Vec                   ghosts  = nullptr;
 };
