@@ -187,11 +187,14 @@ PetscErrorCode FETIApplyG(FETI feti, Vec x, Vec y)
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(FETI_ApplyG, feti, 0, 0, 0));
   PetscCall(FETISetUpCoarseRows(feti));
-  PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp3));
-  if (impl.gptr.empty()) PetscCall(MatMultTranspose(impl.R, impl.wp3, y));
-  else {
+  if (impl.gptr.empty()) {
+    PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp3));
+    PetscCall(MatMultTranspose(impl.R, impl.wp3, y));
+  } else {
     const PetscScalar *w;
     PetscScalar       *ya;
+    /* B' x only at the dofs B touches (its other rows are empty): the only ones read below */
+    PetscCall(FETIRowSumApplyRows(impl.Btsum, x, (PetscInt)impl.grows.size(), impl.grows.data(), impl.wp3));
     PetscCall(VecSet(y, 0.0));
     PetscCall(VecGetArrayRead(impl.wp3, &w));
     PetscCall(VecGetArray(y, &ya));

@@ -117,24 +117,33 @@ static PetscErrorCode LogRowSumFlops(const FETIRowSum &rs)
    does them instead of waiting for the other, and each row is summed as it would be otherwise (the same bits) */
 PetscErrorCode FETIRowSumApply(FETIRowSum &rs, Vec x, Vec y)
 {
-  const PetscScalar *ga = nullptr, *xa;
-  PetscScalar       *ya;
-  PetscInt           m;
+  PetscInt m;
 
   PetscFunctionBegin;
-  if (!rs.scatter) {
-    PetscCall(FETIRowSumApplyWithGhosts(rs, x, NULL, y));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
   PetscCall(MatGetLocalSize(rs.Ad, &m, NULL));
-  PetscCall(VecScatterBegin(rs.scatter, x, rs.ghosts, INSERT_VALUES, SCATTER_FORWARD));
+  PetscCall(FETIRowSumApplyRows(rs, x, m, NULL, y));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The rows of y = A x in rows (increasing; NULL: all nrows = m rows), which must hold every row with ghost entries;
+   the other rows of y are left as they were. For a caller that reads y only there (G = R'B' reads B' x only at the
+   dofs B touches, fetioperators.cxx): the empty rows are neither visited nor written. */
+PetscErrorCode FETIRowSumApplyRows(FETIRowSum &rs, Vec x, PetscInt nrows, const PetscInt rows[], Vec y)
+{
+  const PetscScalar *ga = nullptr, *xa;
+  PetscScalar       *ya;
+
+  PetscFunctionBegin;
+  if (rs.scatter) PetscCall(VecScatterBegin(rs.scatter, x, rs.ghosts, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArray(y, &ya));
-  PetscCall(SumRows(rs, xa, NULL, ya, m, NULL));
-  PetscCall(VecScatterEnd(rs.scatter, x, rs.ghosts, INSERT_VALUES, SCATTER_FORWARD));
-  PetscCall(VecGetArrayRead(rs.ghosts, &ga));
-  PetscCall(SumRows(rs, xa, ga, ya, (PetscInt)rs.ghosted.size(), rs.ghosted.data()));
-  PetscCall(VecRestoreArrayRead(rs.ghosts, &ga));
+  PetscCall(SumRows(rs, xa, NULL, ya, nrows, rows));
+  if (rs.scatter) {
+    PetscCall(VecScatterEnd(rs.scatter, x, rs.ghosts, INSERT_VALUES, SCATTER_FORWARD));
+    PetscCall(VecGetArrayRead(rs.ghosts, &ga));
+    PetscCall(SumRows(rs, xa, ga, ya, (PetscInt)rs.ghosted.size(), rs.ghosted.data()));
+    PetscCall(VecRestoreArrayRead(rs.ghosts, &ga));
+  }
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(VecRestoreArrayRead(x, &xa));
   PetscCall(LogRowSumFlops(rs));

@@ -240,6 +240,7 @@ PETSC_INTERN PetscErrorCode FETICreateCoarseMatrix(FETI, Vec, Mat *);
 PETSC_INTERN PetscErrorCode FETIRowSumCreate(Mat, PetscBool, FETIRowSum &);
 PETSC_INTERN PetscErrorCode FETIRowSumApply(FETIRowSum &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIRowSumApplyWithGhosts(FETIRowSum &, Vec, const PetscScalar *, Vec);
+PETSC_INTERN PetscErrorCode FETIRowSumApplyRows(FETIRowSum &, Vec, PetscInt, const PetscInt[], Vec);
 PETSC_INTERN PetscErrorCode FETIRowSumDestroy(FETIRowSum &);
 PETSC_INTERN PetscErrorCode FETIAssembleCoarseMatrix(Mat, Vec, Mat *);
 
