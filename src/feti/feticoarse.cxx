@@ -4,7 +4,7 @@
                 right-hand side there and sends the solution back. One copy of the factor in all, and the
                 same numbers as on one rank (the gathered matrix is the same, entry for entry).
      redundant  every rank gathers the matrix, factors its own copy and solves for all of the solution: one
-                message per solve (the gather of the right-hand side), a factor per rank, and the whole
+                collective per solve (the gather of the right-hand side), a factor per rank, and the whole
                 solution on every rank, from which G' forms R x at the dofs of other ranks' subdomains that
                 B reads without receiving them (fetioperators.cxx). Its options prefix is feti_coarse_redundant_.
      parallel   a parallel Cholesky (MUMPS unless -feti_coarse_pc_factor_mat_solver_type says otherwise)
