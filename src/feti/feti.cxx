@@ -27,6 +27,10 @@ static PetscErrorCode FETIReset(FETI feti)
   PetscCallCXX(std::vector<PetscInt>().swap(impl.gptr));
   PetscCallCXX(std::vector<PetscInt>().swap(impl.gcols));
   PetscCallCXX(std::vector<PetscScalar>().swap(impl.gvals));
+  PetscCallCXX(std::vector<PetscInt>().swap(impl.ghptr));
+  PetscCallCXX(std::vector<PetscInt>().swap(impl.ghcols));
+  PetscCallCXX(std::vector<PetscScalar>().swap(impl.ghvals));
+  impl.ghostrows     = 0;
   impl.growsset      = PETSC_FALSE;
   impl.ncoarsesolves = 0;
   PetscCall(FETICoarseSolverDestroy(impl.coarse));

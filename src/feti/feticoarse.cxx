@@ -3,8 +3,10 @@
      single     the matrix is gathered on rank 0, factored there once and only there; a solve gathers the
                 right-hand side there and sends the solution back. One copy of the factor in all, and the
                 same numbers as on one rank (the gathered matrix is the same, entry for entry).
-     redundant  every rank factors its own copy (PCREDUNDANT) and solves without sending the solution:
-                a little less communication, a factor per rank.
+     redundant  every rank gathers the matrix, factors its own copy and solves for all of the solution: one
+                collective per solve (the gather of the right-hand side), a factor per rank, and the whole
+                solution on every rank, from which G' forms R x at the dofs of other ranks' subdomains that
+                B reads without receiving them (fetioperators.cxx). Its options prefix is feti_coarse_redundant_.
      parallel   a parallel Cholesky (MUMPS unless -feti_coarse_pc_factor_mat_solver_type says otherwise)
                 on all ranks: the factor is distributed, for coarse problems too large for one rank; the
                 rounding then depends on the distribution.
@@ -83,14 +85,16 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
     PetscCall(PetscInfo(feti, "-feti_coarse_mode auto: coarse dimension %" PetscInt_FMT " (-feti_coarse_redundant_dim %" PetscInt_FMT ", -feti_coarse_parallel_dim %" PetscInt_FMT "): %s\n", N,
                         impl.coarseredundantdim, impl.coarseparalleldim, FETICoarseModes[cs.mode]));
   }
-  if (cs.mode == FETI_COARSE_SINGLE) {
-    Mat           *gathered = NULL, Aseq = A;
-    IS             rows;
-    PetscInt       N;
-    PetscErrorCode ierr = PETSC_SUCCESS;
+  if (cs.mode == FETI_COARSE_SINGLE || (cs.mode == FETI_COARSE_REDUNDANT && size > 1)) {
+    /* single: rank 0 asks for every row and column, the others for nothing; redundant: every rank asks for all */
+    const PetscBool here     = cs.mode == FETI_COARSE_REDUNDANT || rank == 0 ? PETSC_TRUE : PETSC_FALSE;
+    Mat            *gathered = NULL, Aseq = A;
+    IS              rows;
+    PetscInt        N;
+    PetscErrorCode  ierr = PETSC_SUCCESS;
     PetscCall(MatGetSize(A, &N, NULL));
-    if (size > 1) { /* rank 0 asks for every row and column, the others for nothing */
-      PetscCall(ISCreateStride(PETSC_COMM_SELF, rank ? 0 : N, 0, 1, &rows));
+    if (size > 1) {
+      PetscCall(ISCreateStride(PETSC_COMM_SELF, here ? N : 0, 0, 1, &rows));
       PetscCall(MatCreateSubMatrices(A, 1, &rows, &rows, MAT_INITIAL_MATRIX, &gathered));
       PetscCall(ISDestroy(&rows));
       Aseq = gathered[0];
@@ -98,25 +102,29 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
       PetscCall(MatSetOption(Aseq, MAT_SPD, PETSC_TRUE));
     }
     *failed = PETSC_FALSE;
-    if (rank == 0) {
-      PetscCall(CreateDirectKSP(PETSC_COMM_SELF, Aseq, coarseprefix, &cs.ksp, &pc));
+    if (here) {
+      char redundantprefix[256];
+      /* redundant keeps the prefix PCREDUNDANT's inner solver had, feti_coarse_redundant_ */
+      PetscCall(PetscSNPrintf(redundantprefix, sizeof(redundantprefix), "%sredundant_", coarseprefix));
+      PetscCall(CreateDirectKSP(PETSC_COMM_SELF, Aseq, cs.mode == FETI_COARSE_REDUNDANT ? redundantprefix : coarseprefix, &cs.ksp, &pc));
       PetscCall(PCSetType(pc, PCCHOLESKY));
       PetscCall(PCFactorSetMatSolverType(pc, impl.subsolver));
       PetscCall(KSPSetFromOptions(cs.ksp));
-      /* an error inside the package happens on rank 0 alone: it is printed there and passed on to all */
+      /* an error inside the package happens on one rank (single: rank 0 alone): it is printed there and passed on to all */
       ierr = FETIKSPSetUpFactorization(feti, cs.ksp, NULL, NULL, failed);
       if (!ierr) PetscCall(ReleaseFactoredMatrix(cs.ksp));
     }
     if (size > 1) {
-      PetscMPIInt state[2] = {(PetscMPIInt)ierr, (PetscMPIInt)*failed};
-      PetscCallMPI(MPI_Bcast(state, 2, MPI_INT, 0, comm));
-      PetscCheck(!state[0], comm, (PetscErrorCode)state[0], "The factorization of the coarse matrix on rank 0 failed (-feti_coarse_mode single; the message above says why)");
-      *failed = state[1] ? PETSC_TRUE : PETSC_FALSE;
+      PetscMPIInt state[2] = {(PetscMPIInt)ierr, (PetscMPIInt)*failed}, all[2];
+      PetscCallMPI(MPIU_Allreduce(state, all, 2, MPI_INT, MPI_MAX, comm));
+      PetscCheck(!all[0], comm, (PetscErrorCode)all[0], "The factorization of the coarse matrix failed (-feti_coarse_mode %s; the message above says why)", FETICoarseModes[cs.mode]);
+      *failed = all[1] ? PETSC_TRUE : PETSC_FALSE;
       PetscCall(MatDestroySubMatrices(1, &gathered));
       {
         Vec x;
         PetscCall(MatCreateVecs(A, &x, NULL));
-        PetscCall(VecScatterCreateToZero(x, &cs.scatter, &cs.x0));
+        if (cs.mode == FETI_COARSE_REDUNDANT) PetscCall(VecScatterCreateToAll(x, &cs.scatter, &cs.x0));
+        else PetscCall(VecScatterCreateToZero(x, &cs.scatter, &cs.x0));
         PetscCall(VecDuplicate(cs.x0, &cs.y0));
         PetscCall(VecDestroy(&x));
       }
@@ -124,27 +132,21 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(CreateDirectKSP(comm, A, coarseprefix, &cs.ksp, &pc));
-  if (cs.mode == FETI_COARSE_REDUNDANT) {
-    KSP inner;
-    PC  innerpc;
-    PetscCall(PCSetType(pc, PCREDUNDANT));
-    PetscCall(PCRedundantGetKSP(pc, &inner));
-    PetscCall(KSPGetPC(inner, &innerpc));
-    PetscCall(PCSetType(innerpc, PCCHOLESKY));
-    PetscCall(PCFactorSetMatSolverType(innerpc, impl.subsolver));
-  } else {
-    PetscCall(PCSetType(pc, PCCHOLESKY));
-    PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
-  }
+  /* parallel (redundant on one rank is single: the branch above) */
+  PetscCall(PCSetType(pc, PCCHOLESKY));
+  PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   PetscCall(KSPSetFromOptions(cs.ksp));
   PetscCall(FETIKSPSetUpFactorization(feti, cs.ksp, NULL, NULL, failed));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* y = A^-1 x */
+/* y = A^-1 x. Redundant on several ranks: every rank gathers all of x, solves, and keeps all of the solution (y0) beside
+   its own part in y; FETICoarseSolverGetFull() hands that copy to G' (fetioperators.cxx), which then needs no ghost
+   values from the other ranks. */
 PetscErrorCode FETICoarseSolverApply(FETICoarseSolver &cs, Vec x, Vec y)
 {
   PetscFunctionBegin;
+  cs.yid = -1;
   if (!cs.scatter) {
     PetscCall(KSPSolve(cs.ksp, x, y));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -152,20 +154,52 @@ PetscErrorCode FETICoarseSolverApply(FETICoarseSolver &cs, Vec x, Vec y)
   PetscCall(VecScatterBegin(cs.scatter, x, cs.x0, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(cs.scatter, x, cs.x0, INSERT_VALUES, SCATTER_FORWARD));
   if (cs.ksp) PetscCall(KSPSolve(cs.ksp, cs.x0, cs.y0));
-  PetscCall(VecScatterBegin(cs.scatter, cs.y0, y, INSERT_VALUES, SCATTER_REVERSE));
-  PetscCall(VecScatterEnd(cs.scatter, cs.y0, y, INSERT_VALUES, SCATTER_REVERSE));
+  if (cs.mode == FETI_COARSE_REDUNDANT) { /* the own part of the full solution: no message */
+    const PetscScalar *all;
+    PetscScalar       *mine;
+    PetscInt           lo, hi;
+    PetscCall(VecGetOwnershipRange(y, &lo, &hi));
+    PetscCall(VecGetArrayRead(cs.y0, &all));
+    PetscCall(VecGetArrayWrite(y, &mine));
+    PetscCall(PetscArraycpy(mine, all + lo, hi - lo));
+    PetscCall(VecRestoreArrayWrite(y, &mine));
+    PetscCall(VecRestoreArrayRead(cs.y0, &all));
+    PetscCall(PetscObjectGetId((PetscObject)y, &cs.yid));
+    PetscCall(PetscObjectStateGet((PetscObject)y, &cs.ystate));
+  } else {
+    PetscCall(VecScatterBegin(cs.scatter, cs.y0, y, INSERT_VALUES, SCATTER_REVERSE));
+    PetscCall(VecScatterEnd(cs.scatter, cs.y0, y, INSERT_VALUES, SCATTER_REVERSE));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* All of y on this rank when y is unchanged since the solve that gave it (redundant mode on several ranks), else NULL */
+PetscErrorCode FETICoarseSolverGetFull(FETICoarseSolver &cs, Vec y, Vec *full)
+{
+  PetscInt64       id;
+  PetscObjectState state;
+
+  PetscFunctionBegin;
+  *full = NULL;
+  if (cs.yid < 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscObjectGetId((PetscObject)y, &id));
+  PetscCall(PetscObjectStateGet((PetscObject)y, &state));
+  if (id == cs.yid && state == cs.ystate) *full = cs.y0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FETICoarseSolverView(FETICoarseSolver &cs, PetscViewer viewer)
 {
   PetscFunctionBegin;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solver (G G'), -feti_coarse_mode %s%s:\n", FETICoarseModes[cs.mode], cs.scatter ? " (factored on rank 0)" : ""));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solver (G G'), -feti_coarse_mode %s%s:\n", FETICoarseModes[cs.mode],
+                                   cs.scatter ? (cs.mode == FETI_COARSE_REDUNDANT ? " (factored on every rank, rank 0's shown)" : " (factored on rank 0)") : ""));
   PetscCall(PetscViewerASCIIPushTab(viewer));
-  if (cs.scatter) { /* the factor exists on rank 0 only (cs.ksp is NULL elsewhere) */
+  if (cs.scatter) { /* a sequential factor (single: on rank 0 only, cs.ksp is NULL elsewhere); rank 0's is shown */
     PetscViewer sub;
     PetscCall(PetscViewerGetSubViewer(viewer, PETSC_COMM_SELF, &sub));
-    if (cs.ksp) PetscCall(KSPView(cs.ksp, sub));
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)viewer), &rank));
+    if (cs.ksp && !rank) PetscCall(KSPView(cs.ksp, sub));
     PetscCall(PetscViewerRestoreSubViewer(viewer, PETSC_COMM_SELF, &sub));
   } else if (cs.ksp) PetscCall(KSPView(cs.ksp, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
@@ -179,5 +213,6 @@ PetscErrorCode FETICoarseSolverDestroy(FETICoarseSolver &cs)
   PetscCall(VecScatterDestroy(&cs.scatter));
   PetscCall(VecDestroy(&cs.x0));
   PetscCall(VecDestroy(&cs.y0));
+  cs.yid = -1;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -10,6 +10,7 @@
 #include <conefeti/private/fetiimpl.h>
 
 #include <algorithm>
+#include <cstring>
 
 static PetscErrorCode ShellGetFETI(Mat A, FETI *feti)
 {
@@ -186,11 +187,14 @@ PetscErrorCode FETIApplyG(FETI feti, Vec x, Vec y)
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(FETI_ApplyG, feti, 0, 0, 0));
   PetscCall(FETISetUpCoarseRows(feti));
-  PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp3));
-  if (impl.gptr.empty()) PetscCall(MatMultTranspose(impl.R, impl.wp3, y));
-  else {
+  if (impl.gptr.empty()) {
+    PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp3));
+    PetscCall(MatMultTranspose(impl.R, impl.wp3, y));
+  } else {
     const PetscScalar *w;
     PetscScalar       *ya;
+    /* B' x only at the dofs B touches (its other rows are empty): the only ones read below */
+    PetscCall(FETIRowSumApplyRows(impl.Btsum, x, (PetscInt)impl.grows.size(), impl.grows.data(), impl.wp3));
     PetscCall(VecSet(y, 0.0));
     PetscCall(VecGetArrayRead(impl.wp3, &w));
     PetscCall(VecGetArray(y, &ya));
@@ -207,14 +211,74 @@ PetscErrorCode FETIApplyG(FETI feti, Vec x, Vec y)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* One row of R times x, summed as PETSc's product of R sums it (two terms added to each other, then to the sum,
+   when its inode kernel does): the same bits for a rank's own rows and for the ghost rows below */
+static inline PetscScalar RowOfRTimes(PetscInt n, const PetscInt *c, const PetscScalar *v, const PetscScalar *xa, PetscBool pairs)
+{
+  PetscScalar sum = 0;
+  PetscInt    k   = 0;
+  if (pairs)
+    for (; k < n - 1; k += 2) sum += v[k] * xa[c[k]] + v[k + 1] * xa[c[k + 1]];
+  for (; k < n; k++) sum += v[k] * xa[c[k]];
+  return sum;
+}
+
+/* The rows of R at B's ghost primal columns (Bsum.garray), with global coarse columns. Why: G' x = B (R x), and
+   a dual row of this rank reads R x at dofs of other ranks' subdomains, which the product with B receives from
+   them (one message of some 40 KB per product at 2 ranks on the brick, 4 per Hessian product). In redundant mode
+   every rank holds the whole coarse solution x (FETICoarseSolverGetFull()), so it can form R x at those dofs
+   itself, with the same rows of R summed in the same order: the same bits, no message. Only when every rank
+   takes PETSc-independent products of R (FETISetUpCoarseRows() kept rows) and the coarse solver is redundant;
+   collective (the first G' product). */
+static PetscErrorCode FETISetUpGhostCoarseRows(FETI feti)
+{
+  FETI_Impl  &impl = *feti->impl;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
+  PetscMPIInt size, ok, all;
+  PetscInt    nghost = 0;
+
+  PetscFunctionBegin;
+  impl.ghostrows = -1;
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  if (size == 1 || impl.coarse.mode != FETI_COARSE_REDUNDANT || !impl.Bsum.scatter) PetscFunctionReturn(PETSC_SUCCESS);
+  ok = impl.gptr.empty() ? 0 : 1;
+  PetscCallMPI(MPIU_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm));
+  if (!all) PetscFunctionReturn(PETSC_SUCCESS);
+  {
+    IS                 rows, cols;
+    Mat               *sub;
+    const PetscInt    *ia, *ja;
+    const PetscScalar *va;
+    PetscScalar       *v;
+    PetscCall(VecGetLocalSize(impl.Bsum.ghosts, &nghost));
+    PetscCall(ISCreateGeneral(PETSC_COMM_SELF, nghost, impl.Bsum.garray, PETSC_USE_POINTER, &rows));
+    PetscCall(ISCreateStride(PETSC_COMM_SELF, impl.ncoarse, 0, 1, &cols));
+    PetscCall(MatCreateSubMatrices(impl.R, 1, &rows, &cols, MAT_INITIAL_MATRIX, &sub));
+    PetscCall(ISDestroy(&rows));
+    PetscCall(ISDestroy(&cols));
+    PetscCall(MatSeqAIJGetCSRAndMemType(sub[0], &ia, &ja, &v, NULL));
+    va = v;
+    PetscCallCXX(impl.ghptr.assign(ia, ia + nghost + 1));
+    PetscCallCXX(impl.ghcols.assign(ja, ja + ia[nghost]));
+    PetscCallCXX(impl.ghvals.assign(va, va + ia[nghost]));
+    PetscCallCXX(impl.ghbuf.assign(nghost, 0.0));
+    PetscCall(MatDestroySubMatrices(1, &sub));
+  }
+  impl.ghostrows = 1;
+  PetscCall(PetscInfo(feti, "G' in redundant coarse mode: R x at the %" PetscInt_FMT " ghost dofs of B from the full coarse solution, without their exchange\n", nghost));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* y = G' x = B (R x); R x only where B reads it */
 PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
 {
   FETI_Impl &impl = *feti->impl;
+  Vec        full = NULL;
 
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(FETI_ApplyGt, feti, 0, 0, 0));
   PetscCall(FETISetUpCoarseRows(feti));
+  if (!impl.ghostrows) PetscCall(FETISetUpGhostCoarseRows(feti));
   if (impl.gptr.empty()) PetscCall(MatMult(impl.R, x, impl.wp3));
   else {
     const PetscScalar *xa;
@@ -223,21 +287,37 @@ PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
     PetscCall(VecGetArrayRead(x, &xa));
     PetscCall(VecGetArray(impl.wp3, &w)); /* the dofs B does not touch keep what they held: B never reads them */
     for (PetscInt t = 0; t < nrows; t++) {
-      const PetscInt     k0 = impl.gptr[t], n = impl.gptr[t + 1] - k0;
-      const PetscInt    *c   = impl.gcols.data() + k0;
-      const PetscScalar *v   = impl.gvals.data() + k0;
-      PetscScalar        sum = 0;
-      PetscInt           k   = 0;
-      if (impl.gpairs) /* PETSc's inode product: two terms added to each other, then to the sum */
-        for (; k < n - 1; k += 2) sum += v[k] * xa[c[k]] + v[k + 1] * xa[c[k + 1]];
-      for (; k < n; k++) sum += v[k] * xa[c[k]];
-      w[impl.grows[t]] = sum;
+      const PetscInt k0 = impl.gptr[t];
+      w[impl.grows[t]]  = RowOfRTimes(impl.gptr[t + 1] - k0, impl.gcols.data() + k0, impl.gvals.data() + k0, xa, impl.gpairs);
     }
     PetscCall(VecRestoreArray(impl.wp3, &w));
     PetscCall(VecRestoreArrayRead(x, &xa));
     PetscCall(PetscLogFlops(2.0 * impl.gptr[nrows]));
   }
-  PetscCall(FETIRowSumApply(impl.Bsum, impl.wp3, y));
+  /* the same decision on every rank: x is the same collective vector, just solved for (or not) on all of them */
+  if (impl.ghostrows > 0) PetscCall(FETICoarseSolverGetFull(impl.coarse, x, &full));
+  if (full) {
+    const PetscScalar *xa;
+    const PetscInt     nghost = (PetscInt)impl.ghbuf.size();
+    PetscCall(VecGetArrayRead(full, &xa));
+    for (PetscInt t = 0; t < nghost; t++) {
+      const PetscInt k0 = impl.ghptr[t];
+      impl.ghbuf[t]     = RowOfRTimes(impl.ghptr[t + 1] - k0, impl.ghcols.data() + k0, impl.ghvals.data() + k0, xa, impl.gpairs);
+    }
+    PetscCall(VecRestoreArrayRead(full, &xa));
+    PetscCall(PetscLogFlops(2.0 * impl.ghptr[nghost]));
+    if (impl.ghostrows == 1) { /* the first time: the exchange as well, and the local values must be its bits on every rank */
+      const PetscScalar *ga;
+      PetscMPIInt        same, all;
+      PetscCall(FETIRowSumApply(impl.Bsum, impl.wp3, y));
+      PetscCall(VecGetArrayRead(impl.Bsum.ghosts, &ga));
+      same = nghost == 0 || !std::memcmp(ga, impl.ghbuf.data(), nghost * sizeof(PetscScalar)) ? 1 : 0;
+      PetscCall(VecRestoreArrayRead(impl.Bsum.ghosts, &ga));
+      PetscCallMPI(MPIU_Allreduce(&same, &all, 1, MPI_INT, MPI_MIN, PetscObjectComm((PetscObject)feti)));
+      impl.ghostrows = all ? 2 : -1;
+      if (!all) PetscCall(PetscInfo(feti, "G': R x at the ghost dofs differs from the exchanged values in some bit; the exchange stays\n"));
+    } else PetscCall(FETIRowSumApplyWithGhosts(impl.Bsum, impl.wp3, impl.ghbuf.data(), y));
+  } else PetscCall(FETIRowSumApply(impl.Bsum, impl.wp3, y));
   PetscCall(PetscLogEventEnd(FETI_ApplyGt, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -141,6 +141,53 @@ static PetscErrorCode InteriorSolve(FETISubdomain &sd, Vec x, Vec y)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* With -info :feti, every rank's share of an application's work: the products with K_V (entries of K_reg), the
+   interior solves (interior dofs, their squares: the factors of K_ii grow faster than their dofs) and the products
+   with K_bi. The subdomains are spread over the ranks by count, and a subdomain's interior depends on where it
+   sits (a free surface adds to it, a face B touches takes from it), so the shares can differ (docs/scale.md,
+   "Two ranks: where the time goes"). */
+static PetscErrorCode InfoLoad(FETI feti)
+{
+  FETI_Impl  &impl = *feti->impl;
+  MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
+  PetscBool   info;
+  PetscMPIInt size, rank;
+  const int   nv       = 6;
+  double      mine[nv] = {0, 0, 0, 0, 0, 0};
+
+  PetscFunctionBegin;
+  PetscCall(PetscInfoEnabled(FETI_CLASSID, &info));
+  if (!info) PetscFunctionReturn(PETSC_SUCCESS);
+  for (FETISubdomain &sd : impl.sub) {
+    PetscInt ni = 0, nb = 0;
+    MatInfo  mi;
+    if (sd.interior) PetscCall(ISGetLocalSize(sd.interior, &ni));
+    if (sd.boundary) PetscCall(ISGetLocalSize(sd.boundary, &nb));
+    mine[0] += sd.Fii ? 1 : 0;
+    mine[1] += (double)ni;
+    mine[2] += (double)ni * (double)ni;
+    mine[3] += (double)nb;
+    if (sd.Kbi) {
+      PetscCall(MatGetInfo(sd.Kbi, MAT_LOCAL, &mi));
+      mine[4] += mi.nz_used;
+    }
+    if (sd.Kreg) { /* stored entries: the upper triangle of an SBAIJ K_reg */
+      PetscCall(MatGetInfo(sd.Kreg, MAT_LOCAL, &mi));
+      mine[5] += mi.nz_used;
+    }
+  }
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  std::vector<double> all((size_t)nv * size);
+  PetscCallMPI(MPI_Gather(mine, nv, MPI_DOUBLE, all.data(), nv, MPI_DOUBLE, 0, comm));
+  for (PetscMPIInt r = 0; r < size; r++) { /* PetscInfo() prints on the first rank only: it prints every rank's line */
+    const double *v = &all[(size_t)nv * r];
+    PetscCall(PetscInfo(feti, "FETI preconditioner work of rank %d: %.0f interior solves, %.0f interior dofs (sum of squares %.4g), %.0f boundary dofs, K_bi entries %.0f, K_reg entries stored %.0f\n",
+                        r, v[0], v[1], v[2], v[3], v[4], v[5]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Boundary dofs (touched by B, not Dirichlet in the primal) and interior dofs of each subdomain; for the
    Dirichlet preconditioner also the factored K_ii and the block K_bi. Built once. K_bb and K_ib are not
    copied: one product of the subdomain's own K_V with [x_b; 0] gives both, and K_bb is most of K (at
@@ -309,6 +356,7 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
       impl.pcdoublebytes = bytes[1];
     }
   }
+  PetscCall(InfoLoad(feti));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

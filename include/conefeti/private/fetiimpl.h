@@ -76,6 +76,7 @@ struct FETIRowSum {
   const PetscInt       *garray = nullptr;  /* global columns of Ao, ascending */
   PetscInt              cstart = 0;        /* first local column */
   std::vector<PetscInt> split;             /* per row: Ao's entries before it have columns below cstart */
+  std::vector<PetscInt> ghosted;           /* the rows with entries in Ao (summed once the ghosts arrived) */
   VecScatter            scatter = nullptr; /* x -> ghosts */
   Vec                   ghosts  = nullptr;
 };
@@ -98,10 +99,12 @@ PETSC_INTERN PetscLogEvent FETI_Kernels, FETI_Reorder;
 PETSC_INTERN PetscLogEvent FETI_PCSetUp;
 
 struct FETICoarseSolver {
-  FETICoarseMode mode    = FETI_COARSE_SINGLE;
-  KSP            ksp     = nullptr; /* single mode: on rank 0 only */
-  VecScatter     scatter = nullptr; /* single mode on several ranks: to rank 0 and back */
-  Vec            x0 = nullptr, y0 = nullptr;
+  FETICoarseMode   mode    = FETI_COARSE_SINGLE;
+  KSP              ksp     = nullptr; /* single mode: on rank 0 only */
+  VecScatter       scatter = nullptr; /* single mode on several ranks: to rank 0 and back; redundant: to every rank */
+  Vec              x0 = nullptr, y0 = nullptr;
+  PetscInt64       yid    = -1; /* redundant on several ranks: the (distributed) solution whose full copy y0 holds */
+  PetscObjectState ystate = 0;
 };
 
 struct FETI_Impl {
@@ -164,6 +167,12 @@ struct FETI_Impl {
   PetscBool                gpairs        = PETSC_FALSE; /* R's products sum each row in pairs (PETSc's inode kernel): so do ours */
   PetscBool                growsset      = PETSC_FALSE; /* FETISetUpCoarseRows() ran; grows empty then: PETSc's products */
   PetscInt                 ncoarsesolves = 0;           /* coarse solves since FETISetUp() (FETIGetCoarseSolveCount()) */
+  /* G' without B's ghost exchange (fetioperators.cxx, FETISetUpGhostCoarseRows()): the rows of R at B's ghost primal
+     columns (Bsum.garray), CSR with global coarse columns, to compute R x there from a coarse solution every rank has
+     in full (checked bit for bit against the exchange at its first use) */
+  std::vector<PetscInt>    ghptr, ghcols;
+  std::vector<PetscScalar> ghvals, ghbuf; /* ghbuf: R x at Bsum.garray */
+  PetscInt                 ghostrows = 0; /* 0 not set up, 1 set up and not yet checked, 2 in use, -1 not used */
 
   /* work vectors */
   Vec wp1 = nullptr, wp2 = nullptr, wd1 = nullptr, wd2 = nullptr, wc1 = nullptr, wc2 = nullptr;
@@ -220,6 +229,7 @@ PETSC_INTERN PetscErrorCode FETICreateOperators_Private(FETI);
 /* feticoarse.cxx */
 PETSC_INTERN PetscErrorCode FETICoarseSolverCreate(FETI, Mat, FETICoarseSolver &, PetscBool *);
 PETSC_INTERN PetscErrorCode FETICoarseSolverApply(FETICoarseSolver &, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETICoarseSolverGetFull(FETICoarseSolver &, Vec, Vec *);
 PETSC_INTERN PetscErrorCode FETICoarseSolverView(FETICoarseSolver &, PetscViewer);
 PETSC_INTERN PetscErrorCode FETICoarseSolverDestroy(FETICoarseSolver &);
 
@@ -242,6 +252,8 @@ PETSC_INTERN PetscErrorCode FETIChooseKplusBlocks(FETI, const std::vector<PetscI
 PETSC_INTERN PetscErrorCode FETICreateCoarseMatrix(FETI, Vec, Mat *);
 PETSC_INTERN PetscErrorCode FETIRowSumCreate(Mat, PetscBool, FETIRowSum &);
 PETSC_INTERN PetscErrorCode FETIRowSumApply(FETIRowSum &, Vec, Vec);
+PETSC_INTERN PetscErrorCode FETIRowSumApplyWithGhosts(FETIRowSum &, Vec, const PetscScalar *, Vec);
+PETSC_INTERN PetscErrorCode FETIRowSumApplyRows(FETIRowSum &, Vec, PetscInt, const PetscInt[], Vec);
 PETSC_INTERN PetscErrorCode FETIRowSumDestroy(FETIRowSum &);
 PETSC_INTERN PetscErrorCode FETIAssembleCoarseMatrix(Mat, Vec, Mat *);
 
