@@ -26,6 +26,7 @@ static PetscErrorCode FETIReset(FETI feti)
   PetscCallCXX(std::vector<PetscInt>().swap(impl.grows));
   PetscCallCXX(std::vector<PetscInt>().swap(impl.gptr));
   PetscCallCXX(std::vector<PetscInt>().swap(impl.gcols));
+  PetscCallCXX(std::vector<PetscInt>().swap(impl.gfirst));
   PetscCallCXX(std::vector<PetscScalar>().swap(impl.gvals));
   PetscCallCXX(std::vector<PetscInt>().swap(impl.ghptr));
   PetscCallCXX(std::vector<PetscInt>().swap(impl.ghcols));

@@ -173,8 +173,25 @@ static PetscErrorCode FETISetUpCoarseRows(FETI feti)
     }
     PetscCallCXX(impl.gptr.push_back((PetscInt)impl.gcols.size()));
   }
-  PetscCall(PetscInfo(feti, "G and G' through %zu of %" PetscInt_FMT " local rows of R (the dofs B touches), %s\n", impl.grows.size(), m,
-                      impl.gpairs ? "rows summed in pairs (inode)" : "rows summed in order"));
+  /* R's rows within a subdomain hold its k <= 6 consecutive coarse columns: then only the first is kept, and the
+     products read 8 bytes per entry instead of 12 (they are memory-bound: ~13 ms per G at 10^6 unknowns) */
+  {
+    const PetscInt nrows  = (PetscInt)impl.grows.size();
+    PetscBool      contig = PETSC_TRUE;
+    for (PetscInt t = 0; t < nrows && contig; t++)
+      for (PetscInt k = impl.gptr[t]; k < impl.gptr[t + 1]; k++)
+        if (impl.gcols[k] != impl.gcols[impl.gptr[t]] + (k - impl.gptr[t])) {
+          contig = PETSC_FALSE;
+          break;
+        }
+    if (contig && nrows) {
+      PetscCallCXX(impl.gfirst.resize(nrows));
+      for (PetscInt t = 0; t < nrows; t++) impl.gfirst[t] = impl.gptr[t + 1] > impl.gptr[t] ? impl.gcols[impl.gptr[t]] : 0;
+      PetscCallCXX(std::vector<PetscInt>().swap(impl.gcols));
+    }
+  }
+  PetscCall(PetscInfo(feti, "G and G' through %zu of %" PetscInt_FMT " local rows of R (the dofs B touches), %s%s\n", impl.grows.size(), m,
+                      impl.gpairs ? "rows summed in pairs (inode)" : "rows summed in order", impl.gfirst.empty() ? "" : ", consecutive columns"));
   if (impl.grows.empty()) PetscCallCXX(impl.gptr.clear());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -199,10 +216,19 @@ PetscErrorCode FETIApplyG(FETI feti, Vec x, Vec y)
     PetscCall(VecGetArrayRead(impl.wp3, &w));
     PetscCall(VecGetArray(y, &ya));
     const PetscInt nrows = (PetscInt)impl.grows.size();
-    for (PetscInt t = 0; t < nrows; t++) {
-      const PetscScalar a = w[impl.grows[t]];
-      for (PetscInt k = impl.gptr[t]; k < impl.gptr[t + 1]; k++) ya[impl.gcols[k]] += a * impl.gvals[k];
-    }
+    if (impl.gfirst.empty())
+      for (PetscInt t = 0; t < nrows; t++) {
+        const PetscScalar a = w[impl.grows[t]];
+        for (PetscInt k = impl.gptr[t]; k < impl.gptr[t + 1]; k++) ya[impl.gcols[k]] += a * impl.gvals[k];
+      }
+    else /* the same terms in the same order, the columns counted from the row's first */
+      for (PetscInt t = 0; t < nrows; t++) {
+        const PetscScalar  a  = w[impl.grows[t]];
+        const PetscScalar *v  = impl.gvals.data() + impl.gptr[t];
+        PetscScalar       *yc = ya + impl.gfirst[t];
+        const PetscInt     n  = impl.gptr[t + 1] - impl.gptr[t];
+        for (PetscInt k = 0; k < n; k++) yc[k] += a * v[k];
+      }
     PetscCall(VecRestoreArray(y, &ya));
     PetscCall(VecRestoreArrayRead(impl.wp3, &w));
     PetscCall(PetscLogFlops(2.0 * impl.gptr[nrows]));
@@ -220,6 +246,18 @@ static inline PetscScalar RowOfRTimes(PetscInt n, const PetscInt *c, const Petsc
   if (pairs)
     for (; k < n - 1; k += 2) sum += v[k] * xa[c[k]] + v[k + 1] * xa[c[k + 1]];
   for (; k < n; k++) sum += v[k] * xa[c[k]];
+  return sum;
+}
+
+/* The same for a row whose columns are c0, c0 + 1, ...: the same terms, added in the same order */
+static inline PetscScalar ConsecutiveRowOfRTimes(PetscInt n, PetscInt c0, const PetscScalar *v, const PetscScalar *xa, PetscBool pairs)
+{
+  const PetscScalar *xc  = xa + c0;
+  PetscScalar        sum = 0;
+  PetscInt           k   = 0;
+  if (pairs)
+    for (; k < n - 1; k += 2) sum += v[k] * xc[k] + v[k + 1] * xc[k + 1];
+  for (; k < n; k++) sum += v[k] * xc[k];
   return sum;
 }
 
@@ -286,10 +324,16 @@ PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
     const PetscInt     nrows = (PetscInt)impl.grows.size();
     PetscCall(VecGetArrayRead(x, &xa));
     PetscCall(VecGetArray(impl.wp3, &w)); /* the dofs B does not touch keep what they held: B never reads them */
-    for (PetscInt t = 0; t < nrows; t++) {
-      const PetscInt k0 = impl.gptr[t];
-      w[impl.grows[t]]  = RowOfRTimes(impl.gptr[t + 1] - k0, impl.gcols.data() + k0, impl.gvals.data() + k0, xa, impl.gpairs);
-    }
+    if (impl.gfirst.empty())
+      for (PetscInt t = 0; t < nrows; t++) {
+        const PetscInt k0 = impl.gptr[t];
+        w[impl.grows[t]]  = RowOfRTimes(impl.gptr[t + 1] - k0, impl.gcols.data() + k0, impl.gvals.data() + k0, xa, impl.gpairs);
+      }
+    else
+      for (PetscInt t = 0; t < nrows; t++) {
+        const PetscInt k0 = impl.gptr[t];
+        w[impl.grows[t]]  = ConsecutiveRowOfRTimes(impl.gptr[t + 1] - k0, impl.gfirst[t], impl.gvals.data() + k0, xa, impl.gpairs);
+      }
     PetscCall(VecRestoreArray(impl.wp3, &w));
     PetscCall(VecRestoreArrayRead(x, &xa));
     PetscCall(PetscLogFlops(2.0 * impl.gptr[nrows]));

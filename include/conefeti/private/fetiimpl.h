@@ -162,7 +162,7 @@ struct FETI_Impl {
 
   /* G and G' through the rows of R at the dofs B touches (fetioperators.cxx, FETISetUpCoarseRows()): local primal
      index of each such row (increasing), CSR of those rows of R's diagonal block (local coarse columns) */
-  std::vector<PetscInt>    grows, gptr, gcols;
+  std::vector<PetscInt>    grows, gptr, gcols, gfirst; /* gfirst: the first column of each kept row when every row's columns are consecutive (gcols then empty) */
   std::vector<PetscScalar> gvals;
   PetscBool                gpairs        = PETSC_FALSE; /* R's products sum each row in pairs (PETSc's inode kernel): so do ours */
   PetscBool                growsset      = PETSC_FALSE; /* FETISetUpCoarseRows() ran; grows empty then: PETSc's products */
