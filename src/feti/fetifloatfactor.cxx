@@ -1,4 +1,5 @@
-/* A single-precision copy of a subdomain's block Cholesky factor (-feti_kplus_precision single).
+/* A single-precision copy of a block Cholesky factor: a subdomain's K_s for F (-feti_kplus_precision single) or
+   the interior block K_ii of the Dirichlet preconditioner (-feti_dirichlet_pc_precision single).
 
    The F products spend most of their time in the two triangular solves with the subdomains' factors, and
    each solve is bound by memory traffic: the factor is read twice per solve and is far larger than the
@@ -10,15 +11,16 @@
    Kreg in double.
 
    The source is PETSc's own factor of an SBAIJ matrix with block size 3 in its natural ordering (the nodes are
-   permuted into the matrix beforehand, PermuteByNodes()): U' D U with U unit upper block triangular. PETSc keeps,
+   permuted into the matrix beforehand, FETIPermuteByNodes()): U' D U with U unit upper block triangular. PETSc keeps,
    in column-major 3x3 blocks, the inverted diagonal blocks D_k^-1 first (block k at offset 9 k) and then, for
    block row k, the off-diagonal blocks of -U at offsets ai[k] .. ai[k+1]-1 with their block columns in aj. The
    layout is read through public calls (MatGetRowIJ() for ai, aj; MatSeqSBAIJGetArray() for the values) and
    checked against MatSolve() at setup (FETISubdomainSetUpFactorization(), -feti_check). */
 #include <conefeti/private/fetiimpl.h>
 
-/* Copy the double factor into ff (block size 3, natural ordering; see above) */
-PetscErrorCode FETIFloatFactorCreate(Mat factor, FETIFloatFactor &ff)
+/* Copy the double factor into ff (block size 3, natural ordering; see above); option: the caller's option that asked
+   for the copy, named by the errors */
+PetscErrorCode FETIFloatFactorCreate(Mat factor, const char option[], FETIFloatFactor &ff)
 {
   const PetscInt *ai, *aj;
   PetscInt        mbs, bs;
@@ -28,9 +30,9 @@ PetscErrorCode FETIFloatFactorCreate(Mat factor, FETIFloatFactor &ff)
   PetscFunctionBegin;
   PetscCall(PetscObjectTypeCompare((PetscObject)factor, MATSEQSBAIJ, &sbaij));
   PetscCall(MatGetBlockSize(factor, &bs));
-  PetscCheck(sbaij && bs == 3, PETSC_COMM_SELF, PETSC_ERR_SUP, "-feti_kplus_precision single: a float copy is made of PETSc's own block Cholesky factor (SBAIJ, block size 3) only");
+  PetscCheck(sbaij && bs == 3, PETSC_COMM_SELF, PETSC_ERR_SUP, "%s single: a float copy is made of PETSc's own block Cholesky factor (SBAIJ, block size 3) only", option);
   PetscCall(MatGetRowIJ(factor, 0, PETSC_FALSE, PETSC_TRUE, &mbs, &ai, &aj, &done));
-  PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "-feti_kplus_precision single: the factor does not give its block structure (MatGetRowIJ())");
+  PetscCheck(done, PETSC_COMM_SELF, PETSC_ERR_SUP, "%s single: the factor does not give its block structure (MatGetRowIJ())", option);
   PetscCall(MatSeqSBAIJGetArray(factor, &aa));
   ff.nb                = mbs;
   const PetscInt first = ai[0], nz = ai[mbs] - ai[0];

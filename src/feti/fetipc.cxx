@@ -302,7 +302,7 @@ PetscErrorCode FETISetUpPreconditionerData(FETI feti, PetscBool dirichlet)
             PetscCall(PetscRandomDestroy(&rnd));
             PetscCall(InteriorSolve(sd, x, yd));
           }
-          PetscCall(FETIFloatFactorCreate(sd.Fii, sd.fii));
+          PetscCall(FETIFloatFactorCreate(sd.Fii, "-feti_dirichlet_pc_precision", sd.fii));
           PetscCallCXX(sd.iiwork.resize(sd.iimap.size()));
           if (impl.check) {
             PetscCall(InteriorSolve(sd, x, sd.yi));

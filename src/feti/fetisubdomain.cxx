@@ -496,7 +496,7 @@ static PetscErrorCode FactorToFloat(FETI feti, FETISubdomain &sd, PetscInt s)
     PetscCall(VecDuplicate(x, &wf));
     PetscCall(FETISubdomainApplyKplus(sd, x, wd, PETSC_FALSE)); /* the double factor still */
   }
-  PetscCall(FETIFloatFactorCreate(sd.factor, sd.ffactor));
+  PetscCall(FETIFloatFactorCreate(sd.factor, "-feti_kplus_precision", sd.ffactor));
   if (impl.check) {
     PetscReal diff, norm, res, resf;
     PetscCall(FETISubdomainApplyKplus(sd, x, wf, PETSC_FALSE));

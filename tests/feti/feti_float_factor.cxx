@@ -122,7 +122,7 @@ static PetscErrorCode Bench(PetscRandom rnd, PetscInt k, PetscInt nsolves, Petsc
     PetscCall(MatGetFactor(Ap, MATSOLVERPETSC, MAT_FACTOR_CHOLESKY, &Fs[c]));
     PetscCall(MatCholeskyFactorSymbolic(Fs[c], Ap, nat, &info));
     PetscCall(MatCholeskyFactorNumeric(Fs[c], Ap, &info));
-    PetscCall(FETIFloatFactorCreate(Fs[c], ffs[c]));
+    PetscCall(FETIFloatFactorCreate(Fs[c], "-feti_kplus_precision", ffs[c]));
   }
   PetscCall(MatCreateVecs(Ap, &b, &x));
   PetscCall(VecSetRandom(b, rnd));
@@ -195,7 +195,7 @@ int main(int argc, char **argv)
       PetscCall(VecDuplicate(b, &xf));
       PetscCall(VecSetRandom(b, rnd));
       PetscCall(MatSolve(F, b, xd));
-      PetscCall(FETIFloatFactorCreate(F, ff));
+      PetscCall(FETIFloatFactorCreate(F, "-feti_kplus_precision", ff));
       PetscCall(VecCopy(b, xf));
       PetscCall(VecGetArray(xf, &a));
       PetscCall(FETIFloatFactorSolve(ff, a));

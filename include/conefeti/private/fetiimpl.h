@@ -212,7 +212,7 @@ PETSC_INTERN PetscErrorCode FETIPermuteByNodes(Mat, MatOrderingType, std::vector
 static inline PetscInt FETISubdomainFactorRow(const FETISubdomain &sd, PetscInt i) { return sd.iperm.empty() ? i : sd.iperm[i]; }
 
 /* fetifloatfactor.cxx */
-PETSC_INTERN PetscErrorCode FETIFloatFactorCreate(Mat, FETIFloatFactor &);
+PETSC_INTERN PetscErrorCode FETIFloatFactorCreate(Mat, const char[], FETIFloatFactor &);
 PETSC_INTERN PetscErrorCode FETIFloatFactorSolve(const FETIFloatFactor &, PetscScalar *);
 PETSC_INTERN double         FETIFloatFactorBytes(const FETIFloatFactor &);
 
