@@ -472,6 +472,8 @@ they exceed it and stops when the factorizations do . -feti_view                
 auto (default): redundant below -feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim, parallel from there . -feti_coarse_redundant_dim <10000> - the coarse dimension below which auto
 factors on every rank (a small factor per rank; no rank waits for the coarse solves of rank 0) . -feti_coarse_parallel_dim <50000> - the coarse dimension from which auto factors in parallel (a larger
 factor does not fit one rank's memory and time; docs/scale.md)
+. -feti_rigid_rows <true>      - G = R'B' and G' = B R from each touched node's coordinates and each subdomain's 6 x k transform of its rigid-body modes, where every
+  kernel is spanned by them (built from coordinates); false: from R's stored rows (k numbers per dof)
 - -feti_coarse_pc_factor_mat_solver_type ... - its options (single: on rank 0; redundant: -feti_coarse_redundant_...)
 
   Level: beginner
@@ -562,6 +564,8 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscCall(PetscOptionsInt("-feti_coarse_parallel_dim", "Coarse dimension from which -feti_coarse_mode auto factors G G' in parallel (MUMPS) instead of on rank 0", "FETISetUp",
                             impl.coarseparalleldim, &impl.coarseparalleldim, NULL));
   PetscCheck(impl.coarseparalleldim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_coarse_parallel_dim %" PetscInt_FMT " must be >= 0", impl.coarseparalleldim);
+  PetscCall(PetscOptionsBool("-feti_rigid_rows", "G and G' from the node coordinates and each subdomain's transform of its rigid-body modes (false: from the stored rows of R)", "FETISetUp",
+                             impl.rigidrows, &impl.rigidrows, NULL));
   {
     PetscReal mb = impl.membudget > 0 ? impl.membudget / 1048576.0 : 0; /* read by FETIGetMemoryBudget() at setup; listed here for -help */
     PetscCall(PetscOptionsReal("-feti_memory_budget", "Megabytes the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup)", "FETIGetMemoryBudget",

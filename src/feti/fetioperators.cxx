@@ -156,7 +156,11 @@ static PetscErrorCode FETISetUpCoarseRows(FETI feti)
   PetscCall(PetscObjectBaseTypeCompare((PetscObject)impl.R, MATMPIAIJ, &mpi));
   if (mpi) PetscCall(MatMPIAIJGetSeqAIJ(impl.R, &Rd, &Ro, &garray));
   if (Ro) PetscCall(MatGetLocalSize(Ro, NULL, &ocols));
-  if (ocols) PetscFunctionReturn(PETSC_SUCCESS);
+  if (ocols) { /* not block diagonal: PETSc's products (every rank takes part in the rigid rows' decision) */
+    impl.rigidrows = PETSC_FALSE;
+    PetscCall(FETISetUpRigidRows(feti, Rd, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(MatGetLocalSize(Rd, &m, NULL));
   PetscCall(MatSeqAIJGetCSRAndMemType(Rd, &ria, &rja, &rv, NULL));
   PetscCall(MatSeqAIJGetCSRAndMemType(Btd, &bia, NULL, &bv, NULL));
@@ -190,8 +194,19 @@ static PetscErrorCode FETISetUpCoarseRows(FETI feti)
       PetscCallCXX(std::vector<PetscInt>().swap(impl.gcols));
     }
   }
-  PetscCall(PetscInfo(feti, "G and G' through %zu of %" PetscInt_FMT " local rows of R (the dofs B touches), %s%s\n", impl.grows.size(), m,
-                      impl.gpairs ? "rows summed in pairs (inode)" : "rows summed in order", impl.gfirst.empty() ? "" : ", consecutive columns"));
+  {
+    PetscInt cstart;
+    PetscCall(MatGetOwnershipRangeColumn(impl.R, &cstart, NULL));
+    PetscCall(FETISetUpRigidRows(feti, Rd, cstart));
+  }
+  if (impl.rigid.use) {
+    PetscCall(PetscInfo(feti, "G and G' through the rigid-body modes of %zu nodes (%zu of %" PetscInt_FMT " local rows of R touched by B): coordinates and a 6 x k transform per subdomain\n",
+                        impl.rigid.nodebase.size(), impl.grows.size(), m));
+    for (auto *v : {&impl.gptr, &impl.gcols, &impl.gfirst}) PetscCallCXX(std::vector<PetscInt>().swap(*v));
+    PetscCallCXX(std::vector<PetscScalar>().swap(impl.gvals));
+  } else
+    PetscCall(PetscInfo(feti, "G and G' through %zu of %" PetscInt_FMT " local rows of R (the dofs B touches), %s%s\n", impl.grows.size(), m,
+                        impl.gpairs ? "rows summed in pairs (inode)" : "rows summed in order", impl.gfirst.empty() ? "" : ", consecutive columns"));
   if (impl.grows.empty()) PetscCallCXX(impl.gptr.clear());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -204,7 +219,18 @@ PetscErrorCode FETIApplyG(FETI feti, Vec x, Vec y)
   PetscFunctionBegin;
   PetscCall(PetscLogEventBegin(FETI_ApplyG, feti, 0, 0, 0));
   PetscCall(FETISetUpCoarseRows(feti));
-  if (impl.gptr.empty()) {
+  if (impl.rigid.use) {
+    const PetscScalar *w;
+    PetscScalar       *ya;
+    /* B' x at every dof of the touched nodes (its other rows are empty: 0 there) */
+    PetscCall(FETIRowSumApplyRows(impl.Btsum, x, (PetscInt)impl.rigid.rows.size(), impl.rigid.rows.data(), impl.wp3));
+    PetscCall(VecSet(y, 0.0));
+    PetscCall(VecGetArrayRead(impl.wp3, &w));
+    PetscCall(VecGetArray(y, &ya));
+    PetscCall(FETIRigidRowsApplyRt(feti, w, ya));
+    PetscCall(VecRestoreArray(y, &ya));
+    PetscCall(VecRestoreArrayRead(impl.wp3, &w));
+  } else if (impl.gptr.empty()) {
     PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp3));
     PetscCall(MatMultTranspose(impl.R, impl.wp3, y));
   } else {
@@ -279,6 +305,16 @@ static PetscErrorCode FETISetUpGhostCoarseRows(FETI feti)
   impl.ghostrows = -1;
   PetscCallMPI(MPI_Comm_size(comm, &size));
   if (size == 1 || impl.coarse.mode != FETI_COARSE_REDUNDANT || !impl.Bsum.scatter) PetscFunctionReturn(PETSC_SUCCESS);
+  if (impl.rigid.use) { /* the same for every rank: the rigid rows are used on all or on none */
+    PetscBool rigidok;
+    PetscCall(FETISetUpRigidGhostRows(feti, &rigidok));
+    if (!rigidok) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(VecGetLocalSize(impl.Bsum.ghosts, &nghost));
+    PetscCallCXX(impl.ghbuf.assign(nghost, 0.0));
+    impl.ghostrows = 1;
+    PetscCall(PetscInfo(feti, "G' in redundant coarse mode: R x at the %" PetscInt_FMT " ghost dofs of B from the full coarse solution, without their exchange\n", nghost));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   ok = impl.gptr.empty() ? 0 : 1;
   PetscCallMPI(MPIU_Allreduce(&ok, &all, 1, MPI_INT, MPI_MIN, comm));
   if (!all) PetscFunctionReturn(PETSC_SUCCESS);
@@ -317,7 +353,15 @@ PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
   PetscCall(PetscLogEventBegin(FETI_ApplyGt, feti, 0, 0, 0));
   PetscCall(FETISetUpCoarseRows(feti));
   if (!impl.ghostrows) PetscCall(FETISetUpGhostCoarseRows(feti));
-  if (impl.gptr.empty()) PetscCall(MatMult(impl.R, x, impl.wp3));
+  if (impl.rigid.use) {
+    const PetscScalar *xa;
+    PetscScalar       *w;
+    PetscCall(VecGetArrayRead(x, &xa));
+    PetscCall(VecGetArray(impl.wp3, &w)); /* the dofs outside the touched nodes keep what they held: B never reads them */
+    PetscCall(FETIRigidRowsApplyR(feti, xa, w));
+    PetscCall(VecRestoreArray(impl.wp3, &w));
+    PetscCall(VecRestoreArrayRead(x, &xa));
+  } else if (impl.gptr.empty()) PetscCall(MatMult(impl.R, x, impl.wp3));
   else {
     const PetscScalar *xa;
     PetscScalar       *w;
@@ -344,12 +388,15 @@ PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
     const PetscScalar *xa;
     const PetscInt     nghost = (PetscInt)impl.ghbuf.size();
     PetscCall(VecGetArrayRead(full, &xa));
-    for (PetscInt t = 0; t < nghost; t++) {
-      const PetscInt k0 = impl.ghptr[t];
-      impl.ghbuf[t]     = RowOfRTimes(impl.ghptr[t + 1] - k0, impl.ghcols.data() + k0, impl.ghvals.data() + k0, xa, impl.gpairs);
+    if (impl.rigid.use) PetscCall(FETIRigidRowsApplyGhosts(feti, xa, impl.ghbuf.data()));
+    else {
+      for (PetscInt t = 0; t < nghost; t++) {
+        const PetscInt k0 = impl.ghptr[t];
+        impl.ghbuf[t]     = RowOfRTimes(impl.ghptr[t + 1] - k0, impl.ghcols.data() + k0, impl.ghvals.data() + k0, xa, impl.gpairs);
+      }
+      PetscCall(PetscLogFlops(2.0 * impl.ghptr[nghost]));
     }
     PetscCall(VecRestoreArrayRead(full, &xa));
-    PetscCall(PetscLogFlops(2.0 * impl.ghptr[nghost]));
     if (impl.ghostrows == 1) { /* the first time: the exchange as well, and the local values must be its bits on every rank */
       const PetscScalar *ga;
       PetscMPIInt        same, all;

@@ -38,9 +38,35 @@ int main(int argc, char **argv)
   ftol = tol;
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-f_kplus_tol", &ftol, NULL));
   PetscCall(CreateTestScene(PETSC_COMM_WORLD, &fem));
+  PetscBool kernels = PETSC_FALSE;
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-test_kernels_without_coordinates", &kernels, NULL));
+  if (kernels) PetscCall(PetscInfoDeactivateClass(FETI_CLASSID)); /* -info: only of the problem checked */
   PetscCall(FEMCreateFETI(fem, &feti));
   PetscCall(FETISetFromOptions(feti));
   PetscCall(FETISetUp(feti));
+  {
+    /* -test_kernels_without_coordinates: the same problem again, each subdomain given the kernel basis the first
+       setup used (FETISetSubdomainKernel()) and no coordinates, as a user's own FEM code may do; G and G' then
+       keep R's stored rows (fetirigidrows.cxx) */
+    if (kernels) {
+      FETI     again;
+      PetscInt nlocal;
+      PetscCall(PetscInfoActivateClass(FETI_CLASSID));
+      PetscCall(FEMCreateFETI(fem, &again));
+      PetscCall(FETIGetNumSubdomains(feti, NULL, &nlocal, NULL));
+      for (PetscInt s = 0; s < nlocal; s++) {
+        Mat Rs;
+        PetscCall(FETIGetSubdomainKernel(feti, s, &Rs));
+        PetscCall(FETISetSubdomainKernel(again, s, Rs));
+        PetscCall(FETISetSubdomainCoordinates(again, s, NULL));
+        PetscCall(MatDestroy(&Rs));
+      }
+      PetscCall(FETIDestroy(&feti));
+      feti = again;
+      PetscCall(FETISetFromOptions(feti));
+      PetscCall(FETISetUp(feti));
+    }
+  }
   PetscCall(FETIGetOperators(feti, &F, &G, &P, &Q));
   PetscCall(FETIGetKernel(feti, &R));
   PetscCall(FETIGetGt(feti, &Gt));
@@ -129,16 +155,19 @@ int main(int argc, char **argv)
     PetscCall(VecNorm(d2, NORM_2, &a));
     PetscCall(VecNorm(d1, NORM_2, &b));
     PetscCall(Report("G' = B R", a / b, tol, &ok));
-    /* the shell G (the rows of R where B' x lives, fetioperators.cxx) against PETSc's R'(B' x): on one rank the
-       same sums in the same order, so the same bits (FETI's B' sums each column of B in row order, as PETSc's
-       MatMultTranspose() does); on more ranks PETSc adds the other ranks' parts in its own order */
+    /* the shell G (the rows of R where B' x lives, fetioperators.cxx) against PETSc's R'(B' x): with R's stored rows
+       (-feti_rigid_rows 0), on one rank the same sums in the same order, so the same bits (FETI's B' sums each
+       column of B in row order, as PETSc's MatMultTranspose() does); on more ranks PETSc adds the other ranks'
+       parts in its own order. Through the rigid-body modes (the default, fetirigidrows.cxx) it agrees to rounding */
     PetscMPIInt size;
+    PetscBool   rigid = PETSC_TRUE;
+    PetscCall(PetscOptionsGetBool(NULL, NULL, "-feti_rigid_rows", &rigid, NULL));
     PetscCallMPI(MPI_Comm_size(PETSC_COMM_WORLD, &size));
     PetscCall(VecSetRandom(d1, rnd));
     PetscCall(MatMult(G, d1, c1));
     PetscCall(MatMultTranspose(B, d1, p1));
     PetscCall(MatMultTranspose(R, p1, c2));
-    if (size == 1) {
+    if (size == 1 && !rigid) {
       const PetscScalar *u, *v;
       PetscInt           n, differ = 0;
       PetscCall(VecGetLocalSize(c1, &n));

@@ -107,6 +107,20 @@ struct FETICoarseSolver {
   PetscObjectState ystate = 0;
 };
 
+/* G and G' through R = Rhat T per subdomain: node coordinates and a 6 x k transform instead of R's stored rows
+   (fetirigidrows.cxx) */
+struct FETIRigidRows {
+  PetscBool                use = PETSC_FALSE;
+  std::vector<PetscInt>    subnode, subcoarse, subk; /* per local subdomain: its touched nodes subnode[s] .. subnode[s+1]-1, local coarse offset, k */
+  std::vector<PetscScalar> T;                        /* per local subdomain 36 numbers: T(m, j) at 6 j + m, zero-padded to 6 columns */
+  std::vector<PetscInt>    nodebase, rows;           /* per touched node: its first local primal dof; all three dofs of every touched node, increasing */
+  std::vector<PetscScalar> xyz;                      /* per touched node: X, Y, Z as in FETIRigidBodyModes() */
+  /* redundant coarse mode: B's ghost dofs (Bsum.garray) */
+  std::vector<PetscScalar> gxyz, gT, gbeta; /* per ghost dof X, Y, Z; per ghost subdomain T (36) and a work beta (6) */
+  std::vector<PetscInt>    gcomp, gsub;     /* per ghost dof: component, its subdomain in the tables below */
+  std::vector<PetscInt>    gsubk, gsubcoarse;
+};
+
 struct FETI_Impl {
   std::vector<FETISubdomain> sub;
   Mat                        B = nullptr;
@@ -142,6 +156,7 @@ struct FETI_Impl {
   FETICoarseMode     coarsemode         = FETI_COARSE_AUTO;            /* -feti_coarse_mode */
   PetscInt           coarseparalleldim  = 50000;                       /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
   PetscInt           coarseredundantdim = 10000;                       /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
+  PetscBool          rigidrows          = PETSC_TRUE;                  /* -feti_rigid_rows: G and G' through R = Rhat T where the kernels allow it */
 
   /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
   PetscReal memfactors = -1, memblocks = -1, membudget = -1; /* bytes; -1: not estimated (budget: unknown) */
@@ -173,6 +188,7 @@ struct FETI_Impl {
   std::vector<PetscInt>    ghptr, ghcols;
   std::vector<PetscScalar> ghvals, ghbuf; /* ghbuf: R x at Bsum.garray */
   PetscInt                 ghostrows = 0; /* 0 not set up, 1 set up and not yet checked, 2 in use, -1 not used */
+  FETIRigidRows            rigid;         /* set up with the rows above (FETISetUpCoarseRows()) */
 
   /* work vectors */
   Vec wp1 = nullptr, wp2 = nullptr, wd1 = nullptr, wd2 = nullptr, wc1 = nullptr, wc2 = nullptr;
@@ -225,6 +241,13 @@ PETSC_INTERN PetscErrorCode FETICreateGt(FETI, Mat *);
 PETSC_INTERN PetscErrorCode FETIKSPSetUpFactorization(FETI, KSP, PetscErrorCode (*)(void *), void *, PetscBool *);
 /* the MATSHELLs F, P, Q, PFP, K+ and G, at the end of FETISetUp() (fetioperators.cxx) */
 PETSC_INTERN PetscErrorCode FETICreateOperators_Private(FETI);
+
+/* fetirigidrows.cxx */
+PETSC_INTERN PetscErrorCode FETISetUpRigidRows(FETI, Mat, PetscInt);
+PETSC_INTERN PetscErrorCode FETIRigidRowsApplyRt(FETI, const PetscScalar *, PetscScalar *);
+PETSC_INTERN PetscErrorCode FETIRigidRowsApplyR(FETI, const PetscScalar *, PetscScalar *);
+PETSC_INTERN PetscErrorCode FETISetUpRigidGhostRows(FETI, PetscBool *);
+PETSC_INTERN PetscErrorCode FETIRigidRowsApplyGhosts(FETI, const PetscScalar *, PetscScalar *);
 
 /* feticoarse.cxx */
 PETSC_INTERN PetscErrorCode FETICoarseSolverCreate(FETI, Mat, FETICoarseSolver &, PetscBool *);
