@@ -27,7 +27,7 @@ usage: scripts/bench-scale.py [--sizes 2,4] [--full] [--ranks 1,2] [--repeat 1] 
 The wrapper events (the solve and setup stages, TaoSolve, QPSolve, the MatMult of every shell) are left out of
 "where the time goes": they contain the others.
 """
-import argparse, json, os, re, subprocess, sys
+import argparse, glob, json, os, re, subprocess, sys, tempfile
 
 import hugepages
 import logview
@@ -40,21 +40,30 @@ BEGIN, END = "<!-- bench-scale begin -->", "<!-- bench-scale end -->"
 PROGRAMS = {"conefeti": "conefeti", "gamg": os.path.join("tutorials", "contact", "gamg")}
 
 
+TIMES = tempfile.mkdtemp(prefix="bench-scale-")
+
+
 def command(build, program, ranks):
-    """One /usr/bin/time per rank, so that every rank reports its own peak resident set and CPU seconds"""
-    timed = ["/usr/bin/time", "-f", "bench-scale-maxrss-kb %M cpu %U %S", os.path.join(build, PROGRAMS[program])]
+    """One /usr/bin/time per rank, so that every rank reports its own peak resident set and CPU seconds, each into a
+    file of its own (under mpiexec the ranks' stderr lines reach the pipe interleaved, and a line may be lost or cut)"""
+    timed = ["sh", "-c", '/usr/bin/time -f "bench-scale-maxrss-kb %M cpu %U %S" -o "$0/time.${OMPI_COMM_WORLD_RANK:-0}" "$@"', TIMES, os.path.join(build, PROGRAMS[program])]
     if ranks == 1:
         return timed
     return ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + timed
 
 
-def run(cmd, env, key):
+def run(cmd, env, key, ranks):
+    for f in glob.glob(os.path.join(TIMES, "time.*")):
+        os.remove(f)
     out = subprocess.run(cmd, capture_output=True, text=True, env=env)
     line = next((l for l in out.stdout.splitlines() if l.startswith('{"%s":' % key)), None)
     if out.returncode not in (0, 2) or line is None:
         sys.exit("bench-scale: failed (%s):\n%s" % (" ".join(cmd), (out.stdout + out.stderr)[-3000:]))
-    rss = [int(m) * 1024 for m in re.findall(r"bench-scale-maxrss-kb (\d+)", out.stderr)]
-    cpu = sum(float(u) + float(s) for u, s in re.findall(r"bench-scale-maxrss-kb \d+ cpu ([\d.]+) ([\d.]+)", out.stderr))
+    times = "".join(open(f).read() for f in sorted(glob.glob(os.path.join(TIMES, "time.*"))))
+    rss = [int(m) * 1024 for m in re.findall(r"bench-scale-maxrss-kb (\d+)", times)]
+    if len(rss) != ranks:
+        sys.exit("bench-scale: /usr/bin/time reported %d of %d ranks (%s)" % (len(rss), ranks, " ".join(cmd)))
+    cpu = sum(float(u) + float(s) for u, s in re.findall(r"bench-scale-maxrss-kb \d+ cpu ([\d.]+) ([\d.]+)", times))
     j = json.loads(line)
     j["cpu"] = cpu  # user + system seconds of every rank, the whole program
     return j, sum(rss), out.stdout, out.returncode
@@ -105,8 +114,8 @@ def main():
         runs = {r: [] for r in ranks}
         for i in range(a.repeat):
             for r in ranks:
-                c, cmem, cout, crc = run(command(a.build, "conefeti", r) + scene + ["-summary_table", "0", "-log_view"] + a.extra.split(), env, "conefeti")
-                g, gmem, _, _ = run(command(a.build, "gamg", r) + scene, env, "gamg")
+                c, cmem, cout, crc = run(command(a.build, "conefeti", r) + scene + ["-summary_table", "0", "-log_view"] + a.extra.split(), env, "conefeti", r)
+                g, gmem, _, _ = run(command(a.build, "gamg", r) + scene, env, "gamg", r)
                 runs[r].append((c, cmem, cout, crc, g, gmem))
         for r in ranks:
             # the run with the median solve time stands for the rank count; every solve time is kept
