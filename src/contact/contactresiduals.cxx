@@ -11,6 +11,7 @@
    scene without any load has all scales 0; its exact solution is u = 0, lambda = 0, whose residuals are
    0 (0 over the smallest positive real), not 0/0. */
 #include <conefeti/private/contactmodelimpl.h>
+#include <conefeti/private/allgather.h>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -122,11 +123,9 @@ PetscErrorCode SubdomainBodies(ContactModel cm, std::vector<PetscInt> &start, st
   ContactModelData     &d    = *cm->data;
   MPI_Comm              comm = PetscObjectComm((PetscObject)cm);
   PetscInt              nlocal;
-  PetscMPIInt           size, n;
   std::vector<PetscInt> mine;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCall(FEMGetNumSubdomains(d.fem, NULL, &nlocal, NULL));
   for (PetscInt s = 0; s < nlocal; s++) {
     PetscInt b, primal;
@@ -134,12 +133,8 @@ PetscErrorCode SubdomainBodies(ContactModel cm, std::vector<PetscInt> &start, st
     PetscCall(FETIGetSubdomainOffset(d.feti, s, &primal, NULL));
     PetscCallCXX(mine.insert(mine.end(), {primal, b}));
   }
-  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
-  PetscCall(PetscMPIIntCast((PetscInt)mine.size(), &n));
-  PetscCallMPI(MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
-  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
-  std::vector<PetscInt> all(displs[size]);
-  PetscCallMPI(MPI_Allgatherv(mine.data(), n, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, comm));
+  std::vector<PetscInt> all;
+  PetscCall(ConeFETIAllgather(comm, mine, all));
   std::vector<std::pair<PetscInt, PetscInt>> pairs;
   for (size_t i = 0; i + 1 < all.size(); i += 2) PetscCallCXX(pairs.emplace_back(all[i], all[i + 1]));
   std::sort(pairs.begin(), pairs.end());

@@ -1,6 +1,7 @@
 /* Decomposition of bodies into subdomains (structured boxes of hexahedra, or METIS on the element dual
    graph), the distribution of subdomains over the ranks, and the replicated table of node copies. */
 #include <conefeti/private/femimpl.h>
+#include <conefeti/private/allgather.h>
 
 #include <metis.h>
 #include <algorithm>
@@ -237,12 +238,7 @@ PetscErrorCode FEMBuildLocalSubdomains(FEM fem)
       PetscCallCXX(mine.insert(mine.end(), {sd.body, n, sd.id, sd.primaloffset + 3 * (PetscInt)l}));
     }
   }
-  PetscMPIInt              nmine = (PetscMPIInt)mine.size();
-  std::vector<PetscMPIInt> counts(size), displs(size + 1, 0);
-  PetscCallMPI(MPI_Allgather(&nmine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
-  for (PetscMPIInt r = 0; r < size; r++) displs[r + 1] = displs[r] + counts[r];
-  PetscCallCXX(all.resize(displs[size]));
-  PetscCallMPI(MPI_Allgatherv(mine.data(), nmine, MPIU_INT, all.data(), counts.data(), displs.data(), MPIU_INT, comm));
+  PetscCall(ConeFETIAllgather(comm, mine, all));
   PetscCall(BuildCopyTable(all, impl.copies));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -18,6 +18,7 @@
    and -feti_kplus_memory_budget. On the brick at H/h = 6 (1029 dofs, |b| up to 654) only the subdomains with
    |b| <= 455 qualify (30 of 1536 at 10^6, on the brick's edges); on the paper's three large cubes all three get blocks (docs/scale.md, lever (a)). */
 #include <conefeti/private/fetiimpl.h>
+#include <conefeti/private/allgather.h>
 
 #include <algorithm>
 #include <cmath>
@@ -369,28 +370,14 @@ PetscErrorCode FETIChooseKplusBlocks(FETI feti, const std::vector<PetscInt> &gid
 {
   FETI_Impl          &impl = *feti->impl;
   MPI_Comm            comm = PetscObjectComm((PetscObject)feti);
-  PetscMPIInt         size, mine = (PetscMPIInt)(4 * gidx.size());
-  std::vector<int>    counts, displs;
   std::vector<double> local, all;
   PetscInt            nall;
   double              totalentries = 0, cap, used = 0;
   std::vector<size_t> order;
 
   PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_size(comm, &size));
-  PetscCallCXX(counts.resize(size));
-  PetscCallCXX(displs.resize(size));
   for (size_t i = 0; i < gidx.size(); i++) PetscCallCXX(local.insert(local.end(), {(double)gidx[i], (double)nb[i], (double)entries[i], (double)reads[i]}));
-  PetscCallMPI(MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
-  {
-    int off = 0;
-    for (PetscMPIInt r = 0; r < size; r++) {
-      displs[r] = off;
-      off += counts[r];
-    }
-    PetscCallCXX(all.resize(off));
-  }
-  PetscCallMPI(MPI_Allgatherv(local.data(), mine, MPI_DOUBLE, all.data(), counts.data(), displs.data(), MPI_DOUBLE, comm));
+  PetscCall(ConeFETIAllgather(comm, local, all));
   nall = (PetscInt)(all.size() / 4);
   for (PetscInt k = 0; k < nall; k++) totalentries += all[4 * k + 2]; /* in the ranks' order = the global numbers' order */
   cap = impl.kplusratio * totalentries;

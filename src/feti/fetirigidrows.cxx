@@ -21,6 +21,7 @@
    FETISetUpGhostCoarseRows()); here the ghost dofs get their node's coordinates and component and their
    subdomain's T once at setup, so that they are computed by the same expression as on their owner. */
 #include <conefeti/private/fetiimpl.h>
+#include <conefeti/private/allgather.h>
 
 #include <algorithm>
 #include <cmath>
@@ -252,7 +253,7 @@ PetscErrorCode FETISetUpRigidGhostRows(FETI feti, PetscBool *ok)
   FETIRigidRows                        &rr   = impl.rigid;
   MPI_Comm                              comm = PetscObjectComm((PetscObject)feti);
   PetscInt                              nghost;
-  PetscMPIInt                           mine = 1, all, size;
+  PetscMPIInt                           mine = 1, all;
   Vec                                   v;
   const PetscInt                        nfields = 5; /* X, Y, Z, component, global subdomain + 1 (0: no touched node there) */
   std::vector<std::vector<PetscScalar>> got(nfields);
@@ -279,10 +280,8 @@ PetscErrorCode FETISetUpRigidGhostRows(FETI feti, PetscBool *ok)
   }
   PetscCall(VecDestroy(&v));
   /* every subdomain's global index, k, global coarse offset and T (39 numbers) on every rank */
-  PetscCallMPI(MPI_Comm_size(comm, &size));
   const PetscInt           rec = 39, nsub = (PetscInt)rr.subk.size();
   std::vector<PetscScalar> minerec((size_t)rec * nsub), allrec;
-  std::vector<PetscMPIInt> counts(size), displs(size);
   for (PetscInt s = 0; s < nsub; s++) {
     PetscScalar *r = minerec.data() + (size_t)rec * s;
     r[0]           = (PetscScalar)(impl.firstsub + s);
@@ -290,18 +289,9 @@ PetscErrorCode FETISetUpRigidGhostRows(FETI feti, PetscBool *ok)
     r[2]           = (PetscScalar)impl.sub[s].coarseoffset;
     std::copy(rr.T.begin() + 36 * s, rr.T.begin() + 36 * (s + 1), r + 3);
   }
-  PetscMPIInt mycount;
-  PetscCall(PetscMPIIntCast((PetscInt)minerec.size(), &mycount));
-  PetscCallMPI(MPI_Allgather(&mycount, 1, MPI_INT, counts.data(), 1, MPI_INT, comm));
-  PetscMPIInt total = 0;
-  for (PetscMPIInt r = 0; r < size; r++) {
-    displs[r] = total;
-    total += counts[r];
-  }
-  PetscCallCXX(allrec.resize(total));
-  PetscCallMPI(MPI_Allgatherv(minerec.data(), mycount, MPIU_SCALAR, allrec.data(), counts.data(), displs.data(), MPIU_SCALAR, comm));
+  PetscCall(ConeFETIAllgather(comm, minerec, allrec));
   std::map<PetscInt, PetscInt> where; /* global subdomain -> its record */
-  for (PetscInt r = 0; r < total / rec; r++) where[(PetscInt)PetscRealPart(allrec[(size_t)rec * r])] = r;
+  for (PetscInt r = 0; r < (PetscInt)allrec.size() / rec; r++) where[(PetscInt)PetscRealPart(allrec[(size_t)rec * r])] = r;
   /* the ghost subdomains' table, and each ghost dof's entry in it */
   std::map<PetscInt, PetscInt> table;
   PetscCallCXX(rr.gxyz.assign(3 * (size_t)nghost, 0.0));
