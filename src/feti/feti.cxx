@@ -1025,6 +1025,13 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "primal dimension %" PetscInt_FMT ", dual dimension %" PetscInt_FMT ", coarse dimension %" PetscInt_FMT "\n", impl.nprimal, nd, impl.ncoarse));
     PetscCall(PetscViewerASCIIPrintf(viewer, "rows: %" PetscInt_FMT " gluing, %" PetscInt_FMT " dirichlet, %" PetscInt_FMT " contact normal, %" PetscInt_FMT " contact tangential\n", counts[0],
                                      counts[1], counts[2], counts[3]));
+    if (impl.growsset) { /* the choice of FETISetUpCoarseRows(), made at the first product with G or G' */
+      PetscInt nodes = (PetscInt)impl.rigid.nodebase.size(), rows = (PetscInt)impl.grows.size();
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &nodes, 1, MPIU_INT, MPI_SUM, comm));
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &rows, 1, MPIU_INT, MPI_SUM, comm));
+      if (impl.rigid.use) PetscCall(PetscViewerASCIIPrintf(viewer, "G and G': through the rigid-body modes of the %" PetscInt_FMT " nodes B touches (-feti_rigid_rows)\n", nodes));
+      else PetscCall(PetscViewerASCIIPrintf(viewer, "G and G': through the stored rows of R at the %" PetscInt_FMT " dofs B touches\n", rows));
+    }
     if (!impl.sub.empty()) {
       PC            pc;
       MatSolverType type;
