@@ -27,7 +27,7 @@ usage: scripts/bench-scale.py [--sizes 2,4] [--full] [--ranks 1,2] [--repeat 1] 
 The wrapper events (the solve and setup stages, TaoSolve, QPSolve, the MatMult of every shell) are left out of
 "where the time goes": they contain the others.
 """
-import argparse, glob, json, os, re, subprocess, sys, tempfile
+import argparse, atexit, glob, json, os, re, shutil, subprocess, sys, tempfile
 
 import hugepages
 import logview
@@ -41,6 +41,7 @@ PROGRAMS = {"conefeti": "conefeti", "gamg": os.path.join("tutorials", "contact",
 
 
 TIMES = tempfile.mkdtemp(prefix="bench-scale-")
+atexit.register(shutil.rmtree, TIMES, True)
 
 
 def command(build, program, ranks):

@@ -157,8 +157,7 @@ static PetscErrorCode FETISetUpCoarseRows(FETI feti)
   if (mpi) PetscCall(MatMPIAIJGetSeqAIJ(impl.R, &Rd, &Ro, &garray));
   if (Ro) PetscCall(MatGetLocalSize(Ro, NULL, &ocols));
   if (ocols) { /* not block diagonal: PETSc's products (every rank takes part in the rigid rows' decision) */
-    impl.rigidrows = PETSC_FALSE;
-    PetscCall(FETISetUpRigidRows(feti, Rd, 0));
+    PetscCall(FETISetUpRigidRows(feti, NULL, 0));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(MatGetLocalSize(Rd, &m, NULL));

@@ -110,25 +110,21 @@ PetscErrorCode FitTransform(PetscInt n, PetscInt k, const std::vector<PetscScala
 } // namespace
 
 /* Sets up impl.rigid from the touched dofs impl.grows (increasing local primal indices) and R's diagonal block Rd
-   (local coarse columns from cstart). Collective: the rigid rows are used on every rank or on none. */
+   (local coarse columns from cstart; NULL: R is not block diagonal, no rigid rows here). Collective: the rigid rows
+   are used on every rank or on none. */
 PetscErrorCode FETISetUpRigidRows(FETI feti, Mat Rd, PetscInt cstart)
 {
   FETI_Impl     &impl = *feti->impl;
   FETIRigidRows &rr   = impl.rigid;
   MPI_Comm       comm = PetscObjectComm((PetscObject)feti);
-  PetscMPIInt    mine = 1, all;
-  PetscInt       m;
+  PetscMPIInt    mine = impl.rigidrows && Rd ? 1 : 0, all;
 
   PetscFunctionBegin;
-  rr = FETIRigidRows();
-  if (!impl.rigidrows) mine = 0;
+  rr                    = FETIRigidRows();
   const PetscInt   *ria = nullptr, *rja = nullptr;
   PetscScalar      *rv = nullptr;
   std::vector<char> touchednode;
-  if (mine) {
-    PetscCall(MatGetLocalSize(Rd, &m, NULL));
-    PetscCall(MatSeqAIJGetCSRAndMemType(Rd, &ria, &rja, &rv, NULL));
-  }
+  if (mine) PetscCall(MatSeqAIJGetCSRAndMemType(Rd, &ria, &rja, &rv, NULL));
   for (size_t s = 0; s < impl.sub.size() && mine; s++) {
     const FETISubdomain &sd = impl.sub[s];
     if (!sd.coords || sd.n % 3) {
