@@ -8,7 +8,8 @@ packages=(
   g++ make cmake pkg-config git         # toolchain
   petsc-dev slepc-dev                   # PETSc 3.18 (OpenMPI, HDF5, MUMPS, SuiteSparse) and SLEPc
   libopenblas0-serial                   # optimized BLAS for CHOLMOD/MUMPS (8x faster factorizations than the reference BLAS)
-  libmetis-dev                          # graph partitioning of meshes
+  libmetis-dev                          # graph partitioning of meshes (and of the coarse problem)
+  libsuitesparse-dev                    # CHOLMOD's headers (PETSc's dependency; the split coarse solve calls it directly)
   libhdf5-openmpi-dev                   # hdf5.h for PETSc's HDF5 viewer (the HDF5 + XDMF output); PETSc links this HDF5
   openmpi-bin                           # mpiexec for the parallel tests
   clang-format                          # style check (a test)

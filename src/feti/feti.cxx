@@ -468,8 +468,10 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 they exceed it and stops when the factorizations do . -feti_view                   - view the problem after setup . -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of
 `FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8, unpreconditioned norm) . -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
 . -feti_sub_pc_factor_mat_solver_type <cholmod,mumps,petsc> - the sparse Cholesky of the subdomains
-. -feti_coarse_mode <auto,single,redundant,parallel> - the direct solver of G G': factored once on rank 0 (solves gather there; the same numbers as on one rank), on every rank, or in parallel (MUMPS);
-auto (default): redundant below -feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim, parallel from there . -feti_coarse_redundant_dim <10000> - the coarse dimension below which auto
+. -feti_coarse_mode <auto,single,redundant,parallel,split> - the direct solver of G G': factored once on rank 0 (solves gather there; the same numbers as on one rank), on every rank, in parallel
+(MUMPS), or by two parts and a separator, rank 0 solving one part and rank 1 the other (split; the same numbers on any number of ranks, one included); auto (default): split from -feti_coarse_split_dim
+and redundant below it, both below -feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim, parallel from there . -feti_coarse_split_dim <1000> - the coarse dimension from which auto
+splits (each of two ranks reads half of the factor per solve; docs/scale.md) . -feti_coarse_redundant_dim <10000> - the coarse dimension below which auto
 factors on every rank (a small factor per rank; no rank waits for the coarse solves of rank 0) . -feti_coarse_parallel_dim <50000> - the coarse dimension from which auto factors in parallel (a larger
 factor does not fit one rank's memory and time; docs/scale.md)
 . -feti_rigid_rows <true>      - G = R'B' and G' = B R from each touched node's coordinates and each subdomain's 6 x k transform of its rigid-body modes, where every
@@ -554,13 +556,18 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   }
   PetscCall(PetscOptionsBool("-feti_kplus_explicit_schur", "Build the explicit K+ blocks from a MUMPS Schur complement (false: by solves with the subdomain factor)", "FETISetKplusExplicit",
                              impl.kplusschur, &impl.kplusschur, NULL));
-  PetscCall(PetscOptionsEnum("-feti_coarse_mode",
-                             "Direct solver of G G': factored on rank 0 only (single), on every rank (redundant), in parallel by MUMPS (parallel), or auto: redundant below "
-                             "-feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim, parallel from there",
-                             "FETISetUp", FETICoarseModes, (PetscEnum)impl.coarsemode, (PetscEnum *)&impl.coarsemode, NULL));
+  PetscCall(PetscOptionsEnum(
+      "-feti_coarse_mode",
+      "Direct solver of G G': factored on rank 0 only (single), on every rank (redundant), in parallel by MUMPS (parallel), by two parts and a separator, one part per "
+      "rank (split), or auto: split from -feti_coarse_split_dim and redundant below it, both below -feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim, parallel from there",
+      "FETISetUp", FETICoarseModes, (PetscEnum)impl.coarsemode, (PetscEnum *)&impl.coarsemode, NULL));
   PetscCall(PetscOptionsInt("-feti_coarse_redundant_dim", "Coarse dimension below which -feti_coarse_mode auto factors G G' on every rank (redundant) instead of on rank 0 alone", "FETISetUp",
                             impl.coarseredundantdim, &impl.coarseredundantdim, NULL));
   PetscCheck(impl.coarseredundantdim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_coarse_redundant_dim %" PetscInt_FMT " must be >= 0", impl.coarseredundantdim);
+  PetscCall(PetscOptionsInt("-feti_coarse_split_dim",
+                            "Coarse dimension from which -feti_coarse_mode auto solves G G' by two parts and a separator, one part per rank (split), below -feti_coarse_redundant_dim", "FETISetUp",
+                            impl.coarsesplitdim, &impl.coarsesplitdim, NULL));
+  PetscCheck(impl.coarsesplitdim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_coarse_split_dim %" PetscInt_FMT " must be >= 0", impl.coarsesplitdim);
   PetscCall(PetscOptionsInt("-feti_coarse_parallel_dim", "Coarse dimension from which -feti_coarse_mode auto factors G G' in parallel (MUMPS) instead of on rank 0", "FETISetUp",
                             impl.coarseparalleldim, &impl.coarseparalleldim, NULL));
   PetscCheck(impl.coarseparalleldim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_coarse_parallel_dim %" PetscInt_FMT " must be >= 0", impl.coarseparalleldim);

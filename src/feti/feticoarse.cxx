@@ -24,7 +24,7 @@
    On one rank all four are one sequential Cholesky. */
 #include <conefeti/private/fetiimpl.h>
 
-const char *const FETICoarseModes[] = {"single", "redundant", "parallel", "auto", "FETICoarseMode", "FETI_COARSE_", NULL};
+const char *const FETICoarseModes[] = {"single", "redundant", "parallel", "auto", "split", "FETICoarseMode", "FETI_COARSE_", NULL};
 
 /* a placeholder of the factored matrix's size: the factor lives on, the matrix it came from does not */
 static PetscErrorCode ReleaseFactoredMatrix(KSP ksp)
@@ -77,13 +77,38 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
   PetscCall(PetscSNPrintf(coarseprefix, sizeof(coarseprefix), "%sfeti_coarse_", prefix ? prefix : ""));
   PetscCall(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(A, MAT_SPD, PETSC_TRUE));
-  cs.mode = size == 1 ? FETI_COARSE_SINGLE : impl.coarsemode;
+  cs.mode = impl.coarsemode;
   if (cs.mode == FETI_COARSE_AUTO) {
     PetscInt N;
     PetscCall(MatGetSize(A, &N, NULL));
-    cs.mode = N >= impl.coarseparalleldim ? FETI_COARSE_PARALLEL : (N < impl.coarseredundantdim ? FETI_COARSE_REDUNDANT : FETI_COARSE_SINGLE);
-    PetscCall(PetscInfo(feti, "-feti_coarse_mode auto: coarse dimension %" PetscInt_FMT " (-feti_coarse_redundant_dim %" PetscInt_FMT ", -feti_coarse_parallel_dim %" PetscInt_FMT "): %s\n", N,
-                        impl.coarseredundantdim, impl.coarseparalleldim, FETICoarseModes[cs.mode]));
+    if (N >= impl.coarseparalleldim) cs.mode = FETI_COARSE_PARALLEL;
+    else if (N >= impl.coarseredundantdim) cs.mode = FETI_COARSE_SINGLE;
+    else cs.mode = N >= impl.coarsesplitdim ? FETI_COARSE_SPLIT : FETI_COARSE_REDUNDANT;
+    PetscCall(PetscInfo(feti,
+                        "-feti_coarse_mode auto: coarse dimension %" PetscInt_FMT " (-feti_coarse_split_dim %" PetscInt_FMT ", -feti_coarse_redundant_dim %" PetscInt_FMT
+                        ", -feti_coarse_parallel_dim %" PetscInt_FMT "): %s\n",
+                        N, impl.coarsesplitdim, impl.coarseredundantdim, impl.coarseparalleldim, FETICoarseModes[cs.mode]));
+  }
+  /* split runs the same arithmetic on one rank (both parts in turn), so that its bits do not depend on the ranks */
+  if (size == 1 && cs.mode != FETI_COARSE_SPLIT) cs.mode = FETI_COARSE_SINGLE;
+  if (cs.mode == FETI_COARSE_SPLIT) {
+    Mat     *gathered;
+    IS       rows;
+    PetscInt N;
+    PetscCall(MatGetSize(A, &N, NULL));
+    PetscCall(ISCreateStride(PETSC_COMM_SELF, N, 0, 1, &rows));
+    PetscCall(MatCreateSubMatrices(A, 1, &rows, &rows, MAT_INITIAL_MATRIX, &gathered));
+    PetscCall(ISDestroy(&rows));
+    PetscCall(FETICoarseSplitCreate(comm, gathered[0], &cs.split, failed));
+    PetscCall(MatDestroySubMatrices(1, &gathered));
+    if (size > 1) {
+      Vec x;
+      PetscCall(MatCreateVecs(A, &x, NULL));
+      PetscCall(VecScatterCreateToAll(x, &cs.scatter, &cs.x0));
+      PetscCall(VecDuplicate(cs.x0, &cs.y0));
+      PetscCall(VecDestroy(&x));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (cs.mode == FETI_COARSE_SINGLE || (cs.mode == FETI_COARSE_REDUNDANT && size > 1)) {
     /* single: rank 0 asks for every row and column, the others for nothing; redundant: every rank asks for all */
@@ -148,13 +173,29 @@ PetscErrorCode FETICoarseSolverApply(FETICoarseSolver &cs, Vec x, Vec y)
   PetscFunctionBegin;
   cs.yid = -1;
   if (!cs.scatter) {
-    PetscCall(KSPSolve(cs.ksp, x, y));
+    if (cs.split) { /* one rank */
+      const PetscScalar *b;
+      PetscScalar       *v;
+      PetscCall(VecGetArrayRead(x, &b));
+      PetscCall(VecGetArrayWrite(y, &v));
+      PetscCall(FETICoarseSplitSolve(cs.split, b, v));
+      PetscCall(VecRestoreArrayWrite(y, &v));
+      PetscCall(VecRestoreArrayRead(x, &b));
+    } else PetscCall(KSPSolve(cs.ksp, x, y));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(VecScatterBegin(cs.scatter, x, cs.x0, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(cs.scatter, x, cs.x0, INSERT_VALUES, SCATTER_FORWARD));
-  if (cs.ksp) PetscCall(KSPSolve(cs.ksp, cs.x0, cs.y0));
-  if (cs.mode == FETI_COARSE_REDUNDANT) { /* the own part of the full solution: no message */
+  if (cs.split) {
+    const PetscScalar *b;
+    PetscScalar       *v;
+    PetscCall(VecGetArrayRead(cs.x0, &b));
+    PetscCall(VecGetArrayWrite(cs.y0, &v));
+    PetscCall(FETICoarseSplitSolve(cs.split, b, v));
+    PetscCall(VecRestoreArrayWrite(cs.y0, &v));
+    PetscCall(VecRestoreArrayRead(cs.x0, &b));
+  } else if (cs.ksp) PetscCall(KSPSolve(cs.ksp, cs.x0, cs.y0));
+  if (cs.mode == FETI_COARSE_REDUNDANT || cs.mode == FETI_COARSE_SPLIT) { /* the own part of the full solution: no message */
     const PetscScalar *all;
     PetscScalar       *mine;
     PetscInt           lo, hi;
@@ -192,10 +233,10 @@ PetscErrorCode FETICoarseSolverView(FETICoarseSolver &cs, PetscViewer viewer)
 {
   PetscFunctionBegin;
   PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solver (G G'), -feti_coarse_mode %s%s:\n", FETICoarseModes[cs.mode],
-                                   cs.scatter ? (cs.mode == FETI_COARSE_REDUNDANT ? " (factored on every rank, rank 0's shown)" : " (factored on rank 0)") : ""));
+                                   cs.scatter && !cs.split ? (cs.mode == FETI_COARSE_REDUNDANT ? " (factored on every rank, rank 0's shown)" : " (factored on rank 0)") : ""));
   PetscCall(PetscViewerASCIIPushTab(viewer));
-  if (cs.scatter) { /* a sequential factor (single: on rank 0 only, cs.ksp is NULL elsewhere); rank 0's is shown */
-    PetscViewer sub;
+  if (cs.split) PetscCall(FETICoarseSplitView(cs.split, viewer));
+  else if (cs.scatter) { /* a sequential factor (single: on rank 0 only, cs.ksp is NULL elsewhere); rank 0's is shown */ PetscViewer sub;
     PetscCall(PetscViewerGetSubViewer(viewer, PETSC_COMM_SELF, &sub));
     PetscMPIInt rank;
     PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)viewer), &rank));
@@ -210,6 +251,7 @@ PetscErrorCode FETICoarseSolverDestroy(FETICoarseSolver &cs)
 {
   PetscFunctionBegin;
   PetscCall(KSPDestroy(&cs.ksp));
+  PetscCall(FETICoarseSplitDestroy(&cs.split));
   PetscCall(VecScatterDestroy(&cs.scatter));
   PetscCall(VecDestroy(&cs.x0));
   PetscCall(VecDestroy(&cs.y0));

@@ -303,7 +303,7 @@ static PetscErrorCode FETISetUpGhostCoarseRows(FETI feti)
   PetscFunctionBegin;
   impl.ghostrows = -1;
   PetscCallMPI(MPI_Comm_size(comm, &size));
-  if (size == 1 || impl.coarse.mode != FETI_COARSE_REDUNDANT || !impl.Bsum.scatter) PetscFunctionReturn(PETSC_SUCCESS);
+  if (size == 1 || (impl.coarse.mode != FETI_COARSE_REDUNDANT && impl.coarse.mode != FETI_COARSE_SPLIT) || !impl.Bsum.scatter) PetscFunctionReturn(PETSC_SUCCESS);
   if (impl.rigid.use) { /* the same for every rank: the rigid rows are used on all or on none */
     PetscBool rigidok;
     PetscCall(FETISetUpRigidGhostRows(feti, &rigidok));
@@ -311,7 +311,7 @@ static PetscErrorCode FETISetUpGhostCoarseRows(FETI feti)
     PetscCall(VecGetLocalSize(impl.Bsum.ghosts, &nghost));
     PetscCallCXX(impl.ghbuf.assign(nghost, 0.0));
     impl.ghostrows = 1;
-    PetscCall(PetscInfo(feti, "G' in redundant coarse mode: R x at the %" PetscInt_FMT " ghost dofs of B from the full coarse solution, without their exchange\n", nghost));
+    PetscCall(PetscInfo(feti, "G' in %s coarse mode: R x at the %" PetscInt_FMT " ghost dofs of B from the full coarse solution, without their exchange\n", FETICoarseModes[impl.coarse.mode], nghost));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   ok = impl.gptr.empty() ? 0 : 1;
@@ -338,7 +338,7 @@ static PetscErrorCode FETISetUpGhostCoarseRows(FETI feti)
     PetscCall(MatDestroySubMatrices(1, &sub));
   }
   impl.ghostrows = 1;
-  PetscCall(PetscInfo(feti, "G' in redundant coarse mode: R x at the %" PetscInt_FMT " ghost dofs of B from the full coarse solution, without their exchange\n", nghost));
+  PetscCall(PetscInfo(feti, "G' in %s coarse mode: R x at the %" PetscInt_FMT " ghost dofs of B from the full coarse solution, without their exchange\n", FETICoarseModes[impl.coarse.mode], nghost));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -86,7 +86,9 @@ typedef enum {
   FETI_COARSE_SINGLE,
   FETI_COARSE_REDUNDANT,
   FETI_COARSE_PARALLEL,
-  FETI_COARSE_AUTO /* redundant below -feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim, parallel from there (resolved in FETICoarseSolverCreate()) */
+  FETI_COARSE_AUTO, /* split from -feti_coarse_split_dim, redundant below it, both only below -feti_coarse_redundant_dim; single below -feti_coarse_parallel_dim, parallel from there (resolved in
+                       FETICoarseSolverCreate()) */
+  FETI_COARSE_SPLIT /* two parts and a separator, one part per rank (feticoarsesplit.cxx) */
 } FETICoarseMode;
 PETSC_INTERN const char *const FETICoarseModes[];
 /* the two halves of a product with Q = G'(G G')^-1 G besides the coarse solve (-log_view) */
@@ -98,6 +100,12 @@ PETSC_INTERN PetscLogEvent FETI_Kernels, FETI_Reorder;
 /* the set-up of a FETI preconditioner (boundary masks; the Dirichlet preconditioner's interior factors), inside FETISetUp's event */
 PETSC_INTERN PetscLogEvent FETI_PCSetUp;
 
+struct FETICoarseSplit; /* feticoarsesplit.cxx */
+PETSC_INTERN PetscErrorCode FETICoarseSplitCreate(MPI_Comm, Mat, FETICoarseSplit **, PetscBool *);
+PETSC_INTERN PetscErrorCode FETICoarseSplitSolve(FETICoarseSplit *, const PetscScalar *, PetscScalar *);
+PETSC_INTERN PetscErrorCode FETICoarseSplitView(FETICoarseSplit *, PetscViewer);
+PETSC_INTERN PetscErrorCode FETICoarseSplitDestroy(FETICoarseSplit **);
+
 struct FETICoarseSolver {
   FETICoarseMode   mode    = FETI_COARSE_SINGLE;
   KSP              ksp     = nullptr; /* single mode: on rank 0 only */
@@ -105,6 +113,7 @@ struct FETICoarseSolver {
   Vec              x0 = nullptr, y0 = nullptr;
   PetscInt64       yid    = -1; /* redundant on several ranks: the (distributed) solution whose full copy y0 holds */
   PetscObjectState ystate = 0;
+  FETICoarseSplit *split  = nullptr; /* split mode */
 };
 
 /* G and G' through R = Rhat T per subdomain: node coordinates and a 6 x k transform instead of R's stored rows
@@ -156,6 +165,7 @@ struct FETI_Impl {
   FETICoarseMode     coarsemode         = FETI_COARSE_AUTO;            /* -feti_coarse_mode */
   PetscInt           coarseparalleldim  = 50000;                       /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
   PetscInt           coarseredundantdim = 10000;                       /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
+  PetscInt           coarsesplitdim     = 1000;                        /* -feti_coarse_split_dim: auto's switch from redundant to split */
   PetscBool          rigidrows          = PETSC_TRUE;                  /* -feti_rigid_rows: G and G' through R = Rhat T where the kernels allow it */
 
   /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
