@@ -11,9 +11,10 @@
            [  M_0'       M_1'   L_S ] [    0       0     L_S' ]      L_S L_S' = A_SS - M_0'M_0 - M_1'M_1   (dense)
 
    A solve is then z_p = L_p^-1 P_p b_p for each part, x_S = (L_S L_S')^-1 (b_S - M_0'z_0 - M_1'z_1), and
-   x_p = P_p' L_p^-T (z_p - M_p x_S). On two or more ranks rank 0 does part 0 and rank 1 part 1 (one message of n_S
-   values between them, and one of the parts' solutions); the separator's dense solve is done by every rank. Each of
-   the two reads about half of the factor instead of all of it. On one rank the same arithmetic runs for both parts
+   x_p = P_p' L_p^-T (z_p - M_p x_S). On two or more ranks rank 0 does part 0 and rank 1 part 1 (one reduction of
+   n_S values, and one collective that hands the parts' solutions to all); the separator's dense solve is done by
+   every rank. Each of the two reads about half of the factor instead of all of it. Each part is ordered by CAMD
+   together with S, S constrained last, so that M_p (the fill into S's rows) stays small. On one rank the same arithmetic runs for both parts
    in turn, so the results are the same bits on any number of ranks: the separator and both factors come from the
    same gathered matrix, and the two parts' sums M_0'z_0 + M_1'z_1 are added in the same order (a sum of two terms,
    or of two terms and zeros, does not depend on the order of the MPI reduction). */
@@ -25,13 +26,12 @@
 #include <algorithm>
 
 struct FETICoarseSplit {
-  MPI_Comm              comm = MPI_COMM_NULL;
-  PetscMPIInt           size = 1, rank = 0;
-  PetscInt              N = 0;
-  std::vector<PetscInt> part[2]; /* the original indices of I_0 and I_1, increasing */
-  std::vector<PetscInt> sep;     /* those of S */
-  bool                  here[2] = {false, false};
-  /* the parts this rank solves */
+  MPI_Comm                 comm = MPI_COMM_NULL;
+  PetscMPIInt              size = 1, rank = 0;
+  PetscInt                 N = 0;
+  std::vector<PetscInt>    part[2];                  /* the original indices of I_0 and I_1, increasing */
+  std::vector<PetscInt>    sep;                      /* those of S */
+  bool                     here[2] = {false, false}; /* the parts this rank solves */
   bool                     started = false;
   cholmod_common           cc;
   cholmod_factor          *L[2]   = {nullptr, nullptr};
