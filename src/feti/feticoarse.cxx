@@ -1,5 +1,5 @@
 /* The direct solver of a coarse matrix (G G', or G_A G_A' for a row subset), options prefix feti_coarse_.
-   Three ways to spread it over the ranks (-feti_coarse_mode):
+   Four ways to spread it over the ranks (-feti_coarse_mode):
      single     the matrix is gathered on rank 0, factored there once and only there; a solve gathers the
                 right-hand side there and sends the solution back. One copy of the factor in all, and the
                 same numbers as on one rank (the gathered matrix is the same, entry for entry).
@@ -10,7 +10,13 @@
      parallel   a parallel Cholesky (MUMPS unless -feti_coarse_pc_factor_mat_solver_type says otherwise)
                 on all ranks: the factor is distributed, for coarse problems too large for one rank; the
                 rounding then depends on the distribution.
-     auto       (default) redundant for a coarse dimension below -feti_coarse_redundant_dim (10 000), single below
+     split      every rank gathers the matrix; a METIS separator splits it into two parts, which rank 0 and rank 1
+                solve, one each, and a small dense separator that every rank solves (feticoarsesplit.cxx): each of
+                two ranks reads half of the factor per solve, and every rank keeps the whole solution as in
+                redundant mode. CHOLMOD whatever the package options say. One rank runs both parts, so the numbers
+                are the same on any number of ranks (not those of the other modes).
+     auto       (default) split from -feti_coarse_split_dim (1000) and redundant below it, both for a coarse dimension
+                below -feti_coarse_redundant_dim (10 000), single below
                 -feti_coarse_parallel_dim (50 000), parallel from there. Why redundant for small coarse problems
                 (docs/scale.md, "Two ranks: where the time goes"): with single every other rank waits for each of
                 rank 0's coarse solves (on the brick at 2 ranks about 4 per F product, 1440 in a solve), and the
@@ -20,8 +26,11 @@
                 single factor's entries grow like Ns^1.5 and its flops like Ns^2.2 in the floating subdomains Ns (measured: at Ns = 6912 it took 0.4 GB and
                 26 s on rank 0 while every other rank waited), and at 10^8 unknowns (Ns ~ 1.5e5 at H/h = 6)
                 tens of gigabytes: no rank holds it, so the factor must be distributed. Below the switch,
-                single (and redundant) keep the results bit for bit those of one rank.
-   On one rank all four are one sequential Cholesky. */
+                single (and redundant) keep the results bit for bit those of one rank. Why split from 1000 on
+                (docs/scale.md, "The coarse solves split between two ranks"): a coarse solve is bound by reading
+                the factor, which both ranks did in full in redundant mode (through one shared memory bus on the
+                machine of the measurements); below 1000 the one more collective per solve costs more than it saves.
+   On one rank all but split are one sequential Cholesky; split runs its two parts in turn there. */
 #include <conefeti/private/fetiimpl.h>
 
 const char *const FETICoarseModes[] = {"single", "redundant", "parallel", "auto", "split", "FETICoarseMode", "FETI_COARSE_", NULL};
@@ -84,12 +93,15 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
     if (N >= impl.coarseparalleldim) cs.mode = FETI_COARSE_PARALLEL;
     else if (N >= impl.coarseredundantdim) cs.mode = FETI_COARSE_SINGLE;
     else cs.mode = N >= impl.coarsesplitdim ? FETI_COARSE_SPLIT : FETI_COARSE_REDUNDANT;
+    if (size == 1 && cs.mode != FETI_COARSE_SPLIT) cs.mode = FETI_COARSE_SINGLE; /* the same below, said here */
     PetscCall(PetscInfo(feti,
                         "-feti_coarse_mode auto: coarse dimension %" PetscInt_FMT " (-feti_coarse_split_dim %" PetscInt_FMT ", -feti_coarse_redundant_dim %" PetscInt_FMT
-                        ", -feti_coarse_parallel_dim %" PetscInt_FMT "): %s\n",
-                        N, impl.coarsesplitdim, impl.coarseredundantdim, impl.coarseparalleldim, FETICoarseModes[cs.mode]));
+                        ", -feti_coarse_parallel_dim %" PetscInt_FMT "%s): %s\n",
+                        N, impl.coarsesplitdim, impl.coarseredundantdim, impl.coarseparalleldim, impl.coarsesplitdim >= impl.coarseredundantdim ? "; no split: its switch is not below the next" : "",
+                        FETICoarseModes[cs.mode]));
   }
-  /* split runs the same arithmetic on one rank (both parts in turn), so that its bits do not depend on the ranks */
+  /* on one rank every mode but split is one sequential Cholesky; split runs the same arithmetic as on several ranks
+     (both parts in turn), so that its bits do not depend on the ranks */
   if (size == 1 && cs.mode != FETI_COARSE_SPLIT) cs.mode = FETI_COARSE_SINGLE;
   if (cs.mode == FETI_COARSE_SPLIT) {
     Mat     *gathered;
@@ -99,8 +111,11 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
     PetscCall(ISCreateStride(PETSC_COMM_SELF, N, 0, 1, &rows));
     PetscCall(MatCreateSubMatrices(A, 1, &rows, &rows, MAT_INITIAL_MATRIX, &gathered));
     PetscCall(ISDestroy(&rows));
-    PetscCall(FETICoarseSplitCreate(comm, gathered[0], &cs.split, failed));
-    PetscCall(MatDestroySubMatrices(1, &gathered));
+    {
+      PetscErrorCode ierr = FETICoarseSplitCreate(comm, gathered[0], &cs.split, failed);
+      PetscCall(MatDestroySubMatrices(1, &gathered));
+      PetscCall(ierr);
+    }
     if (size > 1) {
       Vec x;
       PetscCall(MatCreateVecs(A, &x, NULL));
@@ -236,7 +251,9 @@ PetscErrorCode FETICoarseSolverView(FETICoarseSolver &cs, PetscViewer viewer)
                                    cs.scatter && !cs.split ? (cs.mode == FETI_COARSE_REDUNDANT ? " (factored on every rank, rank 0's shown)" : " (factored on rank 0)") : ""));
   PetscCall(PetscViewerASCIIPushTab(viewer));
   if (cs.split) PetscCall(FETICoarseSplitView(cs.split, viewer));
-  else if (cs.scatter) { /* a sequential factor (single: on rank 0 only, cs.ksp is NULL elsewhere); rank 0's is shown */ PetscViewer sub;
+  else if (cs.scatter) {
+    /* a sequential factor (single: on rank 0 only, cs.ksp is NULL elsewhere); rank 0's is shown */
+    PetscViewer sub;
     PetscCall(PetscViewerGetSubViewer(viewer, PETSC_COMM_SELF, &sub));
     PetscMPIInt rank;
     PetscCallMPI(MPI_Comm_rank(PetscObjectComm((PetscObject)viewer), &rank));

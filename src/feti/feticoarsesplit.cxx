@@ -24,6 +24,7 @@
 #include <cholmod.h>
 #include <cholmod_camd.h>
 #include <algorithm>
+#include <climits>
 
 struct FETICoarseSplit {
   MPI_Comm                 comm = MPI_COMM_NULL;
@@ -42,6 +43,7 @@ struct FETICoarseSplit {
   std::vector<PetscScalar> LS;      /* L_S, column-major n_S x n_S (lower triangle) */
   std::vector<PetscScalar> c[2], t, buf;
   std::vector<PetscMPIInt> counts, displs;
+  PetscMPIInt              nSmpi  = 0;
   double                   lnz[2] = {0, 0};
 };
 
@@ -109,6 +111,7 @@ static PetscErrorCode FactorPart(Mat A, FETICoarseSplit &s, int p, PetscBool *fa
   for (PetscInt k = 0; k < n; k++)
     for (PetscInt e = ia[I[k]]; e < ia[I[k] + 1]; e++)
       if (loc[ja[e]] >= 0 && loc[ja[e]] <= k) nnz++;
+  PetscCheck(nnz <= (size_t)INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "-feti_coarse_mode split: %zu entries of a part exceed CHOLMOD's int indices", nnz);
   cholmod_sparse *App = cholmod_allocate_sparse((size_t)n, (size_t)n, nnz, 1, 1, 1, CHOLMOD_REAL, &s.cc);
   PetscCheck(App, PETSC_COMM_SELF, PETSC_ERR_MEM, "-feti_coarse_mode split: CHOLMOD could not allocate a part of the coarse matrix (%" PetscInt_FMT " unknowns)", n);
   {
@@ -138,7 +141,9 @@ static PetscErrorCode FactorPart(Mat A, FETICoarseSplit &s, int p, PetscBool *fa
     for (PetscInt k = 0; k < nS; k++)
       for (PetscInt e = ia[s.sep[k]]; e < ia[s.sep[k] + 1]; e++)
         if (loc[ja[e]] >= 0 || (sloc[ja[e]] >= 0 && sloc[ja[e]] <= k)) enz++;
+    PetscCheck(enz <= (size_t)INT_MAX, PETSC_COMM_SELF, PETSC_ERR_SUP, "-feti_coarse_mode split: %zu entries of a part and the separator exceed CHOLMOD's int indices", enz);
     cholmod_sparse *Ext = cholmod_allocate_sparse((size_t)(n + nS), (size_t)(n + nS), enz, 1, 1, 1, CHOLMOD_PATTERN, &s.cc);
+    if (!Ext) cholmod_free_sparse(&App, &s.cc);
     PetscCheck(Ext, PETSC_COMM_SELF, PETSC_ERR_MEM, "-feti_coarse_mode split: CHOLMOD could not allocate the pattern of a part and the separator");
     int   *cp = (int *)Ext->p, *ri = (int *)Ext->i;
     size_t t = 0;
@@ -160,6 +165,7 @@ static PetscErrorCode FactorPart(Mat A, FETICoarseSplit &s, int p, PetscBool *fa
     cp[n + nS]        = (int)t;
     const int ordered = cholmod_camd(Ext, NULL, 0, cmember.data(), eperm.data(), &s.cc);
     cholmod_free_sparse(&Ext, &s.cc);
+    if (!ordered) cholmod_free_sparse(&App, &s.cc);
     PetscCheck(ordered, PETSC_COMM_SELF, PETSC_ERR_LIB, "-feti_coarse_mode split: CHOLMOD's CAMD ordering failed (status %d)", s.cc.status);
     for (int q : eperm)
       if (q < n) uperm.push_back(q);
@@ -167,6 +173,7 @@ static PetscErrorCode FactorPart(Mat A, FETICoarseSplit &s, int p, PetscBool *fa
     s.cc.method[0].ordering = CHOLMOD_GIVEN;
     s.L[p]                  = cholmod_analyze_p(App, uperm.data(), NULL, 0, &s.cc);
   }
+  if (!s.L[p]) cholmod_free_sparse(&App, &s.cc);
   PetscCheck(s.L[p], PETSC_COMM_SELF, PETSC_ERR_LIB, "-feti_coarse_mode split: CHOLMOD's analysis of a part of the coarse matrix failed (status %d)", s.cc.status);
   const int ok = cholmod_factorize(App, s.L[p], &s.cc);
   cholmod_free_sparse(&App, &s.cc);
@@ -201,8 +208,10 @@ static PetscErrorCode FactorPart(Mat A, FETICoarseSplit &s, int p, PetscBool *fa
       for (PetscInt e = ia[g]; e < ia[g + 1]; e++)
         if (loc[ja[e]] >= 0) b[(size_t)j * n + inv[loc[ja[e]]]] = PetscRealPart(va[e]);
     }
-    PetscCheck(cholmod_solve2(CHOLMOD_L, s.L[p], B, NULL, &Xb, NULL, &Yb, &Eb, &s.cc), PETSC_COMM_SELF, PETSC_ERR_LIB, "-feti_coarse_mode split: CHOLMOD's triangular solve failed (status %d)",
-               s.cc.status);
+    if (!cholmod_solve2(CHOLMOD_L, s.L[p], B, NULL, &Xb, NULL, &Yb, &Eb, &s.cc)) {
+      cholmod_free_dense(&B, &s.cc);
+      SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "-feti_coarse_mode split: CHOLMOD's triangular solve failed (status %d)", s.cc.status);
+    }
     const double *x = (const double *)Xb->x;
     for (PetscInt j = 0; j < nc; j++)
       for (PetscInt i = 0; i < n; i++)
@@ -245,7 +254,7 @@ PetscErrorCode FETICoarseSplitCreate(MPI_Comm comm, Mat A, FETICoarseSplit **spl
   FETICoarseSplit *s;
   PetscInt         nS;
   PetscBool        bad[2] = {PETSC_FALSE, PETSC_FALSE};
-  PetscMPIInt      lbad, gbad;
+  PetscMPIInt      gbad;
 
   PetscFunctionBegin;
   PetscCallCXX(s = new FETICoarseSplit);
@@ -262,26 +271,35 @@ PetscErrorCode FETICoarseSplitCreate(MPI_Comm comm, Mat A, FETICoarseSplit **spl
   s->started     = true;
   s->cc.print    = 0; /* errors come back as statuses, reported below */
   s->cc.final_ll = 1; /* L L' also where CHOLMOD picks a simplicial factor (else L D L', and CHOLMOD_L would leave D out) */
-  std::vector<PetscScalar> T((size_t)nS * nS, 0.0);
-  std::vector<PetscScalar> Tp[2];
-  for (int p = 0; p < 2; p++)
+  /* T = M_0'M_0 + M_1'M_1 (lower triangle), the same bits on one rank and on several: each part's sum by itself,
+     then the two added (on several ranks by the reduction, to which ranks from 2 up add zeros) */
+  std::vector<PetscScalar> T((size_t)nS * nS, 0.0), T1;
+  PetscErrorCode           ierr = PETSC_SUCCESS;
+  for (int p = 0; p < 2 && !ierr; p++)
     if (s->here[p]) {
-      PetscCall(FactorPart(A, *s, p, &bad[p]));
-      if (!bad[p]) {
-        PetscCallCXX(Tp[p].assign((size_t)nS * nS, 0.0));
-        AddGram(*s, p, Tp[p]);
+      /* an error inside a part happens on one rank only: it is printed there and passed on to all below */
+      ierr = FactorPart(A, *s, p, &bad[p]);
+      if (!ierr && !bad[p]) {
+        if (s->size == 1 && p == 1) { /* one rank: part 1's sum by itself too, added below */
+          PetscCallCXX(T1.assign(T.size(), 0.0));
+          AddGram(*s, 1, T1);
+        } else AddGram(*s, p, T);
       }
     }
-  lbad = bad[0] || bad[1] ? 1 : 0;
-  PetscCallMPI(MPIU_Allreduce(&lbad, &gbad, 1, MPI_INT, MPI_MAX, comm));
+  {
+    PetscMPIInt state[2] = {(PetscMPIInt)ierr, bad[0] || bad[1] ? 1 : 0}, all[2];
+    PetscCallMPI(MPIU_Allreduce(state, all, 2, MPI_INT, MPI_MAX, comm));
+    PetscCheck(!all[0], comm, (PetscErrorCode)all[0], "-feti_coarse_mode split: the factorization of a part of the coarse matrix failed (the message above says why)");
+    gbad = all[1];
+  }
   *failed = gbad ? PETSC_TRUE : PETSC_FALSE;
   if (*failed) PetscFunctionReturn(PETSC_SUCCESS);
-  /* T = M_0'M_0 + M_1'M_1, the same bits on one rank and on several */
   if (s->size == 1) {
-    for (size_t k = 0; k < T.size(); k++) T[k] = Tp[0][k] + Tp[1][k];
+    for (size_t k = 0; k < T.size() && !T1.empty(); k++) T[k] = T[k] + T1[k];
   } else if (nS) {
-    /* the other ranks add zeros */
-    PetscCallMPI(MPIU_Allreduce(s->rank < 2 ? Tp[s->rank].data() : MPI_IN_PLACE, T.data(), (PetscMPIInt)T.size(), MPIU_SCALAR, MPIU_SUM, comm));
+    PetscMPIInt count;
+    PetscCall(PetscMPIIntCast((PetscInt64)T.size(), &count));
+    PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, T.data(), count, MPIU_SCALAR, MPIU_SUM, comm));
   }
   /* L_S L_S' = A_SS - T */
   {
@@ -309,11 +327,12 @@ PetscErrorCode FETICoarseSplitCreate(MPI_Comm comm, Mat A, FETICoarseSplit **spl
     }
   }
   PetscCallCXX(s->t.assign(nS, 0.0));
+  PetscCall(PetscMPIIntCast(nS, &s->nSmpi));
   if (s->size > 1) { /* the parts' solutions travel from ranks 0 and 1 to all */
     PetscCallCXX(s->counts.assign(s->size, 0));
     PetscCallCXX(s->displs.assign(s->size, 0));
-    s->counts[0] = (PetscMPIInt)s->part[0].size();
-    s->counts[1] = (PetscMPIInt)s->part[1].size();
+    PetscCall(PetscMPIIntCast((PetscInt)s->part[0].size(), &s->counts[0]));
+    PetscCall(PetscMPIIntCast((PetscInt)s->part[1].size(), &s->counts[1]));
     s->displs[1] = s->counts[0];
     PetscCallCXX(s->buf.assign(s->part[0].size() + s->part[1].size(), 0.0));
   }
@@ -365,7 +384,8 @@ static PetscErrorCode BackwardPart(FETICoarseSplit &s, int p, PetscScalar *x)
 
 /*
   FETICoarseSplitSolve - x = A^-1 b, b and x of the full coarse length on every rank (x may not alias b);
-  collective on the communicator of FETICoarseSplitCreate()
+  collective on the communicator of FETICoarseSplitCreate(). CHOLMOD's triangular solves on a factor that exists
+  fail only on a broken library; such an error ends the run on the rank where it happens.
 */
 PetscErrorCode FETICoarseSplitSolve(FETICoarseSplit *s, const PetscScalar *b, PetscScalar *x)
 {
@@ -377,12 +397,10 @@ PetscErrorCode FETICoarseSplitSolve(FETICoarseSplit *s, const PetscScalar *b, Pe
   /* t = b_S - (M_0'z_0 + M_1'z_1) */
   if (s->size == 1) {
     for (PetscInt k = 0; k < nS; k++) s->t[k] = s->c[0][k] + s->c[1][k];
-  } else if (nS) {
-    if (s->rank < 2) PetscCallMPI(MPIU_Allreduce(s->c[s->rank].data(), s->t.data(), (PetscMPIInt)nS, MPIU_SCALAR, MPIU_SUM, s->comm));
-    else {
-      std::fill(s->t.begin(), s->t.end(), 0.0);
-      PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, s->t.data(), (PetscMPIInt)nS, MPIU_SCALAR, MPIU_SUM, s->comm));
-    }
+  } else if (nS) { /* ranks from 2 up add zeros */
+    if (s->rank < 2) std::copy(s->c[s->rank].begin(), s->c[s->rank].end(), s->t.begin());
+    else std::fill(s->t.begin(), s->t.end(), 0.0);
+    PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, s->t.data(), s->nSmpi, MPIU_SCALAR, MPIU_SUM, s->comm));
   }
   for (PetscInt k = 0; k < nS; k++) s->t[k] = b[s->sep[k]] - s->t[k];
   if (nS) {

@@ -288,10 +288,10 @@ static inline PetscScalar ConsecutiveRowOfRTimes(PetscInt n, PetscInt c0, const 
 
 /* The rows of R at B's ghost primal columns (Bsum.garray), with global coarse columns. Why: G' x = B (R x), and
    a dual row of this rank reads R x at dofs of other ranks' subdomains, which the product with B receives from
-   them (one message of some 40 KB per product at 2 ranks on the brick, 4 per Hessian product). In redundant mode
-   every rank holds the whole coarse solution x (FETICoarseSolverGetFull()), so it can form R x at those dofs
-   itself, with the same rows of R summed in the same order: the same bits, no message. Only when every rank
-   takes PETSc-independent products of R (FETISetUpCoarseRows() kept rows) and the coarse solver is redundant;
+   them (one message of some 40 KB per product at 2 ranks on the brick, 4 per Hessian product). In redundant and
+   split mode every rank holds the whole coarse solution x (FETICoarseSolverGetFull()), so it can form R x at those
+   dofs itself, with the same rows of R summed in the same order: the same bits, no message. Only when every rank
+   takes PETSc-independent products of R (FETISetUpCoarseRows() kept rows) and the coarse solver is redundant or split;
    collective (the first G' product). */
 static PetscErrorCode FETISetUpGhostCoarseRows(FETI feti)
 {

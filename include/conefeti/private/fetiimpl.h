@@ -109,9 +109,9 @@ PETSC_INTERN PetscErrorCode FETICoarseSplitDestroy(FETICoarseSplit **);
 struct FETICoarseSolver {
   FETICoarseMode   mode    = FETI_COARSE_SINGLE;
   KSP              ksp     = nullptr; /* single mode: on rank 0 only */
-  VecScatter       scatter = nullptr; /* single mode on several ranks: to rank 0 and back; redundant: to every rank */
+  VecScatter       scatter = nullptr; /* single mode on several ranks: to rank 0 and back; redundant and split: to every rank */
   Vec              x0 = nullptr, y0 = nullptr;
-  PetscInt64       yid    = -1; /* redundant on several ranks: the (distributed) solution whose full copy y0 holds */
+  PetscInt64       yid    = -1; /* redundant or split on several ranks: the (distributed) solution whose full copy y0 holds */
   PetscObjectState ystate = 0;
   FETICoarseSplit *split  = nullptr; /* split mode */
 };
@@ -124,7 +124,7 @@ struct FETIRigidRows {
   std::vector<PetscScalar> T;                        /* per local subdomain 36 numbers: T(m, j) at 6 j + m, zero-padded to 6 columns */
   std::vector<PetscInt>    nodebase, rows;           /* per touched node: its first local primal dof; all three dofs of every touched node, increasing */
   std::vector<PetscScalar> xyz;                      /* per touched node: X, Y, Z as in FETIRigidBodyModes() */
-  /* redundant coarse mode: B's ghost dofs (Bsum.garray) */
+  /* redundant or split coarse mode: B's ghost dofs (Bsum.garray) */
   std::vector<PetscScalar> gxyz, gT, gbeta; /* per ghost dof X, Y, Z; per ghost subdomain T (36) and a work beta (6) */
   std::vector<PetscInt>    gcomp, gsub;     /* per ghost dof: component, its subdomain in the tables below */
   std::vector<PetscInt>    gsubk, gsubcoarse;
