@@ -68,6 +68,34 @@ static PetscErrorCode CreateDirectKSP(MPI_Comm comm, Mat A, const char prefix[],
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* All of A (here) or none of it, as a sequential matrix on this rank; collective */
+static PetscErrorCode GatherMatrix(Mat A, PetscBool here, Mat **gathered)
+{
+  IS       rows;
+  PetscInt N;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetSize(A, &N, NULL));
+  PetscCall(ISCreateStride(PETSC_COMM_SELF, here ? N : 0, 0, 1, &rows));
+  PetscCall(MatCreateSubMatrices(A, 1, &rows, &rows, MAT_INITIAL_MATRIX, gathered));
+  PetscCall(ISDestroy(&rows));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The scatter of a coarse vector to every rank (toall) or to rank 0, and the sequential x0, y0 it fills */
+static PetscErrorCode CreateGatherScatter(Mat A, PetscBool toall, FETICoarseSolver &cs)
+{
+  Vec x;
+
+  PetscFunctionBegin;
+  PetscCall(MatCreateVecs(A, &x, NULL));
+  if (toall) PetscCall(VecScatterCreateToAll(x, &cs.scatter, &cs.x0));
+  else PetscCall(VecScatterCreateToZero(x, &cs.scatter, &cs.x0));
+  PetscCall(VecDuplicate(cs.x0, &cs.y0));
+  PetscCall(VecDestroy(&x));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Factor A (coarse x coarse, AIJ, SPD) as -feti_coarse_mode asks; *failed: A is singular */
 PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, PetscBool *failed)
 {
@@ -104,39 +132,22 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
      (both parts in turn), so that its bits do not depend on the ranks */
   if (size == 1 && cs.mode != FETI_COARSE_SPLIT) cs.mode = FETI_COARSE_SINGLE;
   if (cs.mode == FETI_COARSE_SPLIT) {
-    Mat     *gathered;
-    IS       rows;
-    PetscInt N;
-    PetscCall(MatGetSize(A, &N, NULL));
-    PetscCall(ISCreateStride(PETSC_COMM_SELF, N, 0, 1, &rows));
-    PetscCall(MatCreateSubMatrices(A, 1, &rows, &rows, MAT_INITIAL_MATRIX, &gathered));
-    PetscCall(ISDestroy(&rows));
-    {
-      PetscErrorCode ierr = FETICoarseSplitCreate(comm, gathered[0], &cs.split, failed);
-      PetscCall(MatDestroySubMatrices(1, &gathered));
-      PetscCall(ierr);
-    }
-    if (size > 1) {
-      Vec x;
-      PetscCall(MatCreateVecs(A, &x, NULL));
-      PetscCall(VecScatterCreateToAll(x, &cs.scatter, &cs.x0));
-      PetscCall(VecDuplicate(cs.x0, &cs.y0));
-      PetscCall(VecDestroy(&x));
-    }
+    Mat           *gathered;
+    PetscErrorCode ierr;
+    PetscCall(GatherMatrix(A, PETSC_TRUE, &gathered));
+    ierr = FETICoarseSplitCreate(comm, gathered[0], &cs.split, failed);
+    PetscCall(MatDestroySubMatrices(1, &gathered));
+    PetscCall(ierr);
+    if (size > 1) PetscCall(CreateGatherScatter(A, PETSC_TRUE, cs));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (cs.mode == FETI_COARSE_SINGLE || (cs.mode == FETI_COARSE_REDUNDANT && size > 1)) {
     /* single: rank 0 asks for every row and column, the others for nothing; redundant: every rank asks for all */
     const PetscBool here     = cs.mode == FETI_COARSE_REDUNDANT || rank == 0 ? PETSC_TRUE : PETSC_FALSE;
     Mat            *gathered = NULL, Aseq = A;
-    IS              rows;
-    PetscInt        N;
     PetscErrorCode  ierr = PETSC_SUCCESS;
-    PetscCall(MatGetSize(A, &N, NULL));
     if (size > 1) {
-      PetscCall(ISCreateStride(PETSC_COMM_SELF, here ? N : 0, 0, 1, &rows));
-      PetscCall(MatCreateSubMatrices(A, 1, &rows, &rows, MAT_INITIAL_MATRIX, &gathered));
-      PetscCall(ISDestroy(&rows));
+      PetscCall(GatherMatrix(A, here, &gathered));
       Aseq = gathered[0];
       PetscCall(MatSetOption(Aseq, MAT_SYMMETRIC, PETSC_TRUE));
       PetscCall(MatSetOption(Aseq, MAT_SPD, PETSC_TRUE));
@@ -160,14 +171,7 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
       PetscCheck(!all[0], comm, (PetscErrorCode)all[0], "The factorization of the coarse matrix failed (-feti_coarse_mode %s; the message above says why)", FETICoarseModes[cs.mode]);
       *failed = all[1] ? PETSC_TRUE : PETSC_FALSE;
       PetscCall(MatDestroySubMatrices(1, &gathered));
-      {
-        Vec x;
-        PetscCall(MatCreateVecs(A, &x, NULL));
-        if (cs.mode == FETI_COARSE_REDUNDANT) PetscCall(VecScatterCreateToAll(x, &cs.scatter, &cs.x0));
-        else PetscCall(VecScatterCreateToZero(x, &cs.scatter, &cs.x0));
-        PetscCall(VecDuplicate(cs.x0, &cs.y0));
-        PetscCall(VecDestroy(&x));
-      }
+      PetscCall(CreateGatherScatter(A, cs.mode == FETI_COARSE_REDUNDANT ? PETSC_TRUE : PETSC_FALSE, cs));
     } else PetscCall(ierr);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -180,7 +184,22 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* y = A^-1 x. Redundant on several ranks: every rank gathers all of x, solves, and keeps all of the solution (y0) beside
+/* y = A^-1 x by the split solver, x and y of the full coarse length on this rank */
+static PetscErrorCode SplitSolve(FETICoarseSplit *split, Vec x, Vec y)
+{
+  const PetscScalar *b;
+  PetscScalar       *v;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetArrayRead(x, &b));
+  PetscCall(VecGetArrayWrite(y, &v));
+  PetscCall(FETICoarseSplitSolve(split, b, v));
+  PetscCall(VecRestoreArrayWrite(y, &v));
+  PetscCall(VecRestoreArrayRead(x, &b));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = A^-1 x. Redundant and split on several ranks: every rank gathers all of x, solves, and keeps all of the solution (y0) beside
    its own part in y; FETICoarseSolverGetFull() hands that copy to G' (fetioperators.cxx), which then needs no ghost
    values from the other ranks. */
 PetscErrorCode FETICoarseSolverApply(FETICoarseSolver &cs, Vec x, Vec y)
@@ -188,28 +207,14 @@ PetscErrorCode FETICoarseSolverApply(FETICoarseSolver &cs, Vec x, Vec y)
   PetscFunctionBegin;
   cs.yid = -1;
   if (!cs.scatter) {
-    if (cs.split) { /* one rank */
-      const PetscScalar *b;
-      PetscScalar       *v;
-      PetscCall(VecGetArrayRead(x, &b));
-      PetscCall(VecGetArrayWrite(y, &v));
-      PetscCall(FETICoarseSplitSolve(cs.split, b, v));
-      PetscCall(VecRestoreArrayWrite(y, &v));
-      PetscCall(VecRestoreArrayRead(x, &b));
-    } else PetscCall(KSPSolve(cs.ksp, x, y));
+    if (cs.split) PetscCall(SplitSolve(cs.split, x, y)); /* one rank */
+    else PetscCall(KSPSolve(cs.ksp, x, y));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(VecScatterBegin(cs.scatter, x, cs.x0, INSERT_VALUES, SCATTER_FORWARD));
   PetscCall(VecScatterEnd(cs.scatter, x, cs.x0, INSERT_VALUES, SCATTER_FORWARD));
-  if (cs.split) {
-    const PetscScalar *b;
-    PetscScalar       *v;
-    PetscCall(VecGetArrayRead(cs.x0, &b));
-    PetscCall(VecGetArrayWrite(cs.y0, &v));
-    PetscCall(FETICoarseSplitSolve(cs.split, b, v));
-    PetscCall(VecRestoreArrayWrite(cs.y0, &v));
-    PetscCall(VecRestoreArrayRead(cs.x0, &b));
-  } else if (cs.ksp) PetscCall(KSPSolve(cs.ksp, cs.x0, cs.y0));
+  if (cs.split) PetscCall(SplitSolve(cs.split, cs.x0, cs.y0));
+  else if (cs.ksp) PetscCall(KSPSolve(cs.ksp, cs.x0, cs.y0));
   if (cs.mode == FETI_COARSE_REDUNDANT || cs.mode == FETI_COARSE_SPLIT) { /* the own part of the full solution: no message */
     const PetscScalar *all;
     PetscScalar       *mine;

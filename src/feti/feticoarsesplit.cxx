@@ -32,6 +32,7 @@ struct FETICoarseSplit {
   PetscInt                 N = 0;
   std::vector<PetscInt>    part[2];                  /* the original indices of I_0 and I_1, increasing */
   std::vector<PetscInt>    sep;                      /* those of S */
+  std::vector<PetscInt>    sloc;                     /* the position in S of each unknown, -1 outside S */
   bool                     here[2] = {false, false}; /* the parts this rank solves */
   bool                     started = false;
   cholmod_common           cc;
@@ -82,9 +83,12 @@ static PetscErrorCode SplitGraph(Mat A, FETICoarseSplit &s)
         if (where[i] != 2 && where[adjncy[k]] != 2 && where[i] != where[adjncy[k]]) cross++;
     PetscCheck(!cross, PETSC_COMM_SELF, PETSC_ERR_PLIB, "-feti_coarse_mode split: METIS's separator leaves %" PetscInt_FMT " couplings between the two parts", cross);
   }
+  PetscCallCXX(s.sloc.assign(n, -1));
   for (PetscInt i = 0; i < n; i++) {
-    if (where[i] == 2) s.sep.push_back(i);
-    else s.part[where[i] == 1 ? 1 : 0].push_back(i);
+    if (where[i] == 2) {
+      s.sloc[i] = (PetscInt)s.sep.size();
+      PetscCallCXX(s.sep.push_back(i));
+    } else PetscCallCXX(s.part[where[i] == 1 ? 1 : 0].push_back(i));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -134,10 +138,9 @@ static PetscErrorCode FactorPart(Mat A, FETICoarseSplit &s, int p, PetscBool *fa
     /* The ordering of the part: CAMD on the part and the separator together, the separator constrained last. The
        fill into the separator's rows of that factor is M, so this keeps M small (at the brick's 10^6 unknowns half
        the entries of M under CHOLMOD's own ordering of the part alone, for about the same entries of L_0 + L_1). */
-    std::vector<PetscInt> sloc(s.N, -1);
-    std::vector<int>      col, cmember(n + nS, 0), eperm(n + nS), uperm;
-    for (PetscInt k = 0; k < nS; k++) sloc[s.sep[k]] = k;
-    size_t enz = App->nzmax;
+    const std::vector<PetscInt> &sloc = s.sloc;
+    std::vector<int>             col, cmember(n + nS, 0), eperm(n + nS), uperm;
+    size_t                       enz = App->nzmax;
     for (PetscInt k = 0; k < nS; k++)
       for (PetscInt e = ia[s.sep[k]]; e < ia[s.sep[k] + 1]; e++)
         if (loc[ja[e]] >= 0 || (sloc[ja[e]] >= 0 && sloc[ja[e]] <= k)) enz++;
@@ -303,11 +306,10 @@ PetscErrorCode FETICoarseSplitCreate(MPI_Comm comm, Mat A, FETICoarseSplit **spl
   }
   /* L_S L_S' = A_SS - T */
   {
-    const PetscInt       *ia, *ja;
-    const PetscScalar    *va;
-    PetscScalar          *v;
-    std::vector<PetscInt> sloc(s->N, -1);
-    for (PetscInt k = 0; k < nS; k++) sloc[s->sep[k]] = k;
+    const PetscInt              *ia, *ja;
+    const PetscScalar           *va;
+    PetscScalar                 *v;
+    const std::vector<PetscInt> &sloc = s->sloc;
     PetscCall(MatSeqAIJGetCSRAndMemType(A, &ia, &ja, &v, NULL));
     va = v;
     PetscCallCXX(s->LS.assign((size_t)nS * nS, 0.0));
