@@ -18,8 +18,8 @@ usage: scripts/scale-model.py [--measure] [--coarse-sizes 2,4,6,8,10,12] [--buil
                               [--png docs/figures/scale-model.png] [--ranks-per-node 32] [--node-memory 128]
                               [--latency 2e-6] [--bandwidth 1e10]
 Assumptions (not measured here; change them with the options): a node of 32 ranks and 128 GB, a network latency
-of 2 microseconds and a bandwidth of 10 GB/s per rank; the times measured on this loaded 2-core machine are used as
-they are (wall seconds under load; a quiet core is 2-5x faster on all terms alike, which moves no crossover).
+of 2 microseconds and a bandwidth of 10 GB/s per rank; the times measured on this 2-core machine are used as
+they are (wall seconds; under load they are 2-5x longer on all terms alike, which moves no crossover).
 """
 import argparse, json, math, os, re, subprocess, sys
 
@@ -29,11 +29,11 @@ import logview
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 LINEAR = os.path.join(ROOT, "petsc-options", "linear.opts")
 
-# From docs/scale.md (the brick, Coulomb F = 0.3, H/h = 6, -feti_kplus_explicit 0, n = 1 037 232, one rank): the
-# contact solver's coarse solves per F product (FETICoarseSolve 1865 / FETI_MultF 528) and F products per solve
-# (n_A = 505 at 10^6; it grows 1.4-1.5x per decade of n, docs/scale.md).
-CONTACT_COARSE_PER_PRODUCT = 1865 / 528
-CONTACT_NA_1E6, NA_GROWTH_PER_DECADE = 505, 1.45
+# From the table of docs/scale.md (the brick, Coulomb F = 0.3, H/h = 6, the defaults, n = 1 037 232, one rank; made
+# by scripts/bench-scale.py): the contact solver's coarse solves per F product (FETICoarseSolve 859 / FETI_MultF 238)
+# and F products per solve (n_A = 206 at 10^6, 148 at n = 18 252: a growth of 1.21x per decade of n).
+CONTACT_COARSE_PER_PRODUCT = 859 / 238
+CONTACT_NA_1E6, NA_GROWTH_PER_DECADE = 206, (206 / 148) ** (1 / math.log10(1037232 / 18252))
 
 
 def run(cmd, env):
@@ -53,9 +53,10 @@ def scene(hh, p):
 def measure(a):
     env = hugepages.environment(True)
     exe = os.path.join(a.build, "conefeti")
-    data = dict(coarse=[], subdomain=[], machine="2 cores shared by 6 agents (loaded); wall seconds", command="scripts/scale-model.py --measure --coarse-sizes %s" % a.coarse_sizes)
+    data = dict(coarse=[], subdomain=[], machine="2 cores, load average %.1f at the start; wall seconds" % os.getloadavg()[0], command="scripts/scale-model.py --measure --coarse-sizes %s" % a.coarse_sizes)
     for p in [int(x) for x in a.coarse_sizes.split(",") if x]:
-        j, rss, out = run([exe] + scene(2, p) + ["-feti_view"], env)
+        # the model is that of one sequential factor (single mode); auto would split coarse dimensions 1000-9999
+        j, rss, out = run([exe] + scene(2, p) + ["-feti_view", "-feti_coarse_mode", "single"], env)
         ev = logview.events(out)
         lnz = re.findall(r"Common\.lnz\s*([0-9.eE+]+)", out)
         fl = re.findall(r"Common\.fl\s*([0-9.eE+]+)", out)
@@ -89,9 +90,11 @@ def powerfit(x, y):
     return math.exp(my - e * mx), e
 
 
-# Peak memory per unknown of the brick with the factor alone (-feti_kplus_explicit 0) at n = 135 000, reused from
-# docs/scale.md, lever (c): the runs here are too small (n <= 6e4) for the program's fixed ~50 MB not to dominate.
-MEM_PER_DOF_DOC = {4: 3.1e3, 6: 3.2e3, 8: 3.5e3}
+# Peak memory per unknown of the contact brick with the defaults at n = 135 000 and H/h = 4, 6, 8 (/usr/bin/time %M of
+# build/conefeti -options_file petsc-options/brick.opts -scene_refine 24 -scene_body0_subdomains 18,6,6 | 12,4,4 |
+# 9,3,3: 342 076, 311 916, 358 736 KiB; docs/scale.md, "Past this machine"): the runs of --measure are too small
+# (n <= 6e4) for the program's fixed ~50 MB not to dominate.
+MEM_PER_DOF_DOC = {4: 342076 * 1024 / 135000, 6: 311916 * 1024 / 135000, 8: 358736 * 1024 / 135000}
 
 
 def fit(data):
@@ -201,7 +204,7 @@ def report(data, a):
         out.append("| H/h = %d | %d | %d | %d | %.2f | %d | %.3f | %.2f KB |" % (r["hh"], r["Ns"], r["n"], r["factor_count"], 1e3 * r["factor_time"] / r["factor_count"], r["products"],
                                                                              1e3 * r["product_time"] / r["products"] / r["Ns"], r["mem"] / r["n"] / 1e3))
     out.append("")
-    out.append("Fits (least squares in log-log; Ns = floating subdomains, coarse dimension 6 Ns; times are wall seconds on the loaded machine):")
+    out.append("Fits (least squares in log-log; Ns = floating subdomains, coarse dimension 6 Ns; the times of the runs above):")
     out.append("")
     out.append("- coarse setup (R, G, G G' and its Cholesky) = %.3g s x Ns^%.2f (alpha) and coarse solve = %.3g s x Ns^%.2f per solve (beta), over Ns = 256 to %d" % (
         m["alpha"] + m["beta"] + (m["largest"]["Ns"],)))
@@ -211,11 +214,11 @@ def report(data, a):
         m["t_entry"] * 1e9, m["t_sub_setup"] * 1e3, m["t_flop"] * 1e9))
     out.append("- subdomain work per F product = %.3g s x (H/h)^%.2f per subdomain; factorizations %.3g s x (H/h)^%.2f each, %.1f per subdomain (its own and the Dirichlet preconditioner's)" % (
         m["sub_product"] + m["sub_factor"] + (m["factors_per_subdomain"],)))
-    out.append("- peak memory = %.3g B x (H/h)^%.2f per unknown (docs/scale.md lever (c), -feti_kplus_explicit 0 at n = 135 000: 3.1, 3.2, 3.5 KB at H/h = 4, 6, 8; reused)" % m["mem_per_dof"])
-    out.append("- coarse solves per F product: %.2f in the contact solver (docs/scale.md, 10^6 brick: FETICoarseSolve 1865 / FETI_MultF 528), %.2f in the linear runs above" % (
+    out.append("- peak memory = %.3g B x (H/h)^%.2f per unknown (the contact brick with the defaults at n = 135 000: %.2f, %.2f, %.2f KB at H/h = 4, 6, 8)" % (m["mem_per_dof"] + tuple(MEM_PER_DOF_DOC[h] / 1e3 for h in (4, 6, 8))))
+    out.append("- coarse solves per F product: %.2f in the contact solver (docs/scale.md, the 10^6 brick of the table: FETICoarseSolve 859 / FETI_MultF 238), %.2f in the linear runs above" % (
         CONTACT_COARSE_PER_PRODUCT, m["linear_coarse_per_product"]))
     out.append("")
-    out.append("Prediction (contact brick, single mode; node = %d ranks, %.0f GB; latency %.0f us, bandwidth %.0f GB/s: assumed; F products per solve n_A = %d x %.2f^log10(n/10^6)):" % (
+    out.append("Prediction (contact brick, single mode; node = %d ranks, %.0f GB; latency %.0f us, bandwidth %.0f GB/s: assumed; F products per solve n_A = %d x %.2f^log10(n/10^6), from the table at the top):" % (
         a.ranks_per_node, a.node_memory, a.latency * 1e6, a.bandwidth / 1e9, CONTACT_NA_1E6, NA_GROWTH_PER_DECADE))
     out.append("")
     out.append("| n | nodes | H/h | subdomains | coarse dim | F product: subdomains + coarse + reductions | setup: factorizations + coarse factor | memory per rank; rank 0's coarse factor | whole solve (n_A products) | bottleneck |")
@@ -242,7 +245,9 @@ def report(data, a):
     out.append("| nodes | ranks | coarse time > subdomain time from n = | coarse factor does not fit rank 0 from n = |")
     out.append("|---|---|---|---|")
     for nodes in (1, 10, 100, 1000):
-        out.append("| %d | %d | %.2g | %.2g |" % (nodes, nodes * a.ranks_per_node, crossover(m, nodes, 6, a, "time"), crossover(m, nodes, 6, a, "memory")))
+        ct, cm = crossover(m, nodes, 6, a, "time"), crossover(m, nodes, 6, a, "memory")
+        below = lambda c: ("<= %.2g (the smallest n scanned)" if c <= 1e4 else "%.2g") % c  # noqa: E731
+        out.append("| %d | %d | %s | %s |" % (nodes, nodes * a.ranks_per_node, below(ct), below(cm)))
     out.append("")
     p6, p6nd = predict(m, 1e8, 100, 6, a), predict(m, 1e8, 100, 6, a, nd=True)
     out.append("With the nested-dissection exponents (entries Ns^(4/3), flops Ns^2) from the largest run instead of the fitted ones, 10^8 on 100 nodes at H/h = 6 would have a coarse factor of %s (not %s), a coarse part of %s per product (not %s) and a coarse setup of %s (not %s)." % (
@@ -254,7 +259,7 @@ def report(data, a):
     out.append("")
     out.append("| remedy | F product | coarse part | setup | rank 0 memory | whole solve |")
     out.append("|---|---|---|---|---|---|")
-    rem = [("single (today's default)", dict()), ("redundant", dict(mode="redundant")), ("parallel, ideal sqrt(ranks) speedup (assumed)", dict(mode="parallel")),
+    rem = [("single (what auto picks from a coarse dimension of 10 000 to 50 000)", dict()), ("redundant", dict(mode="redundant")), ("parallel, ideal sqrt(ranks) speedup (assumed)", dict(mode="parallel")),
            ("fewer larger subdomains, H/h = 10", dict(hh=10)), ("fewer larger subdomains, H/h = 12", dict(hh=12)),
            ("hybrid FETI, clusters of 8 subdomains", dict(cluster=8)), ("hybrid FETI, clusters of 64", dict(cluster=64)),
            ("H/h = 12 and parallel", dict(hh=12, mode="parallel"))]
@@ -280,7 +285,7 @@ def report(data, a):
         ax1.loglog(xs, [coarse_costs(m, x)[2] for x in xs], "--", label="solve model: per factor entry")
         ax1.loglog(xs, [coarse_costs(m, x, nd=True)[2] for x in xs], ":", label="solve, nested-dissection exponent")
         ax1.set_xlabel("floating subdomains Ns (coarse dimension 6 Ns)")
-        ax1.set_ylabel("seconds (one rank, loaded machine)")
+        ax1.set_ylabel("seconds (one rank)")
         ax1.set_title("coarse problem, measured and extrapolated")
         colors = {10: "C0", 100: "C1", 1000: "C2"}
         for hh, mark in zip(a.hh, ("o", "s", "^", "v")):
