@@ -19,7 +19,8 @@ usage: scripts/scale-model.py [--measure] [--coarse-sizes 2,4,6,8,10,12] [--buil
                               [--latency 2e-6] [--bandwidth 1e10]
 Assumptions (not measured here; change them with the options): a node of 32 ranks and 128 GB, a network latency
 of 2 microseconds and a bandwidth of 10 GB/s per rank; the times measured on this 2-core machine are used as
-they are (wall seconds; under load they are 2-5x longer on all terms alike, which moves no crossover).
+they are (wall seconds; under load they are 2-5x longer, which moves the crossovers against the assumed network
+terms but not the ranking of the remedies).
 """
 import argparse, json, math, os, re, subprocess, sys
 
