@@ -102,6 +102,7 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
   FETI_Impl  &impl = *feti->impl;
   MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
   PetscMPIInt size, rank;
+  PetscInt    N;
   const char *prefix;
   char        coarseprefix[256];
   PC          pc;
@@ -114,23 +115,22 @@ PetscErrorCode FETICoarseSolverCreate(FETI feti, Mat A, FETICoarseSolver &cs, Pe
   PetscCall(PetscSNPrintf(coarseprefix, sizeof(coarseprefix), "%sfeti_coarse_", prefix ? prefix : ""));
   PetscCall(MatSetOption(A, MAT_SYMMETRIC, PETSC_TRUE));
   PetscCall(MatSetOption(A, MAT_SPD, PETSC_TRUE));
+  PetscCall(MatGetSize(A, &N, NULL));
   cs.mode = impl.coarsemode;
   if (cs.mode == FETI_COARSE_AUTO) {
-    PetscInt N;
-    PetscCall(MatGetSize(A, &N, NULL));
     if (N >= impl.coarseparalleldim) cs.mode = FETI_COARSE_PARALLEL;
     else if (N >= impl.coarseredundantdim) cs.mode = FETI_COARSE_SINGLE;
     else cs.mode = N >= impl.coarsesplitdim ? FETI_COARSE_SPLIT : FETI_COARSE_REDUNDANT;
-    if (size == 1 && cs.mode != FETI_COARSE_SPLIT) cs.mode = FETI_COARSE_SINGLE; /* the same below, said here */
+  }
+  /* on one rank every mode but split is one sequential Cholesky; split runs the same arithmetic as on several ranks
+     (both parts in turn), so that its bits do not depend on the ranks */
+  if (size == 1 && cs.mode != FETI_COARSE_SPLIT) cs.mode = FETI_COARSE_SINGLE;
+  if (impl.coarsemode == FETI_COARSE_AUTO)
     PetscCall(PetscInfo(feti,
                         "-feti_coarse_mode auto: coarse dimension %" PetscInt_FMT " (-feti_coarse_split_dim %" PetscInt_FMT ", -feti_coarse_redundant_dim %" PetscInt_FMT
                         ", -feti_coarse_parallel_dim %" PetscInt_FMT "%s): %s\n",
                         N, impl.coarsesplitdim, impl.coarseredundantdim, impl.coarseparalleldim, impl.coarsesplitdim >= impl.coarseredundantdim ? "; no split: its switch is not below the next" : "",
                         FETICoarseModes[cs.mode]));
-  }
-  /* on one rank every mode but split is one sequential Cholesky; split runs the same arithmetic as on several ranks
-     (both parts in turn), so that its bits do not depend on the ranks */
-  if (size == 1 && cs.mode != FETI_COARSE_SPLIT) cs.mode = FETI_COARSE_SINGLE;
   if (cs.mode == FETI_COARSE_SPLIT) {
     Mat           *gathered;
     PetscErrorCode ierr;

@@ -212,7 +212,8 @@ static PetscErrorCode FactorPart(Mat A, FETICoarseSplit &s, int p, PetscBool *fa
         if (loc[ja[e]] >= 0) b[(size_t)j * n + inv[loc[ja[e]]]] = PetscRealPart(va[e]);
     }
     if (!cholmod_solve2(CHOLMOD_L, s.L[p], B, NULL, &Xb, NULL, &Yb, &Eb, &s.cc)) {
-      cholmod_free_dense(&B, &s.cc);
+      for (cholmod_dense **d : {&B, &Xb, &Yb, &Eb})
+        if (*d) cholmod_free_dense(d, &s.cc);
       SETERRQ(PETSC_COMM_SELF, PETSC_ERR_LIB, "-feti_coarse_mode split: CHOLMOD's triangular solve failed (status %d)", s.cc.status);
     }
     const double *x = (const double *)Xb->x;
@@ -220,10 +221,8 @@ static PetscErrorCode FactorPart(Mat A, FETICoarseSplit &s, int p, PetscBool *fa
       for (PetscInt i = 0; i < n; i++)
         if (x[(size_t)j * n + i] != 0.0) rows[i].emplace_back(c0 + j, x[(size_t)j * n + i]);
   }
-  if (B) cholmod_free_dense(&B, &s.cc);
-  if (Xb) cholmod_free_dense(&Xb, &s.cc);
-  if (Yb) cholmod_free_dense(&Yb, &s.cc);
-  if (Eb) cholmod_free_dense(&Eb, &s.cc);
+  for (cholmod_dense **d : {&B, &Xb, &Yb, &Eb})
+    if (*d) cholmod_free_dense(d, &s.cc);
   PetscCallCXX(s.mptr[p].assign(n + 1, 0));
   for (PetscInt i = 0; i < n; i++) s.mptr[p][i + 1] = s.mptr[p][i] + (PetscInt)rows[i].size();
   PetscCallCXX(s.mcol[p].resize(s.mptr[p][n]));
