@@ -352,12 +352,31 @@ PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
   PetscCall(PetscLogEventBegin(FETI_ApplyGt, feti, 0, 0, 0));
   PetscCall(FETISetUpCoarseRows(feti));
   if (!impl.ghostrows) PetscCall(FETISetUpGhostCoarseRows(feti));
+  /* the same decision on every rank: x is the same collective vector, just solved for (or not) on all of them */
+  if (impl.ghostrows > 0) PetscCall(FETICoarseSolverGetFull(impl.coarse, x, &full));
+  if (impl.rigid.use && !impl.rigid.compact) PetscCall(FETISetUpRigidCompactColumns(feti));
+  /* R x only at the touched nodes, in a compact array, when no ghost value has to be exchanged: one rank, or the
+     ghost values formed here from the full coarse solution (after the first product has checked them) */
+  if (impl.rigid.use && impl.rigid.compact > 0 && (!impl.Bsum.scatter || (full && impl.ghostrows == 2))) {
+    const PetscScalar *xa;
+    PetscCall(VecGetArrayRead(x, &xa));
+    PetscCall(FETIRigidRowsApplyR(feti, xa, PETSC_TRUE, impl.rigid.wc.data()));
+    PetscCall(VecRestoreArrayRead(x, &xa));
+    if (full) {
+      PetscCall(VecGetArrayRead(full, &xa));
+      PetscCall(FETIRigidRowsApplyGhosts(feti, xa, impl.ghbuf.data()));
+      PetscCall(VecRestoreArrayRead(full, &xa));
+    }
+    PetscCall(FETIRowSumApplyCompact(impl.Bsum, impl.rigid.bcols.data(), impl.rigid.wc.data(), full ? impl.ghbuf.data() : nullptr, y));
+    PetscCall(PetscLogEventEnd(FETI_ApplyGt, feti, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   if (impl.rigid.use) {
     const PetscScalar *xa;
     PetscScalar       *w;
     PetscCall(VecGetArrayRead(x, &xa));
     PetscCall(VecGetArray(impl.wp3, &w)); /* the dofs outside the touched nodes keep what they held: B never reads them */
-    PetscCall(FETIRigidRowsApplyR(feti, xa, w));
+    PetscCall(FETIRigidRowsApplyR(feti, xa, PETSC_FALSE, w));
     PetscCall(VecRestoreArray(impl.wp3, &w));
     PetscCall(VecRestoreArrayRead(x, &xa));
   } else if (impl.gptr.empty()) PetscCall(MatMult(impl.R, x, impl.wp3));
@@ -381,8 +400,6 @@ PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
     PetscCall(VecRestoreArrayRead(x, &xa));
     PetscCall(PetscLogFlops(2.0 * impl.gptr[nrows]));
   }
-  /* the same decision on every rank: x is the same collective vector, just solved for (or not) on all of them */
-  if (impl.ghostrows > 0) PetscCall(FETICoarseSolverGetFull(impl.coarse, x, &full));
   if (full) {
     const PetscScalar *xa;
     const PetscInt     nghost = (PetscInt)impl.ghbuf.size();

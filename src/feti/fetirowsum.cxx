@@ -76,14 +76,17 @@ PetscErrorCode FETIRowSumCreate(Mat A, PetscBool transpose, FETIRowSum &rs)
 }
 
 /* ya[i] for the rows i of list (all m rows when list is NULL), each summed in increasing global column order: the
-   ghost columns below the local ones, the local ones, the rest. ga NULL: only the rows without ghost entries. */
-static PetscErrorCode SumRows(const FETIRowSum &rs, const PetscScalar *xa, const PetscScalar *ga, PetscScalar *ya, PetscInt m, const PetscInt *list)
+   ghost columns below the local ones, the local ones, the rest. ga NULL: only the rows without ghost entries.
+   dcols NULL: the local columns are the diagonal block's own; otherwise one index per entry of the diagonal block
+   (in its order) into xa, a compact copy of x (FETIRowSumApplyCompact()). */
+static PetscErrorCode SumRows(const FETIRowSum &rs, const PetscScalar *xa, const PetscScalar *ga, PetscScalar *ya, PetscInt m, const PetscInt *list, const PetscInt *dcols = nullptr)
 {
   const PetscInt    *dia, *dja, *oia = nullptr, *oja = nullptr;
   const PetscScalar *da = nullptr, *oa = nullptr;
 
   PetscFunctionBegin;
   PetscCall(CSR(rs.Ad, &dia, &dja, &da));
+  if (dcols) dja = dcols;
   if (rs.scatter) PetscCall(CSR(rs.Ao, &oia, &oja, &oa));
   for (PetscInt t = 0; t < m; t++) {
     const PetscInt i = list ? list[t] : t;
@@ -164,6 +167,26 @@ PetscErrorCode FETIRowSumApplyWithGhosts(FETIRowSum &rs, Vec x, const PetscScala
   PetscCall(SumRows(rs, xa, ga, ya, m, NULL));
   PetscCall(VecRestoreArray(y, &ya));
   PetscCall(VecRestoreArrayRead(x, &xa));
+  PetscCall(LogRowSumFlops(rs));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* y = A x with x's local entries read from a compact array xc through dcols, one index per entry of the diagonal
+   block in its order (the caller's numbering of the columns it fills), and the ghost entries from ga (NULL when A
+   has no ghost block). The same terms in the same order as FETIRowSumApplyWithGhosts(), so the same bits; what
+   changes is the memory the products gather from (G' = B (R x) at 10^6 unknowns: R x at the touched dofs only, 55%
+   of a 12.6 MB primal vector; docs/scale.md, "The projector's cost"). */
+PetscErrorCode FETIRowSumApplyCompact(FETIRowSum &rs, const PetscInt dcols[], const PetscScalar xc[], const PetscScalar ga[], Vec y)
+{
+  PetscScalar *ya;
+  PetscInt     m;
+
+  PetscFunctionBegin;
+  PetscCheck(ga || rs.ghosted.empty(), PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "FETIRowSumApplyCompact: the ghost values are needed");
+  PetscCall(MatGetLocalSize(rs.Ad, &m, NULL));
+  PetscCall(VecGetArray(y, &ya));
+  PetscCall(SumRows(rs, xc, ga, ya, m, NULL, dcols));
+  PetscCall(VecRestoreArray(y, &ya));
   PetscCall(LogRowSumFlops(rs));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -128,6 +128,10 @@ struct FETIRigidRows {
   std::vector<PetscScalar> gxyz, gT, gbeta; /* per ghost dof X, Y, Z; per ghost subdomain T (36) and a work beta (6) */
   std::vector<PetscInt>    gcomp, gsub;     /* per ghost dof: component, its subdomain in the tables below */
   std::vector<PetscInt>    gsubk, gsubcoarse;
+  /* G' reads R x from a compact array, the touched nodes' dofs in the order of rows (FETISetUpRigidCompactColumns()) */
+  PetscInt                 compact = 0; /* 0: not set up yet, 1: bcols and wc are set, -1: not available (B has a column outside rows) */
+  std::vector<PetscInt>    bcols;       /* per entry of B's diagonal block: its column's position in rows */
+  std::vector<PetscScalar> wc;          /* R x at rows (3 per touched node) */
 };
 
 struct FETI_Impl {
@@ -255,7 +259,8 @@ PETSC_INTERN PetscErrorCode FETICreateOperators_Private(FETI);
 /* fetirigidrows.cxx */
 PETSC_INTERN PetscErrorCode FETISetUpRigidRows(FETI, Mat, PetscInt);
 PETSC_INTERN PetscErrorCode FETIRigidRowsApplyRt(FETI, const PetscScalar *, PetscScalar *);
-PETSC_INTERN PetscErrorCode FETIRigidRowsApplyR(FETI, const PetscScalar *, PetscScalar *);
+PETSC_INTERN PetscErrorCode FETIRigidRowsApplyR(FETI, const PetscScalar *, PetscBool, PetscScalar *);
+PETSC_INTERN PetscErrorCode FETISetUpRigidCompactColumns(FETI);
 PETSC_INTERN PetscErrorCode FETISetUpRigidGhostRows(FETI, PetscBool *);
 PETSC_INTERN PetscErrorCode FETIRigidRowsApplyGhosts(FETI, const PetscScalar *, PetscScalar *);
 
@@ -287,6 +292,7 @@ PETSC_INTERN PetscErrorCode FETIRowSumCreate(Mat, PetscBool, FETIRowSum &);
 PETSC_INTERN PetscErrorCode FETIRowSumApply(FETIRowSum &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIRowSumApplyWithGhosts(FETIRowSum &, Vec, const PetscScalar *, Vec);
 PETSC_INTERN PetscErrorCode FETIRowSumApplyRows(FETIRowSum &, Vec, PetscInt, const PetscInt[], Vec);
+PETSC_INTERN PetscErrorCode FETIRowSumApplyCompact(FETIRowSum &, const PetscInt[], const PetscScalar[], const PetscScalar[], Vec);
 PETSC_INTERN PetscErrorCode FETIRowSumDestroy(FETIRowSum &);
 PETSC_INTERN PetscErrorCode FETIAssembleCoarseMatrix(Mat, Vec, Mat *);
 
