@@ -357,21 +357,13 @@ PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
   if (impl.rigid.use && !impl.rigid.compact) PetscCall(FETISetUpRigidCompactColumns(feti));
   /* R x only at the touched nodes, in a compact array, when no ghost value has to be exchanged: one rank, or the
      ghost values formed here from the full coarse solution (after the first product has checked them) */
-  if (impl.rigid.use && impl.rigid.compact > 0 && (!impl.Bsum.scatter || (full && impl.ghostrows == 2))) {
+  const PetscBool compact = impl.rigid.use && impl.rigid.compact > 0 && (!impl.Bsum.scatter || (full && impl.ghostrows == 2)) ? PETSC_TRUE : PETSC_FALSE;
+  if (compact) {
     const PetscScalar *xa;
     PetscCall(VecGetArrayRead(x, &xa));
     PetscCall(FETIRigidRowsApplyR(feti, xa, PETSC_TRUE, impl.rigid.wc.data()));
     PetscCall(VecRestoreArrayRead(x, &xa));
-    if (full) {
-      PetscCall(VecGetArrayRead(full, &xa));
-      PetscCall(FETIRigidRowsApplyGhosts(feti, xa, impl.ghbuf.data()));
-      PetscCall(VecRestoreArrayRead(full, &xa));
-    }
-    PetscCall(FETIRowSumApplyCompact(impl.Bsum, impl.rigid.bcols.data(), impl.rigid.wc.data(), full ? impl.ghbuf.data() : nullptr, y));
-    PetscCall(PetscLogEventEnd(FETI_ApplyGt, feti, 0, 0, 0));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-  if (impl.rigid.use) {
+  } else if (impl.rigid.use) {
     const PetscScalar *xa;
     PetscScalar       *w;
     PetscCall(VecGetArrayRead(x, &xa));
@@ -423,8 +415,10 @@ PetscErrorCode FETIApplyGt(FETI feti, Vec x, Vec y)
       PetscCallMPI(MPIU_Allreduce(&same, &all, 1, MPI_INT, MPI_MIN, PetscObjectComm((PetscObject)feti)));
       impl.ghostrows = all ? 2 : -1;
       if (!all) PetscCall(PetscInfo(feti, "G': R x at the ghost dofs differs from the exchanged values in some bit; the exchange stays\n"));
-    } else PetscCall(FETIRowSumApplyWithGhosts(impl.Bsum, impl.wp3, impl.ghbuf.data(), y));
-  } else PetscCall(FETIRowSumApply(impl.Bsum, impl.wp3, y));
+    } else if (compact) PetscCall(FETIRowSumApplyCompact(impl.Bsum, impl.rigid.bcols.data(), impl.rigid.wc.data(), impl.ghbuf.data(), y));
+    else PetscCall(FETIRowSumApplyWithGhosts(impl.Bsum, impl.wp3, impl.ghbuf.data(), y));
+  } else if (compact) PetscCall(FETIRowSumApplyCompact(impl.Bsum, impl.rigid.bcols.data(), impl.rigid.wc.data(), nullptr, y));
+  else PetscCall(FETIRowSumApply(impl.Bsum, impl.wp3, y));
   PetscCall(PetscLogEventEnd(FETI_ApplyGt, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

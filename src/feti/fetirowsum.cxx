@@ -153,21 +153,30 @@ PetscErrorCode FETIRowSumApplyRows(FETIRowSum &rs, Vec x, PetscInt nrows, const 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* y = A x over all rows from the local entries xa (through dcols when not NULL, see SumRows()) and the ghost entries ga */
+static PetscErrorCode SumAllRows(FETIRowSum &rs, const PetscScalar *xa, const PetscInt *dcols, const PetscScalar *ga, Vec y)
+{
+  PetscScalar *ya;
+  PetscInt     m;
+
+  PetscFunctionBegin;
+  PetscCall(MatGetLocalSize(rs.Ad, &m, NULL));
+  PetscCall(VecGetArray(y, &ya));
+  PetscCall(SumRows(rs, xa, ga, ya, m, NULL, dcols));
+  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(LogRowSumFlops(rs));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* y = A x with the ghost entries of x (at garray) given by the caller instead of received: no message */
 PetscErrorCode FETIRowSumApplyWithGhosts(FETIRowSum &rs, Vec x, const PetscScalar *ga, Vec y)
 {
   const PetscScalar *xa;
-  PetscScalar       *ya;
-  PetscInt           m;
 
   PetscFunctionBegin;
-  PetscCall(MatGetLocalSize(rs.Ad, &m, NULL));
   PetscCall(VecGetArrayRead(x, &xa));
-  PetscCall(VecGetArray(y, &ya));
-  PetscCall(SumRows(rs, xa, ga, ya, m, NULL));
-  PetscCall(VecRestoreArray(y, &ya));
+  PetscCall(SumAllRows(rs, xa, NULL, ga, y));
   PetscCall(VecRestoreArrayRead(x, &xa));
-  PetscCall(LogRowSumFlops(rs));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -178,16 +187,9 @@ PetscErrorCode FETIRowSumApplyWithGhosts(FETIRowSum &rs, Vec x, const PetscScala
    of a 12.6 MB primal vector; docs/scale.md, "The projector's cost"). */
 PetscErrorCode FETIRowSumApplyCompact(FETIRowSum &rs, const PetscInt dcols[], const PetscScalar xc[], const PetscScalar ga[], Vec y)
 {
-  PetscScalar *ya;
-  PetscInt     m;
-
   PetscFunctionBegin;
   PetscCheck(ga || rs.ghosted.empty(), PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "FETIRowSumApplyCompact: the ghost values are needed");
-  PetscCall(MatGetLocalSize(rs.Ad, &m, NULL));
-  PetscCall(VecGetArray(y, &ya));
-  PetscCall(SumRows(rs, xc, ga, ya, m, NULL, dcols));
-  PetscCall(VecRestoreArray(y, &ya));
-  PetscCall(LogRowSumFlops(rs));
+  PetscCall(SumAllRows(rs, xc, dcols, ga, y));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
