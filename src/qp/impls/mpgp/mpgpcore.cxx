@@ -13,7 +13,9 @@
      ill-conditioned QPs, where Dostal's proven expansion stays the default (docs/qp-benchmark.md). With
      a preconditioner the CG directions hit the boundary more often and the projected CG step matters
      more. With -tao_mpgp_expansion_lagged (TaoQPSetExpansionLagged()) a projected step with the last
-     expansion's length is tried first, without the product A p (MPGPCoreLaggedExpansion());
+     expansion's length is tried first, without the product A p (MPGPCoreLaggedExpansion()). With
+     -tao_mpgp_expansion_lookahead k the projected CG step is taken from the point k more CG steps down the face,
+     past the set, instead (MPGPCoreLookahead(); off by default);
    - proportioning step when not proportional: along the chopped gradient with exact line search
      (MPRGP; cut at the opposite bound of a box), or a projected gradient step (MPGP, which is what curved
      boundaries need), of Kucera's fixed length alpha.
@@ -103,6 +105,9 @@ PetscErrorCode MPGPCoreReset(MPGPCore *c)
   PetscCall(VecDestroy(&c->ApW));
   PetscCall(VecDestroy(&c->xsave));
   PetscCall(VecDestroy(&c->gsave));
+  PetscCall(VecDestroy(&c->psave));
+  PetscCall(VecDestroy(&c->Apsave));
+  PetscCall(VecDestroy(&c->wt));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -248,6 +253,67 @@ static PetscErrorCode MPGPCoreLaggedExpansion(MPGPCore *c, Vec x, PetscReal alph
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Look-ahead expansion (-tao_mpgp_expansion_lookahead k, with the projected CG expansion): where the CG step along p
+   would leave the set, the projected CG step P(x - a_cg p) is replaced by P(y), y the point k more CG steps down
+   the face from x - a_cg p, the set ignored on the way (the free entries of the last split stay free, the others
+   fixed). Why: near a moving contact boundary a single projected step adds the row of multipliers that the
+   step pushes out of the set, then CG restarts in the new face and pushes out the next row; on the frictionless
+   brick the number of such expansions doubled when h halved (docs/scale.md, "Lever: a look-ahead expansion").
+   k CG steps that ignore the set solve the face problem further before the projection cuts it, and can
+   cut several rows at once, as a primal-dual active-set step would. The caller keeps P(y) only when q
+   there is no higher than at the feasible half step (the same test as the projected CG step's), so q never rises;
+   a rejected look-ahead costs its k + 1 products. Arc blocks (slipping disk blocks, free along their circle) move
+   along the tangent of their circle at x, with the circle's curvature in the step lengths (as in arc CG steps),
+   and the projection retracts them. On entry x = xprev, g = gprev, p and Ap (and Wp for arcs) are those of the
+   rejected CG step of length acg, pHp its curvature; on return x = P(y) and g its exact gradient, and psave and
+   Apsave hold p and Ap for the half step of a rejection. */
+static PetscErrorCode MPGPCoreLookahead(MPGPCore *c, Vec x, PetscReal acg, PetscReal pHp, PetscBool arcs)
+{
+  Vec       Aq = c->Ap; /* the conjugacy's product: A p, or (A + W) p with arcs */
+  PetscReal unused;
+
+  PetscFunctionBegin;
+  PetscCall(VecCopy(c->p, c->psave));
+  PetscCall(VecCopy(c->Ap, c->Apsave));
+  PetscCall(ReproducibleAXPY(x, -acg, c->p));
+  PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
+  if (arcs) {
+    PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
+    Aq = c->ApW;
+  }
+  for (PetscInt j = 0; j < c->lookahead; j++) {
+    PetscReal gamma_cg, pAp, gp, pWp = 0;
+    /* the face's gradient at the current point: its free entries, tangential on arc blocks */
+    PetscCall(VecCopy(c->g, c->phi));
+    PetscCall(SeparableSetMaskFree_Private(c->set, c->phi));
+    if (arcs) PetscCall(SeparableSetArcTangent_Private(c->set, c->xprev, c->phi, c->wt, &unused));
+    if (c->precondition) {
+      PetscReal zAq;
+      PetscCall(MPGPCorePrecondition(c));
+      if (arcs) PetscCall(SeparableSetArcTangent_Private(c->set, c->xprev, c->z, c->wt, &unused));
+      PetscCall(ReproducibleDot(c->z, Aq, &zAq));
+      gamma_cg = zAq / pHp;
+      PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->z));
+    } else {
+      PetscReal rAq;
+      PetscCall(ReproducibleDot(c->phi, Aq, &rAq));
+      gamma_cg = rAq / pHp;
+      PetscCall(ReproducibleAYPX(c->p, -gamma_cg, c->phi));
+    }
+    if (arcs) PetscCall(SeparableSetArcTangent_Private(c->set, c->xprev, c->p, c->Wp, &pWp));
+    PetscCall(MPGPCoreMult(c, c->p, c->Ap));
+    PetscCall(ReproducibleDot2(c->Ap, c->p, c->g, c->p, &pAp, &gp));
+    if (!(pAp + pWp > 0) || PetscIsInfOrNanReal(gp)) break; /* flat or broken: project what there is (the caller's test decides) */
+    pHp = pAp + pWp;
+    PetscCall(ReproducibleAXPY(x, -gp / pHp, c->p));
+    PetscCall(ReproducibleAXPY(c->g, -gp / pHp, c->Ap));
+    if (arcs) PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
+  }
+  PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
+  PetscCall(MPGPCoreGradient(c, x));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
 {
   SeparableSplit s;
@@ -266,6 +332,12 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
   c->pending = PETSC_FALSE;
   if (c->precondition && !c->z) PetscCall(VecDuplicate(x, &c->z));
   if (c->projcg && !c->dx) PetscCall(VecDuplicate(x, &c->dx));
+  PetscCheck(c->lookahead >= 0, PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: the look-ahead of projected CG expansions must be >= 0 CG steps, got %" PetscInt_FMT, c->lookahead);
+  if (c->projcg && c->lookahead > 0 && !c->psave) {
+    PetscCall(VecDuplicate(x, &c->psave));
+    PetscCall(VecDuplicate(x, &c->Apsave));
+    PetscCall(VecDuplicate(x, &c->wt));
+  }
   if (c->variant == MPGPVariant::MPGP && c->arc > 0 && !c->Wp) {
     PetscCall(VecDuplicate(x, &c->Wp));
     PetscCall(VecDuplicate(x, &c->ApW));
@@ -387,8 +459,12 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
               PetscCall(VecCopy(x, c->xprev));
               PetscCall(VecCopy(c->g, c->gprev));
             }
-            PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, acg, c->p, x));
-            PetscCall(MPGPCoreGradient(c, x));
+            const PetscBool lookahead = c->lookahead > 0 ? PETSC_TRUE : PETSC_FALSE;
+            if (lookahead) PetscCall(MPGPCoreLookahead(c, x, acg, pHp, along_arcs));
+            else {
+              PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, acg, c->p, x));
+              PetscCall(MPGPCoreGradient(c, x));
+            }
             PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
             /* the changes of q, not q itself, are compared: late in a solve they are far below q's rounding.
                Step d: q(x + d) - q(x) = d'(g + g_new)/2; a tie (e.g. the same point) keeps the half step */
@@ -399,6 +475,15 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
             projected = (dnew <= dhalf * (1 + 1e-10) && !PetscIsInfOrNanReal(dnew) && !PetscIsInfOrNanReal(s.gp2)) ? PETSC_TRUE : PETSC_FALSE;
             PetscCall(PetscInfo(NULL, "expansion: projected CG step %g (to the boundary %g) changes q by %g, the half step by %g: %s\n", (double)acg, (double)af, (double)dnew, (double)dhalf,
                                 projected ? "kept" : "not kept"));
+            if (lookahead) {
+              PetscCall(PetscInfo(NULL, "expansion: the projected CG step looked %" PetscInt_FMT " CG steps ahead: %s\n", c->lookahead, projected ? "kept" : "not kept"));
+              if (projected) c->lookahead_kept++;
+              else {
+                c->lookahead_rejected++;
+                PetscCall(VecCopy(c->psave, c->p)); /* the half step below goes along the first direction */
+                PetscCall(VecCopy(c->Apsave, c->Ap));
+              }
+            }
             if (!projected) {
               c->projcg_rejected++;
               PetscCall(VecCopy(c->xprev, x));
