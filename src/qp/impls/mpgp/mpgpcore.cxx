@@ -492,7 +492,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
           }
           if (projected) {
             step = acg;
-            if (c->lagged && af < acg) c->lag = acg; /* the next expansions may reuse this length without its product */
+            if (c->lagged && af < acg) c->lag = acg; /* the next expansions may reuse this length without its product (also after a kept look-ahead: a lagged try has its own q test) */
           } else {
             PetscCall(ReproducibleAXPY(x, -af, c->p));
             PetscCall(ReproducibleAXPY(c->g, -af, c->Ap));
