@@ -57,7 +57,8 @@ struct MPGPCore {
   PetscBool lagged          = PETSC_FALSE; /* with projcg: expansions first try a lagged length, without the product A p (see MPGPCoreLaggedExpansion()) */
   PetscReal lag = 0, lag_used = 0;         /* the length to try next (0: none) and that of the last try */
   PetscInt  lagged_steps = 0, lagged_rejected = 0;
-  PetscInt  lookahead      = 0; /* with projcg: the projected CG step first takes this many more CG steps in the face, past the set (see MPGPCoreLookahead()) */
+  PetscBool projcg_gradient = PETSC_FALSE; /* with projcg: the tried point is P(y - alpha g(y)), y = x - a_cg p, instead of P(y) (see MPGPCoreSolve) */
+  PetscInt  lookahead       = 0;           /* with projcg: the projected CG step first takes this many more CG steps in the face, past the set (see MPGPCoreLookahead()) */
   PetscInt  lookahead_kept = 0, lookahead_rejected = 0;
   Vec       psave = nullptr, Apsave = nullptr, wt = nullptr; /* look-ahead: the direction and its product before it, and a scratch vector */
 
@@ -92,7 +93,7 @@ struct QPNormSettings {
    for an option finds where it is read; bb and arc are NULL for mprgp. The prefixes have no leading dash. */
 struct MPGPOptionNames {
   const char *title;
-  const char *gamma, *alpha, *bb, *arc, *expansion_projcg, *expansion_lagged, *expansion_lookahead, *norm, *norm_method, *norm_margin, *counters_view;
+  const char *gamma, *alpha, *bb, *arc, *expansion_projcg, *expansion_lagged, *expansion_lookahead, *expansion_gradient, *norm, *norm_method, *norm_margin, *counters_view;
   const char *pc_prefix;   /* the preconditioner in face: -<prefix>tao_mpgp_pc_type ... */
   const char *norm_prefix; /* the norm estimate's eigensolver: -<prefix>tao_mpgp_norm_eps_... */
 };

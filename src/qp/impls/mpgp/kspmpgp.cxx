@@ -345,7 +345,7 @@ PetscErrorCode KSPCreate_MPGPCommon(KSP ksp, MPGPVariant variant, const char *na
 . -ksp_mprgp_norm <value>        - ||A|| given, not estimated (only used with bounds)
 . -ksp_mprgp_norm_method <slepc> - slepc or power
 . -ksp_mprgp_norm_margin         - safety margin on the estimate
-. -ksp_mprgp_expansion_projcg, -ksp_mprgp_expansion_lagged, -ksp_mprgp_expansion_lookahead - the expansion steps, as -tao_mprgp_expansion_* of `TAOMPRGP`
+. -ksp_mprgp_expansion_projcg, -ksp_mprgp_expansion_lagged, -ksp_mprgp_expansion_lookahead, -ksp_mprgp_expansion_gradient - the expansion steps, as -tao_mprgp_expansion_* of `TAOMPRGP`
 - -ksp_mprgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:

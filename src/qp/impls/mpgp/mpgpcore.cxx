@@ -267,10 +267,11 @@ static PetscErrorCode MPGPCoreLaggedExpansion(MPGPCore *c, Vec x, PetscReal alph
    and the projection retracts them. On entry x = xprev, g = gprev, p and Ap (and Wp for arcs) are those of the
    rejected CG step of length acg, pHp its curvature; on return x = P(y) and g its exact gradient, and psave and
    Apsave hold p and Ap for the half step of a rejection. */
-static PetscErrorCode MPGPCoreLookahead(MPGPCore *c, Vec x, PetscReal acg, PetscReal pHp, PetscBool arcs)
+static PetscErrorCode MPGPCoreLookahead(MPGPCore *c, Vec x, PetscReal acg, PetscReal pHp, PetscBool arcs, PetscReal alpha)
 {
-  Vec       Aq = c->Ap; /* the conjugacy's product: A p, or (A + W) p with arcs */
-  PetscReal unused;
+  Vec             Aq            = c->Ap;                            /* the conjugacy's product: A p, or (A + W) p with arcs */
+  const PetscReal gradient_step = c->projcg_gradient ? alpha : 0.0; /* -tao_mpgp_expansion_gradient: P(y - alpha g(y)) */
+  PetscReal       unused;
 
   PetscFunctionBegin;
   PetscCall(VecCopy(c->p, c->psave));
@@ -309,7 +310,7 @@ static PetscErrorCode MPGPCoreLookahead(MPGPCore *c, Vec x, PetscReal acg, Petsc
     PetscCall(ReproducibleAXPY(c->g, -gp / pHp, c->Ap));
     if (arcs) PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
   }
-  PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
+  PetscCall(SeparableSetProjectedStep_Private(c->set, x, gradient_step, c->projcg_gradient ? c->g : NULL, x));
   PetscCall(MPGPCoreGradient(c, x));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -460,8 +461,12 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
               PetscCall(VecCopy(c->g, c->gprev));
             }
             const PetscBool lookahead = c->lookahead > 0 ? PETSC_TRUE : PETSC_FALSE;
-            if (lookahead) PetscCall(MPGPCoreLookahead(c, x, acg, pHp, along_arcs));
-            else {
+            if (lookahead) PetscCall(MPGPCoreLookahead(c, x, acg, pHp, along_arcs, alpha));
+            else if (c->projcg_gradient) { /* P(y - alpha g(y)), y = x - a_cg p, g(y) = g - a_cg Ap without a product */ PetscCall(VecWAXPY(c->dx, -acg, c->p, c->xprev));
+              PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
+              PetscCall(SeparableSetProjectedStep_Private(c->set, c->dx, alpha, c->g, x));
+              PetscCall(MPGPCoreGradient(c, x));
+            } else {
               PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, acg, c->p, x));
               PetscCall(MPGPCoreGradient(c, x));
             }

@@ -11,6 +11,7 @@ const MPGPOptionNames MPGPOptionsTaoMPRGP = {"TAO mprgp: QP over a separable set
                                              "-tao_mprgp_expansion_projcg",
                                              "-tao_mprgp_expansion_lagged",
                                              "-tao_mprgp_expansion_lookahead",
+                                             "-tao_mprgp_expansion_gradient",
                                              "-tao_mprgp_norm",
                                              "-tao_mprgp_norm_method",
                                              "-tao_mprgp_norm_margin",
@@ -25,6 +26,7 @@ const MPGPOptionNames MPGPOptionsTaoMPGP  = {"TAO mpgp: QP over a separable set 
                                              "-tao_mpgp_expansion_projcg",
                                              "-tao_mpgp_expansion_lagged",
                                              "-tao_mpgp_expansion_lookahead",
+                                             "-tao_mpgp_expansion_gradient",
                                              "-tao_mpgp_norm",
                                              "-tao_mpgp_norm_method",
                                              "-tao_mpgp_norm_margin",
@@ -39,6 +41,7 @@ const MPGPOptionNames MPGPOptionsKSPMPRGP = {"KSP mprgp: QP over a separable set
                                              "-ksp_mprgp_expansion_projcg",
                                              "-ksp_mprgp_expansion_lagged",
                                              "-ksp_mprgp_expansion_lookahead",
+                                             "-ksp_mprgp_expansion_gradient",
                                              "-ksp_mprgp_norm",
                                              "-ksp_mprgp_norm_method",
                                              "-ksp_mprgp_norm_margin",
@@ -53,6 +56,7 @@ const MPGPOptionNames MPGPOptionsKSPMPGP  = {"KSP mpgp: QP over a separable set 
                                              "-ksp_mpgp_expansion_projcg",
                                              "-ksp_mpgp_expansion_lagged",
                                              "-ksp_mpgp_expansion_lookahead",
+                                             "-ksp_mpgp_expansion_gradient",
                                              "-ksp_mpgp_norm",
                                              "-ksp_mpgp_norm_method",
                                              "-ksp_mpgp_norm_margin",
@@ -106,6 +110,9 @@ PetscErrorCode MPGPCoreSetFromOptions(CONEFETI_OPTIONS_ITEMS PetscOptionsObject,
                             "With the projected CG expansion: the projected step continues that many more CG steps in the face first, past the set, then projects (0: one step)", "MPGP",
                             core->lookahead, &core->lookahead, NULL));
   PetscCheck(core->lookahead >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be >= 0, got %" PetscInt_FMT, Shown(prefix, names->expansion_lookahead).text, core->lookahead);
+  PetscCall(PetscOptionsBool(names->expansion_gradient,
+                             "With the projected CG expansion: the tried point also takes the fixed-length projected gradient step from the CG point, P(y - alpha g(y)), y = x - a_cg p", "MPGP",
+                             core->projcg_gradient, &core->projcg_gradient, NULL));
   PetscCall(PetscOptionsReal(names->norm, "Use this value of ||A|| instead of estimating it", names->norm[1] == 'k' ? "KSPQPSetNormEstimate" : "TaoQPSetNormEstimate", norm->user, &value, &set));
   if (set) {
     PetscCheck(value >= 0 && !PetscIsInfOrNanReal(value), comm, PETSC_ERR_ARG_OUTOFRANGE, "%s must be finite and > 0 (0 to estimate), got %g", Shown(prefix, names->norm).text, (double)value);
@@ -147,6 +154,7 @@ PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *core, PetscViewer viewer)
   if (core->projcg)
     PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: projected full CG step first (%" PetscInt_FMT " not kept), else feasible half step and fixed-length projected step\n", core->projcg_rejected));
   else PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: feasible half step and fixed-length projected step\n"));
+  if (core->projcg && core->projcg_gradient) PetscCall(PetscViewerASCIIPrintf(viewer, "expansion: the projected CG step also takes the fixed-length gradient step from the CG point\n"));
   if (core->projcg && core->lookahead > 0)
     PetscCall(PetscViewerASCIIPrintf(viewer,
                                      "expansion: the projected CG step looks %" PetscInt_FMT " CG steps ahead in the face before it projects (%" PetscInt_FMT " kept, %" PetscInt_FMT " not kept)\n",

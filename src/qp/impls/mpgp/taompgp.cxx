@@ -627,6 +627,7 @@ PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *na
 . -tao_mprgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian: true when assembled)
 . -tao_mprgp_expansion_lagged <false> - projected CG expansions first try the last expansion's length, without a product of their own (`TaoQPSetExpansionLagged()`)
 . -tao_mprgp_expansion_lookahead <0> - projected CG expansions project the point this many more CG steps down the face, past the set (kept when q is no higher than at the feasible half step)
+. -tao_mprgp_expansion_gradient <false> - projected CG expansions try P(y - alpha g(y)), y the CG point, instead of P(y)
 . -tao_mprgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries (preconditioning in face; default from the Hessian: icc when assembled, bjacobi with icc on several
 ranks, else none)
 - -tao_mprgp_counters_view       - print the counters as one JSON line after each solve
@@ -681,6 +682,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_MPRGP(Tao tao)
 . -tao_mpgp_expansion_projcg <bool> - expansion steps first try the projected full CG step (`TaoQPSetExpansionProjCG()`; default from the Hessian, as for mprgp; off when the set has cones)
 . -tao_mpgp_expansion_lagged <false> - projected CG expansions first try the last expansion's length, without a product of their own (`TaoQPSetExpansionLagged()`)
 . -tao_mpgp_expansion_lookahead <0> - projected CG expansions project the point this many more CG steps down the face, past the set (kept when q is no higher than at the feasible half step)
+. -tao_mpgp_expansion_gradient <false> - projected CG expansions try P(y - alpha g(y)), y the CG point, instead of P(y)
 . -tao_mpgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries and interior blocks (default from the Hessian, as for mprgp; none when the set has cones)
 - -tao_mpgp_counters_view       - print the counters as one JSON line after each solve
 
