@@ -15,7 +15,8 @@
      more. With -tao_mpgp_expansion_lagged (TaoQPSetExpansionLagged()) a projected step with the last
      expansion's length is tried first, without the product A p (MPGPCoreLaggedExpansion()). With
      -tao_mpgp_expansion_lookahead k the projected CG step is taken from the point k more CG steps down the face,
-     past the set, instead (MPGPCoreLookahead(); off by default);
+     past the set, instead, and with -tao_mpgp_expansion_gradient from P(y - alpha g(y)) for the CG point y
+     (MPGPCoreLookahead(); both off by default);
    - proportioning step when not proportional: along the chopped gradient with exact line search
      (MPRGP; cut at the opposite bound of a box), or a projected gradient step (MPGP, which is what curved
      boundaries need), of Kucera's fixed length alpha.
@@ -264,9 +265,11 @@ static PetscErrorCode MPGPCoreLaggedExpansion(MPGPCore *c, Vec x, PetscReal alph
    there is no higher than at the feasible half step (the same test as the projected CG step's), so q never rises;
    a rejected look-ahead costs its k + 1 products. Arc blocks (slipping disk blocks, free along their circle) move
    along the tangent of their circle at x, with the circle's curvature in the step lengths (as in arc CG steps),
-   and the projection retracts them. On entry x = xprev, g = gprev, p and Ap (and Wp for arcs) are those of the
-   rejected CG step of length acg, pHp its curvature; on return x = P(y) and g its exact gradient, and psave and
-   Apsave hold p and Ap for the half step of a rejection. */
+   and the projection retracts them. With -tao_mpgp_expansion_gradient the projection is P(y - alpha g(y)), g(y)
+   updated along the steps without a product (also with k = 0: the gradient step alone). On entry x = xprev,
+   g = gprev, p and Ap (and Wp for arcs) are those of the rejected CG step of length acg, pHp its curvature; on
+   return x is the tried point and g its exact gradient, and for k > 0 psave and Apsave hold p and Ap for the half
+   step of a rejection. */
 static PetscErrorCode MPGPCoreLookahead(MPGPCore *c, Vec x, PetscReal acg, PetscReal pHp, PetscBool arcs, PetscReal alpha)
 {
   Vec             Aq            = c->Ap;                            /* the conjugacy's product: A p, or (A + W) p with arcs */
@@ -274,8 +277,10 @@ static PetscErrorCode MPGPCoreLookahead(MPGPCore *c, Vec x, PetscReal acg, Petsc
   PetscReal       unused;
 
   PetscFunctionBegin;
-  PetscCall(VecCopy(c->p, c->psave));
-  PetscCall(VecCopy(c->Ap, c->Apsave));
+  if (c->lookahead > 0) {
+    PetscCall(VecCopy(c->p, c->psave));
+    PetscCall(VecCopy(c->Ap, c->Apsave));
+  }
   PetscCall(ReproducibleAXPY(x, -acg, c->p));
   PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
   if (arcs) {
@@ -461,12 +466,8 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
               PetscCall(VecCopy(c->g, c->gprev));
             }
             const PetscBool lookahead = c->lookahead > 0 ? PETSC_TRUE : PETSC_FALSE;
-            if (lookahead) PetscCall(MPGPCoreLookahead(c, x, acg, pHp, along_arcs, alpha));
-            else if (c->projcg_gradient) { /* P(y - alpha g(y)), y = x - a_cg p, g(y) = g - a_cg Ap without a product */ PetscCall(VecWAXPY(c->dx, -acg, c->p, c->xprev));
-              PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
-              PetscCall(SeparableSetProjectedStep_Private(c->set, c->dx, alpha, c->g, x));
-              PetscCall(MPGPCoreGradient(c, x));
-            } else {
+            if (lookahead || c->projcg_gradient) PetscCall(MPGPCoreLookahead(c, x, acg, pHp, along_arcs, alpha));
+            else {
               PetscCall(SeparableSetProjectedStep_Private(c->set, c->xprev, acg, c->p, x));
               PetscCall(MPGPCoreGradient(c, x));
             }
