@@ -295,8 +295,9 @@ PetscErrorCode AndersonDestroyHistory(TaoSMALXE *s)
 }
 
 /* Solves the m x m symmetric positive semidefinite system A g = c by Cholesky; *ok is false when a
-   pivot is below tol times the largest diagonal entry (the differences are nearly dependent). */
-void SmallCholeskySolve(PetscInt m, std::vector<PetscReal> &A, std::vector<PetscReal> &c, PetscReal tol, PetscBool *ok)
+   pivot is below tol times the largest diagonal entry (the differences are nearly dependent) or not
+   above floor (a difference too small to be more than rounding, see UpdateMultiplier()). */
+void SmallCholeskySolve(PetscInt m, std::vector<PetscReal> &A, std::vector<PetscReal> &c, PetscReal tol, PetscReal floor, PetscBool *ok)
 {
   PetscReal dmax = 0;
   for (PetscInt i = 0; i < m; i++) dmax = PetscMax(dmax, A[i * m + i]);
@@ -304,7 +305,7 @@ void SmallCholeskySolve(PetscInt m, std::vector<PetscReal> &A, std::vector<Petsc
   for (PetscInt j = 0; j < m && *ok; j++) {
     PetscReal d = A[j * m + j];
     for (PetscInt k = 0; k < j; k++) d -= A[j * m + k] * A[j * m + k];
-    if (d <= tol * dmax) {
+    if (d <= tol * dmax || d <= floor) {
       *ok = PETSC_FALSE;
       break;
     }
@@ -387,6 +388,13 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
     const PetscInt         m = s->aCount;
     std::vector<PetscReal> A(m * m), c(m);
     PetscBool              ok;
+    PetscReal              ff;
+    /* a difference of the increments below 1e-4 |f| says nothing the rounding does not: an inner solve that
+       took no step (its gradient already within the final tolerance) returns the same Cx - d, and the
+       difference of two equal increments is rounding. A relative pivot test alone passes it when it is the
+       only one (m = 1), and its coefficient, about |f| / |df|, then threw the multiplier 10^15 times too far
+       (a random scene of scripts/fuzz-scenes.py: a clamped body declared to have no equilibrium) */
+    PetscCall(ReproducibleDot(res, res, &ff));
     for (PetscInt i = 0; i < m; i++) {
       PetscCall(ReproducibleDot(s->aDF[i], res, &c[i]));
       for (PetscInt j = 0; j <= i; j++) {
@@ -394,7 +402,7 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
         A[j * m + i] = A[i * m + j];
       }
     }
-    SmallCholeskySolve(m, A, c, 1e-12, &ok);
+    SmallCholeskySolve(m, A, c, 1e-12, 1e-8 * ff, &ok);
     if (ok) {
       for (PetscInt i = 0; i < m; i++) {
         PetscCall(ReproducibleAXPY(mult, -c[i], s->aDX[i]));
