@@ -29,11 +29,14 @@ Each run is classified:
                     JSON field "acceptance" when the driver prints one, else --accept-factor x -contact_rtol
   OK-not-converged  exit 2, a "NOT CONVERGED: ..." line and "converged":false; marked SUSPECT (not a
                     failure) when every body is clamped on an area and every law is convex (frictionless,
-                    Tresca, Coulomb F = 0): such a scene has a unique solution
+                    Tresca, Coulomb F = 0): such a scene has a unique solution, which the solver did not reach
+                    within its limits (an iteration limit, a stalled loop)
   FAIL-wrong        exit 0 with a residual above the acceptance, a null residual, "converged":false, or a
                     scene that certainly has no equilibrium (a floating body whose net load points away
                     from its support, or whose net tangential load exceeds 1.5 x what friction can carry);
-                    exit 2 with "converged":true or without a reason
+                    exit 2 with "converged":true or without a reason; exit 2 on such a scene with a unique
+                    solution whose reason says there is none ("no equilibrium", "not unique"): a false
+                    statement about the mechanics, as wrong as a wrong answer
   FAIL-crash        any other exit status (PETSc error, segfault, MPI abort, a valid scene rejected as bad
                     input), or no JSON line on exit 0/2
   FAIL-nan          nan or inf printed
@@ -571,8 +574,16 @@ def classify(rc, out, data, scene, accept_factor):
     m = re.search(r"^NOT CONVERGED:.*$", out, re.MULTILINE)
     if not m:
         return "FAIL-wrong", "exit 2 without a NOT CONVERGED line"
+    reason = m.group(0)[len("NOT CONVERGED: ") :]
+    if scene["solvable"] and FALSE_VERDICT.match(reason):
+        return "FAIL-wrong", "a unique solution exists (every body clamped, convex laws), but: " + reason[:160]
     suspect = "SUSPECT (every body clamped, convex laws: a solution exists): " if scene["solvable"] else ""
-    return "OK-not-converged", suspect + m.group(0)[len("NOT CONVERGED: ") :][:160]
+    return "OK-not-converged", suspect + reason[:160]
+
+
+# the reasons that deny a solution exists or is unique (src/contact: the equilibrium and rigid-motion checks, smalxe's
+# stagnation); a scene with a unique solution must not end with one of them
+FALSE_VERDICT = re.compile(r"(no equilibrium|the displacement is not unique)")
 
 
 def signature(cls, detail):
