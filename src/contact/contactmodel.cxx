@@ -56,11 +56,13 @@ void Tangents(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3])
   t2[2] = n[0] * t1[1] - n[1] * t1[0];
 }
 
-/* The Dirichlet components of every node (global node -> mask of fixed components). A node fixed in all the
-   components its contact row would act on is left out of contact (its row would be a zero row of B); see
+/* The Dirichlet components of every node (global node -> mask of fixed components, bits 0-2). A node fixed in all
+   the components its contact row would act on is left out of contact (its row would be a zero row of B); see
    CollectZoneNodes(). A node with a nonzero prescribed displacement (FEMSetDisplacement()) is marked fixed in all
-   three components, so it is left out whatever its law: a row that dropped a moved component would need the
-   value in its gap, and a grip or punch face is not a contact face. */
+   three components and kDirichletMoved, so it is left out whatever its law, also as a master node: a row that
+   dropped a moved component would need the value in its gap, and a grip or punch face is not a contact face. */
+const unsigned kDirichletMoved = 8u; /* DirichletNodes(): the node has a nonzero prescribed displacement */
+
 PetscErrorCode DirichletNodes(FEM fem, std::map<PetscInt, unsigned> &fixed)
 {
   IS                     is, all;
@@ -75,7 +77,7 @@ PetscErrorCode DirichletNodes(FEM fem, std::map<PetscInt, unsigned> &fixed)
   PetscCallCXX(values.resize(n));
   PetscCall(FEMGetDirichletValues(fem, all, values.data()));
   PetscCall(ISGetIndices(all, &idx));
-  for (PetscInt i = 0; i < n; i++) PetscCallCXX(fixed[idx[i] / 3] |= values[i] != 0.0 ? 7u : 1u << (idx[i] % 3));
+  for (PetscInt i = 0; i < n; i++) PetscCallCXX(fixed[idx[i] / 3] |= values[i] != 0.0 ? 7u | kDirichletMoved : 1u << (idx[i] % 3));
   PetscCall(ISRestoreIndices(all, &idx));
   PetscCall(ISDestroy(&all));
   PetscCall(ISDestroy(&is));
@@ -211,11 +213,15 @@ PetscErrorCode CollectBodiesZoneNodes(ContactModel cm, PetscInt z, const std::ma
       continue;
     }
     found++;
-    /* Dirichlet components of the slave node or its master nodes: where they are zero, u_c = 0 and a frictionless
-       row may drop those terms and still say N u <= d (a slab clamped or on rollers next to the contact face keeps
-       its contact), as foundation zones do. The node is left out when one of them is fixed in all three components
-       (or moved: DirichletNodes() marks a nonzero prescribed value so), when it has friction (a tangent along a
-       fixed direction would be a zero row), or when no term along the normal is left. */
+    /* Dirichlet components of the slave node or its master nodes: where they are zero, u_c = 0 and the rows drop
+       those terms and still say what they said, as foundation zones do: a slab clamped or on rollers next to the
+       contact face keeps its contact, and so does a slave node whose master triangle reaches a clamped edge (a
+       block pressed against the side of a clamped slab; before, such nodes were left out, and a zone made only of
+       them stopped the setup). The node's own terms keep every row of it nonzero and independent of the other
+       nodes' rows, so it is left out only when those terms go: when the slave node is fixed in all three
+       components, when it has friction and any fixed component (a tangent along a fixed direction would be a
+       zero row), or when no term along the normal is left; and when the slave or a master node is moved
+       (DirichletNodes(): a nonzero prescribed value). */
     {
       auto      f = fixed.find(S.offset + info.node);
       unsigned  mask[4];
@@ -225,8 +231,9 @@ PetscErrorCode CollectBodiesZoneNodes(ContactModel cm, PetscInt z, const std::ma
         auto g      = fixed.find(M.offset + info.master[v]);
         mask[1 + v] = g == fixed.end() ? 0u : g->second;
       }
+      if ((mask[0] & 7u) == 7u || (mask[0] && info.law != CONTACT_FRICTIONLESS)) held = PETSC_TRUE;
       for (PetscInt v = 0; v <= info.nmaster; v++) {
-        if (mask[v] && (mask[v] == 7u || info.law != CONTACT_FRICTIONLESS)) held = PETSC_TRUE;
+        if (mask[v] & kDirichletMoved) held = PETSC_TRUE;
         for (int c = 0; c < 3; c++)
           if (!(mask[v] & (1u << c)) && info.n[c] != 0) along = PETSC_TRUE;
       }

@@ -12,7 +12,7 @@ struct ContactNodeInfo {
   PetscInt   zone, body, node, other_body = -1;
   PetscInt   nmaster = 0, master[3] = {-1, -1, -1};
   PetscReal  weight[3] = {0, 0, 0}, chi[3] = {0, 0, 0};
-  unsigned   master_fixed[3] = {0, 0, 0}; /* the master nodes' Dirichlet components (frictionless nodes only): their terms are left out */
+  unsigned   master_fixed[3] = {0, 0, 0}; /* the master nodes' Dirichlet components: their terms are left out (zero there) */
   PetscReal  x[3], area, n[3], t1[3], t2[3], gap;
   ContactLaw law;
   PetscReal  coef; /* Tresca: bound as a nodal force; Coulomb: F */
