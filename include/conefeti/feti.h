@@ -141,6 +141,8 @@ PETSC_EXTERN PetscErrorCode FETIGetKplusType(FETI, FETIKplusType *, PetscInt *);
 PETSC_EXTERN PetscErrorCode FETISetKplusMemoryRatio(FETI, PetscReal);
 PETSC_EXTERN PetscErrorCode FETISetKplusPrecision(FETI, FETIKplusPrecision);
 PETSC_EXTERN PetscErrorCode FETIGetKplusPrecision(FETI, FETIKplusPrecision *, PetscInt *, PetscReal *, PetscReal *);
+PETSC_EXTERN PetscErrorCode FETISetKplusRefine(FETI, PetscBool);
+PETSC_EXTERN PetscErrorCode FETIGetKplusRefine(FETI, PetscBool *);
 PETSC_EXTERN PetscErrorCode FETISetKplusSpeedup(FETI, PetscReal);
 PETSC_EXTERN PetscErrorCode FETISetKplusMemoryBudget(FETI, PetscReal);
 PETSC_EXTERN PetscErrorCode FETIGetMemoryEstimate(FETI, PetscReal *, PetscReal *, PetscReal *);

@@ -838,6 +838,8 @@ void Accumulate(ContactStatistics &total, const ContactStatistics &one)
   contains the gaps and the loads of the whole scene); the acceptance is by the mechanics of each body and zone.
   When they disagree, the tolerance is tightened in proportion to the excess (each time by a factor
   between 10 and 10^4, never below 1e-13) and the solve continues warm, the equality's multiplier included.
+  Such a solve below a relative tolerance of 1e-6 refines the F products where the subdomains' factors are
+  stored in float (`FETISetKplusRefine()`): their perturbation of F, about 1e-7, would otherwise be its floor.
   If the residuals are still above the acceptance after -contact_refine_max such solves, the solve has not
   converged, and `ContactModelGetStatistics()` says which check failed, where, and by how much.
   A scene without load (no force, no prescribed displacement, no initial penetration) has the exact solution
@@ -853,8 +855,9 @@ void Accumulate(ContactStatistics &total, const ContactStatistics &one)
 PetscErrorCode ContactModelSolve(ContactModel cm)
 {
   ContactModelData *d;
-  PetscBool         noload = PETSC_FALSE;
+  PetscBool         noload = PETSC_FALSE, refine0;
   PetscReal         rtol0, tol;
+  PetscInt          nsingle;
   ContactStatistics one = {};
   ContactResiduals  r;
 
@@ -880,7 +883,15 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   tol = rtol0;
+  PetscCall(FETIGetKplusRefine(d->feti, &refine0));
+  PetscCall(FETIGetKplusPrecision(d->feti, NULL, &nsingle, NULL, NULL));
   for (PetscInt round = 0;; round++) {
+    /* float factors perturb F by about 1e-7 (relative), the floor of what a solve reaches with them: a tighter
+       solve of a refinement round refines its F products to double accuracy (a scene whose gap dominates the
+       right-hand side needs such rounds, and without this stops above the acceptance) */
+    const PetscBool refine = (PetscBool)(refine0 || (round > 0 && nsingle > 0 && tol < CONTACT_SINGLE_PRECISION_MIN_RTOL));
+    if (refine != refine0) PetscCall(PetscInfo(cm, "solve %" PetscInt_FMT " at relative tolerance %g: F products refine the float factors' solves\n", round, (double)tol));
+    PetscCall(FETISetKplusRefine(d->feti, refine));
     PetscCall(SolveOnce(cm, round > 0 ? PETSC_TRUE : PETSC_FALSE, &one));
     Accumulate(d->stats, one);
     d->stats.fixed_point = one.fixed_point;
@@ -918,6 +929,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     PetscCall(SetSolverTolerance(cm, tol));
   }
   if (tol != rtol0) PetscCall(SetSolverTolerance(cm, rtol0));
+  PetscCall(FETISetKplusRefine(d->feti, refine0));
   PetscCall(ConeFETIProgressEnd_Private(d->progress));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -460,6 +460,7 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_kplus_memory_ratio <1> - auto: all dense blocks together take at most this many times the entries of all the sparse factors (`FETISetKplusMemoryRatio()`)
 . -feti_kplus_precision <double,single> - storage of PETSc's block Cholesky factors for the F products (`FETISetKplusPrecision()`): single keeps a float copy (half the
   factor's memory traffic and memory, sums in double) and frees the double factor
+. -feti_kplus_refine <false>  - with single: F products refine the float solves to double accuracy (`FETISetKplusRefine()`)
 . -feti_dirichlet_pc_precision <single,double> - storage of the Dirichlet preconditioner's block Cholesky factors of K_ii (`PCFETIDIRICHLET`): single (the default) keeps float copies
 . -feti_kplus_speedup <2>     - auto: a block is a candidate when an F product reads at least this many times fewer numbers of it than of the factor (`FETISetKplusSpeedup()`)
 . -feti_kplus_memory_budget <MB> - auto: all dense blocks together take at most this many megabytes (all ranks; default: no bound but the ratio) (`FETISetKplusMemoryBudget()`)
@@ -533,6 +534,10 @@ PetscErrorCode FETISetFromOptions(FETI feti)
                              "Storage of PETSc's block Cholesky factors of the subdomains: double, or single (a float copy, sums in double; the double factor is freed; K+ x outside F "
                              "products is refined against Kreg)",
                              "FETISetKplusPrecision", FETIKplusPrecisions, (PetscEnum)impl.kplusprecision, (PetscEnum *)&impl.kplusprecision, NULL));
+  PetscCall(PetscOptionsBool("-feti_kplus_refine",
+                             "With -feti_kplus_precision single: F products refine each float solve against Kreg to double accuracy (2 to 4 more solves each; for tolerances below "
+                             "about 1e-6)",
+                             "FETISetKplusRefine", impl.kplusrefine, &impl.kplusrefine, NULL));
   PetscCall(PetscOptionsEnum("-feti_dirichlet_pc_precision",
                              "Storage of the Dirichlet preconditioner's block Cholesky factors of the interior blocks K_ii: single (the default: a float copy, sums in double; "
                              "a preconditioner changes the convergence rate only) or double",
@@ -794,7 +799,7 @@ PetscErrorCode FETISetKplusMemoryRatio(FETI feti, PetscReal ratio)
   up to 3000 dofs in the F products, -feti_sub_pc_factor_mat_solver_type petsc) into float storage right after
   its factorization and frees the double factor: the factor takes about half the memory, and the solves read
   half as much. Vectors and sums stay double, so the solve is exact for the factor rounded to float, a symmetric
-  operator that differs from K_s^-1 by about cond(K_s) times 6e-8. F products use it as it is; K+ x for the
+  operator that differs from K_s^-1 by about cond(K_s) times 6e-8. F products use it as it is (`FETISetKplusRefine()` refines them too); K+ x for the
   dual right-hand side h, the primal recovery and explicit blocks built by solves is refined against Kreg in
   double until it is as accurate as the double solve. Factors of other packages (CHOLMOD, MUMPS) stay double.
   With -feti_check the float copy is compared with the double solve at setup.
@@ -813,6 +818,64 @@ PetscErrorCode FETISetKplusPrecision(FETI feti, FETIKplusPrecision precision)
   PetscCheck(!feti->impl->setupcalled || feti->impl->kplusprecision == precision, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
              "FETISetKplusPrecision() (-feti_kplus_precision) must come before FETISetUp()");
   feti->impl->kplusprecision = precision;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETISetKplusRefine - Whether F products refine the float factors' solves to double accuracy.
+
+  Logically Collective
+
+  Input Parameters:
++ feti   - the FETI problem
+- refine - `PETSC_TRUE`: refine; `PETSC_FALSE` (the default): F products take the float solve as it is
+
+  Options Database Key:
+. -feti_kplus_refine <false> - the same; read by `FETISetFromOptions()`, overrides this call
+
+  Notes:
+  Matters only for the subdomains whose factor is stored in float (`FETISetKplusPrecision()`). Their solve is exact
+  for the factor rounded to float, which perturbs F by about cond(K_s) times 6e-8 (relative); a solve of the dual
+  problem to a tighter relative tolerance then stalls at that floor. With refinement every F product corrects each
+  such solve against Kreg in double, as K+ x outside F products always is, until it is as accurate as the double
+  solve: F is then the double operator, at 2 to 4 more float solves (and products with Kreg) per subdomain and
+  product. Unlike the precision, it may be changed at any time, also between solves: the contact layer turns it
+  on for its solves below a relative tolerance of 1e-6 (`ContactModelSolve()`), and off again after them.
+
+  Level: advanced
+
+.seealso: `FETIGetKplusRefine()`, `FETISetKplusPrecision()`, `FETIGetKplusPrecision()`
+@*/
+PetscErrorCode FETISetKplusRefine(FETI feti, PetscBool refine)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(feti, refine, 2);
+  feti->impl->kplusrefine = refine;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
+  FETIGetKplusRefine - Whether F products refine the float factors' solves to double accuracy.
+
+  Not Collective
+
+  Input Parameter:
+. feti - the FETI problem
+
+  Output Parameter:
+. refine - as set by `FETISetKplusRefine()` or -feti_kplus_refine
+
+  Level: advanced
+
+.seealso: `FETISetKplusRefine()`, `FETIGetKplusPrecision()`
+@*/
+PetscErrorCode FETIGetKplusRefine(FETI feti, PetscBool *refine)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscAssertPointer(refine, 2);
+  *refine = feti->impl->kplusrefine;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

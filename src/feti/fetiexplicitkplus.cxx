@@ -382,7 +382,7 @@ PetscErrorCode FETIApplyKplusOnBoundary(FETI feti, Vec x, Vec y)
     if (sd.kplusimplicit) { /* two triangular solves with the factor, as FETIApplyKplus() */
       PetscCall(VecPlaceArray(sd.xa, xa + sd.localoffset));
       PetscCall(VecPlaceArray(sd.ya, ya + sd.localoffset));
-      PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya, PETSC_FALSE));
+      PetscCall(FETISubdomainApplyKplus(sd, sd.xa, sd.ya, impl.kplusrefine));
       PetscCall(VecResetArray(sd.xa));
       PetscCall(VecResetArray(sd.ya));
       continue;

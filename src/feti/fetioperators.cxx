@@ -507,7 +507,7 @@ static PetscErrorCode MatMult_F(Mat A, Vec x, Vec y)
   PetscCall(PetscLogEventBegin(FETI_MultF, feti, 0, 0, 0));
   PetscCall(FETIRowSumApply(impl.Btsum, x, impl.wp1));
   if (impl.kplusexplicit) PetscCall(FETIApplyKplusOnBoundary(feti, impl.wp1, impl.wp2)); /* B' x lives on the dofs B touches */
-  else PetscCall(FETIApplyKplus(feti, impl.wp1, impl.wp2, PETSC_FALSE));
+  else PetscCall(FETIApplyKplus(feti, impl.wp1, impl.wp2, impl.kplusrefine));
   PetscCall(FETIRowSumApply(impl.Bsum, impl.wp2, y));
   PetscCall(PetscLogEventEnd(FETI_MultF, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

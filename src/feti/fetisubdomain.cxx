@@ -90,7 +90,7 @@ static PetscErrorCode ApplyKplusFloat(FETISubdomain &sd, Vec x, Vec y, PetscBool
 }
 
 /* y = K+ x = [K_NN^-1 0; 0 0] x. exact matters with a float factor only (-feti_kplus_precision single): F products
-   take its solve as it is, everything else (exact) the refined one */
+   take its solve as it is (unless -feti_kplus_refine), everything else (exact) the refined one */
 PetscErrorCode FETISubdomainApplyKplus(FETISubdomain &sd, Vec x, Vec y, PetscBool exact)
 {
   PetscScalar *a;

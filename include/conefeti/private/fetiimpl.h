@@ -156,6 +156,7 @@ struct FETI_Impl {
   PetscReal          kplusspeedup       = 2.0;                         /* -feti_kplus_speedup (auto): a block must cut a subdomain's reads per F product by at least this */
   PetscReal          kplusbudget        = -1;                          /* -feti_kplus_memory_budget (auto): bytes all blocks may take (all ranks); negative: no such bound */
   FETIKplusPrecision kplusprecision     = FETI_KPLUS_PRECISION_DOUBLE; /* -feti_kplus_precision */
+  PetscBool          kplusrefine        = PETSC_FALSE;                 /* -feti_kplus_refine: F products refine the float factors' solves to double accuracy (FETISetKplusRefine()) */
   FETIKplusPrecision pcprecision        = FETI_KPLUS_PRECISION_SINGLE; /* -feti_dirichlet_pc_precision: the Dirichlet preconditioner's block Cholesky factors of K_ii */
   PetscInt           npcsingle          = 0;                           /* after the Dirichlet preconditioner's setup: its interior factors (all ranks) stored in float */
   PetscInt           npcblock           = 0;                           /* ... of PETSc's block Cholesky, in float or double */
