@@ -27,6 +27,8 @@ PetscReal Dot(const PetscReal a[3], const PetscReal b[3]) { return a[0] * b[0] +
 /* a node closer than this fraction of the radius to the centre (sphere) or the axis (cylinder) has no
    well-defined outward direction: its normal would follow roundoff */
 constexpr PetscReal kCentreTol = 1e-10;
+/* a gap at most this many machine epsilons times the largest coordinate (or radius) it comes from is rounding */
+constexpr PetscReal kGapRounding = 64;
 
 } // namespace
 
@@ -83,6 +85,8 @@ PetscErrorCode ContactZoneCheckObstacle(const ContactZone *zone)
   Cylinder (axis through c along a, radius R): with y the part of x - c normal to a, gap = |y| - R,
   n = -y/|y|, chi = x + gap n.
   A point on the sphere's centre or the cylinder's axis (closer than 1e-10 R) has no defined normal: error.
+  A gap within the rounding of its computation, |gap| <= 64 eps max(|x|, |p| or |c|, R) (max norms, eps the
+  machine epsilon), is returned as 0: the point lies on the surface as far as its coordinates can say.
 
   Level: intermediate
 
@@ -122,6 +126,14 @@ PetscErrorCode ContactZoneComputeGap(const ContactZone *zone, const PetscReal x[
     for (int c = 0; c < 3; c++) nn[c] = -y[c] / dist;
   } break;
   default: SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "contact zone: unknown obstacle shape %d", (int)zone->shape);
+  }
+  { /* a gap within the rounding of the differences of coordinates it comes from is zero: a node placed on the
+       surface (a sphere touching a scaled mesh's corner) would otherwise get a gap of +-1e-17 and, in a scene with
+       no other load, a solve of rounding that no residual can judge */
+    const PetscReal *o   = zone->shape == CONTACT_OBSTACLE_PLANE ? zone->point : zone->center;
+    PetscReal        mag = zone->shape == CONTACT_OBSTACLE_PLANE ? 0 : zone->radius;
+    for (int c = 0; c < 3; c++) mag = PetscMax(mag, PetscMax(PetscAbsReal(x[c]), PetscAbsReal(o[c])));
+    if (PetscAbsReal(g) <= kGapRounding * PETSC_MACHINE_EPSILON * mag) g = 0;
   }
   if (chi)
     for (int c = 0; c < 3; c++) chi[c] = x[c] + g * nn[c];

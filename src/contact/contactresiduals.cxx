@@ -150,6 +150,42 @@ PetscErrorCode SubdomainBodies(ContactModel cm, std::vector<PetscInt> &start, st
 /* r / max(scale, floor * largest scale of the kind, the smallest positive real) */
 PetscReal Relative(PetscReal r, PetscReal scale, PetscReal largest) { return r / PetscMax(PetscMax(scale, kScaleFloor * largest), kTiny); }
 
+/* K u_D, u_D = B_D' c_D the displacements prescribed by the Dirichlet rows of B (zero elsewhere): the forces they would
+   exert with every other dof held, part of a body's force scale. With -fem_dirichlet primal the same forces are in f
+   (its lifting term); with multipliers f does not see them, and a prescribed rigid motion (a grip moving a body
+   toward an obstacle it does not reach) has f = 0, B'l = 0 and K u = 0 in exact arithmetic, so without this term
+   the equilibrium residual would be rounding over rounding. NULL when no Dirichlet row prescribes a nonzero value. */
+PetscErrorCode PrescribedDisplacementForce(ContactModel cm, Mat B, Vec cvec, const FETIRowKind *kinds, Vec *KuD)
+{
+  Vec          cD, uD;
+  PetscScalar *a;
+  PetscInt     m;
+  PetscReal    cmax = 0;
+
+  PetscFunctionBegin;
+  *KuD = NULL;
+  if (!cvec) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecDuplicate(cvec, &cD));
+  PetscCall(VecCopy(cvec, cD));
+  PetscCall(VecGetLocalSize(cD, &m));
+  PetscCall(VecGetArray(cD, &a));
+  for (PetscInt i = 0; i < m; i++) {
+    if (kinds[i] != FETI_ROW_DIRICHLET) a[i] = 0;
+    cmax = PetscMax(cmax, PetscAbsScalar(a[i]));
+  }
+  PetscCall(VecRestoreArray(cD, &a));
+  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &cmax, 1, MPIU_REAL, MPIU_MAX, PetscObjectComm((PetscObject)cm)));
+  if (cmax > 0) {
+    PetscCall(VecDuplicate(cm->data->u, &uD));
+    PetscCall(VecDuplicate(cm->data->u, KuD));
+    PetscCall(MatMultTranspose(B, cD, uD));
+    PetscCall(FETIApplyK(cm->data->feti, uD, *KuD));
+    PetscCall(VecDestroy(&uD));
+  }
+  PetscCall(VecDestroy(&cD));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 /*@C
@@ -166,7 +202,8 @@ PetscReal Relative(PetscReal r, PetscReal scale, PetscReal largest) { return r /
 
   Notes:
   Each residual is relative to a scale of the body or zone where it is measured (see `ContactResiduals`):
-  a body's forces max(|f_b|, |(B'l)_b|, |(K u)_b|), a body's largest displacement, a zone's largest
+  a body's forces max(|f_b|, |(B'l)_b|, |(K u)_b|, |(K u_D)_b|) (u_D the displacements the Dirichlet rows prescribe,
+  zero elsewhere: with -fem_dirichlet primal they are part of f), a body's largest displacement, a zone's largest
   contact multiplier. A scale below 1e-6 times the largest of its kind in the scene is raised to that, and
   a scene without load (all scales 0) has residuals 0 for the exact solution u = 0, l = 0.
 
@@ -191,7 +228,7 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
 {
   ContactModelData     *d;
   Mat                   B;
-  Vec                   cvec, Ku, f, Btl, Bu;
+  Vec                   cvec, Ku, f, Btl, Bu, KuD = NULL;
   const FETIRowKind    *kinds;
   PetscInt              nbodies, nlocal, ustart, rstart;
   MPI_Comm              comm;
@@ -219,16 +256,18 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   PetscCall(FETIGetLoad(d->feti, &f));
   PetscCall(SubdomainBodies(cm, substart, subbody));
 
-  /* per body: |K u - f + B'l|^2, |f|^2, |B'l|^2, |K u|^2 (sums) and max |u| */
-  std::vector<PetscReal> sums(4 * nbodies, 0), umax(nbodies, 0);
+  /* per body: |K u - f + B'l|^2, |f|^2, |B'l|^2, |K u|^2, |K u_D|^2 (sums) and max |u| */
+  std::vector<PetscReal> sums(5 * nbodies, 0), umax(nbodies, 0);
   PetscCall(VecDuplicate(d->u, &Ku));
   PetscCall(VecDuplicate(d->u, &Btl));
   PetscCall(FETIApplyK(d->feti, d->u, Ku));
   PetscCall(MatMultTranspose(B, d->lambda, Btl));
+  PetscCall(PrescribedDisplacementForce(cm, B, cvec, kinds, &KuD));
   PetscCall(VecGetOwnershipRange(d->u, &ustart, NULL));
   PetscCall(FEMGetNumSubdomains(d->fem, NULL, &nlocal, NULL));
   {
-    const PetscScalar *ku, *fa, *bl, *ua;
+    const PetscScalar *ku, *fa, *bl, *ua, *kd = NULL;
+    if (KuD) PetscCall(VecGetArrayRead(KuD, &kd));
     PetscCall(VecGetArrayRead(Ku, &ku));
     PetscCall(VecGetArrayRead(f, &fa));
     PetscCall(VecGetArrayRead(Btl, &bl));
@@ -239,10 +278,11 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
       PetscCall(FETIGetSubdomainOffset(d->feti, s, &primal, NULL));
       for (PetscInt i = primal - ustart; i < primal - ustart + 3 * nn; i++) {
         const PetscReal res = PetscRealPart(ku[i] - fa[i] + bl[i]);
-        sums[4 * b + 0] += res * res;
-        sums[4 * b + 1] += PetscRealPart(fa[i] * fa[i]);
-        sums[4 * b + 2] += PetscRealPart(bl[i] * bl[i]);
-        sums[4 * b + 3] += PetscRealPart(ku[i] * ku[i]);
+        sums[5 * b + 0] += res * res;
+        sums[5 * b + 1] += PetscRealPart(fa[i] * fa[i]);
+        sums[5 * b + 2] += PetscRealPart(bl[i] * bl[i]);
+        sums[5 * b + 3] += PetscRealPart(ku[i] * ku[i]);
+        if (kd) sums[5 * b + 4] += PetscRealPart(kd[i] * kd[i]);
         umax[b] = PetscMax(umax[b], PetscAbsScalar(ua[i]));
       }
     }
@@ -250,17 +290,21 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
     PetscCall(VecRestoreArrayRead(f, &fa));
     PetscCall(VecRestoreArrayRead(Btl, &bl));
     PetscCall(VecRestoreArrayRead(d->u, &ua));
+    if (KuD) PetscCall(VecRestoreArrayRead(KuD, &kd));
   }
+  PetscCall(VecDestroy(&KuD));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, sums.data(), (PetscMPIInt)sums.size(), MPIU_REAL, MPIU_SUM, comm));
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, umax.data(), (PetscMPIInt)umax.size(), MPIU_REAL, MPIU_MAX, comm));
-  PetscReal forcemax = 0, dispmax = 0;
+  /* a body's force scale: the largest of its loads, its multipliers' forces, its elastic forces and the forces its
+     prescribed displacements exert */
+  const auto force    = [&](PetscInt b) { return PetscSqrtReal(std::max({sums[5 * b + 1], sums[5 * b + 2], sums[5 * b + 3], sums[5 * b + 4]})); };
+  PetscReal  forcemax = 0, dispmax = 0;
   for (PetscInt b = 0; b < nbodies; b++) {
-    forcemax = PetscMax(forcemax, PetscSqrtReal(PetscMax(PetscMax(sums[4 * b + 1], sums[4 * b + 2]), sums[4 * b + 3])));
+    forcemax = PetscMax(forcemax, force(b));
     dispmax  = PetscMax(dispmax, umax[b]);
   }
   for (PetscInt b = 0; b < nbodies; b++) {
-    const PetscReal scale = PetscSqrtReal(PetscMax(PetscMax(sums[4 * b + 1], sums[4 * b + 2]), sums[4 * b + 3]));
-    const PetscReal e     = Relative(PetscSqrtReal(sums[4 * b]), scale, forcemax);
+    const PetscReal e = Relative(PetscSqrtReal(sums[5 * b]), force(b), forcemax);
     if (e > r->equilibrium || r->where[CONTACT_CHECK_EQUILIBRIUM] < 0) {
       r->equilibrium                      = e;
       r->where[CONTACT_CHECK_EQUILIBRIUM] = b;
