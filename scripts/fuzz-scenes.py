@@ -21,6 +21,10 @@ Each scene is a valid conefeti command line (docs/scenes.md) drawn from a seeded
 * the canonical scene (stacked along +z) is rotated (a permutation of the axes) and sometimes mirrored,
   so the faces x0 .. z1 and the normals all occur. Meshes stay below ~3000 unknowns.
 
+With --family meshes the scenes come from scripts/fuzz_meshes.py instead: the Gmsh geometries of meshes/
+(hemisphere, indentation block under a rigid sphere or cylinder, the hemisphere-on-block pair, the block with
+a hole, two volumes of one file) meshed by gmsh at random coarse sizes; its header lists them.
+
 Scene i of seed S depends only on (S, i): `--seed S --first i --count 1` reruns it alone.
 
 Each run is classified:
@@ -55,6 +59,7 @@ Usage (from the repository root):
   scripts/fuzz-scenes.py --seed 7 --first 42 --count 1       # scene 42 of seed 7 alone
   scripts/fuzz-scenes.py --seed 7 --count 20 --dry-run       # print the commands, run nothing
   scripts/fuzz-scenes.py --max-ranks 1 ...                   # serial runs only
+  scripts/fuzz-scenes.py --family meshes --seed 1 --count 50 # random scenes on the Gmsh geometries
 """
 
 import argparse
@@ -68,6 +73,8 @@ import signal
 import subprocess
 import sys
 import time
+
+import fuzz_meshes
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MPIEXEC_FLAGS = ["--allow-run-as-root", "--oversubscribe", "-n"]
@@ -486,6 +493,8 @@ def no_equilibrium(scene, support_of):
 
 def command(scene, name):
     """The conefeti options of a scene, in the written (rotated) frame."""
+    if "args" in scene:  # the mesh family writes its own
+        return ["-scene_name", name] + scene["args"]
     fr = scene["frame"]
     args = ["-scene_name", name]
     if scene["refine"] != 1:
@@ -528,6 +537,8 @@ def command(scene, name):
 
 
 def describe(scene):
+    if "describe" in scene:
+        return scene["describe"]
     laws = ",".join(z.law + (f"({fmt(z.coef)})" if z.coef is not None else "") for z in scene["zones"])
     gaps = ",".join(z.gapkind for z in scene["zones"] if z.type == "foundation")
     return f"{scene['kind']}/{scene['support']} {laws}" + (f" gap={gaps}" if gaps else "") + (" load=0" if scene["zero_load"] else "") + (" noeq" if scene["no_equilibrium"] else "") + (" nonmatching" if any(getattr(z, "nonmatching", False) for z in scene["zones"]) else "")
@@ -649,6 +660,7 @@ def main():
     ap.add_argument("--driver", default=os.path.join(REPO, "build", "conefeti"))
     ap.add_argument("--timeout", type=float, default=60, help="seconds per run before it counts as a hang")
     ap.add_argument("--accept-factor", type=float, default=10.0, help="acceptance = factor x -contact_rtol when the JSON has no 'acceptance'")
+    ap.add_argument("--family", choices=["boxes", "meshes"], default="boxes", help="boxes meshed by the program (the default), or Gmsh geometries of meshes/ (scripts/fuzz_meshes.py)")
     ap.add_argument("--max-ranks", type=int, default=3)
     ap.add_argument("--mpiexec", default="mpiexec", help="MPI launcher for runs on 2 or 3 ranks")
     ap.add_argument("--dry-run", action="store_true", help="print the commands only")
@@ -662,7 +674,7 @@ def main():
     if not a.dry_run and not os.access(driver, os.X_OK):
         sys.exit(f"--driver {a.driver}: not an executable (build it with scripts/build.sh)")
 
-    rerun_extra = (f" --max-ranks {a.max_ranks}" if a.max_ranks != 3 else "") + (f" --driver {shlex.quote(shown)}" if shown != os.path.join("build", "conefeti") else "")
+    rerun_extra = (f" --family {a.family}" if a.family != "boxes" else "") + (f" --max-ranks {a.max_ranks}" if a.max_ranks != 3 else "") + (f" --driver {shlex.quote(shown)}" if shown != os.path.join("build", "conefeti") else "")
     t0 = time.time()
     passed = failed = 0
     classes = {}
@@ -673,14 +685,17 @@ def main():
         if a.time_budget is not None and time.time() - t0 > a.time_budget:
             print(f"time budget {a.time_budget:g} s reached after {i - a.first} runs")
             break
-        scene = generate(a.seed, i, a.max_ranks)
-        args = command(scene, f"fuzz{a.seed}_{i}")
+        scene = (fuzz_meshes.generate if a.family == "meshes" else generate)(a.seed, i, a.max_ranks)
+        args = command(scene, f"fuzz{a.seed}_{i}" if a.family == "boxes" else f"fuzzmesh{a.seed}_{i}")
         prefix = [a.mpiexec] + MPIEXEC_FLAGS + [str(scene["ranks"])] if scene["ranks"] > 1 else []
         repro = " ".join(shlex.quote(x) for x in prefix + [shown] + args)
         if a.dry_run:
             print(f"# scene {i}: {describe(scene)}\n{repro}")
             i += 1
             continue
+        trouble = fuzz_meshes.ensure_meshes(scene) if a.family == "meshes" else None
+        if trouble:  # not the program's fault: stop with the reason
+            sys.exit(f"scene {i}: {trouble}")
         rc, out, dt = run(prefix + [driver] + args, a.timeout)
         if rc is None:
             cls, detail = "FAIL-hang", f"no exit within {a.timeout:g} s"
