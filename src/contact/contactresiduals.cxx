@@ -150,12 +150,14 @@ PetscErrorCode SubdomainBodies(ContactModel cm, std::vector<PetscInt> &start, st
 /* r / max(scale, floor * largest scale of the kind, the smallest positive real) */
 PetscReal Relative(PetscReal r, PetscReal scale, PetscReal largest) { return r / PetscMax(PetscMax(scale, kScaleFloor * largest), kTiny); }
 
-/* K u_D, u_D = B_D' c_D the displacements prescribed by the Dirichlet rows of B (zero elsewhere): the forces they would
-   exert with every other dof held, part of a body's force scale. With -fem_dirichlet primal the same forces are in f
-   (its lifting term); with multipliers f does not see them, and a prescribed rigid motion (a grip moving a body
-   toward an obstacle it does not reach) has f = 0, B'l = 0 and K u = 0 in exact arithmetic, so without this term
-   the equilibrium residual would be rounding over rounding. NULL when no Dirichlet row prescribes a nonzero value. */
-PetscErrorCode PrescribedDisplacementForce(ContactModel cm, Mat B, Vec cvec, const FETIRowKind *kinds, Vec *KuD)
+/* K u_D, u_D = B_D' c_D the displacements the data impose (zero elsewhere): the values of the Dirichlet rows of B and
+   the initial overlaps (negative gaps) of the contact normal rows. These are the forces they would exert with every
+   other dof held, part of a body's force scale. With -fem_dirichlet primal the Dirichlet part is in f (its lifting
+   term); with multipliers f does not see it, and a prescribed rigid motion (a grip moving a body toward an obstacle it
+   does not reach) has f = 0, B'l = 0 and K u = 0 in exact arithmetic; so has a floating body lifted rigidly out of
+   an initial overlap. Without this term their equilibrium residual would be rounding over rounding. NULL when the
+   data impose no displacement. */
+PetscErrorCode DataDisplacementForce(ContactModel cm, Mat B, Vec cvec, const FETIRowKind *kinds, Vec *KuD)
 {
   Vec          cD, uD;
   PetscScalar *a;
@@ -170,7 +172,7 @@ PetscErrorCode PrescribedDisplacementForce(ContactModel cm, Mat B, Vec cvec, con
   PetscCall(VecGetLocalSize(cD, &m));
   PetscCall(VecGetArray(cD, &a));
   for (PetscInt i = 0; i < m; i++) {
-    if (kinds[i] != FETI_ROW_DIRICHLET) a[i] = 0;
+    if (!(kinds[i] == FETI_ROW_DIRICHLET || (kinds[i] == FETI_ROW_CONTACT_NORMAL && PetscRealPart(a[i]) < 0))) a[i] = 0;
     cmax = PetscMax(cmax, PetscAbsScalar(a[i]));
   }
   PetscCall(VecRestoreArray(cD, &a));
@@ -202,8 +204,9 @@ PetscErrorCode PrescribedDisplacementForce(ContactModel cm, Mat B, Vec cvec, con
 
   Notes:
   Each residual is relative to a scale of the body or zone where it is measured (see `ContactResiduals`):
-  a body's forces max(|f_b|, |(B'l)_b|, |(K u)_b|, |(K u_D)_b|) (u_D the displacements the Dirichlet rows prescribe,
-  zero elsewhere: with -fem_dirichlet primal they are part of f), a body's largest displacement, a zone's largest
+  a body's forces max(|f_b|, |(B'l)_b|, |(K u)_b|, |(K u_D)_b|) (u_D the displacements the data impose: the values
+  of the Dirichlet rows and the initial overlaps of the contact rows, zero elsewhere; with -fem_dirichlet primal the
+  Dirichlet part is in f), a body's largest displacement, a zone's largest
   contact multiplier. A scale below 1e-6 times the largest of its kind in the scene is raised to that, and
   a scene without load (all scales 0) has residuals 0 for the exact solution u = 0, l = 0.
 
@@ -262,7 +265,7 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
   PetscCall(VecDuplicate(d->u, &Btl));
   PetscCall(FETIApplyK(d->feti, d->u, Ku));
   PetscCall(MatMultTranspose(B, d->lambda, Btl));
-  PetscCall(PrescribedDisplacementForce(cm, B, cvec, kinds, &KuD));
+  PetscCall(DataDisplacementForce(cm, B, cvec, kinds, &KuD));
   PetscCall(VecGetOwnershipRange(d->u, &ustart, NULL));
   PetscCall(FEMGetNumSubdomains(d->fem, NULL, &nlocal, NULL));
   {
