@@ -75,16 +75,13 @@ import sys
 import time
 
 import fuzz_meshes
+import fuzzdraw
+from fuzzdraw import num
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MPIEXEC_FLAGS = ["--allow-run-as-root", "--oversubscribe", "-n"]
 DEFAULT_RTOL = 1e-6
 MAX_NODES = 1000  # ~3000 unknowns
-
-
-def num(v, digits=4):
-    """A float rounded to a few significant digits; the scene and the oracle both use this value."""
-    return float(f"{v:.{digits}g}")
 
 
 def fmt(v):
@@ -211,13 +208,7 @@ random_state = random.Random()
 
 def pick(weighted):
     """weighted: [(weight, value)]"""
-    total = sum(w for w, _ in weighted)
-    r = random_state.uniform(0, total)
-    for w, v in weighted:
-        r -= w
-        if r <= 0:
-            return v
-    return weighted[-1][1]
+    return fuzzdraw.pick(random_state, weighted)
 
 
 def law():

@@ -34,12 +34,11 @@ import random
 import subprocess
 import tempfile
 
+import fuzzdraw
+from fuzzdraw import num
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 rng = random.Random()
-
-
-def num(v, digits=4):
-    return float(f"{v:.{digits}g}")
 
 
 def fmt(v):
@@ -51,13 +50,7 @@ def vec(v):
 
 
 def pick(weighted):
-    total = sum(w for w, _ in weighted)
-    r = rng.uniform(0, total)
-    for w, v in weighted:
-        r -= w
-        if r <= 0:
-            return v
-    return weighted[-1][1]
+    return fuzzdraw.pick(rng, weighted)
 
 
 def cache_dir():
