@@ -90,6 +90,7 @@ typedef struct {
 . kplus_single  - the subdomains whose factor is stored in float
 . kplus_factor_bytes, kplus_factor_double_bytes - the block Cholesky factors as kept, and the same in double (all ranks)
 . unmatched_nodes - slave nodes of zones between bodies without a master point within the search distance (`ContactModelGetUnmatchedNodes()`)
+. left_out_friction, left_out_overlapping, left_out_overlap - nodes of the contact faces that their Dirichlet conditions keep out of contact (`ContactModelGetLeftOutNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
 . normal_force  - the sum of the normal contact forces l_n over all contact nodes
@@ -126,6 +127,8 @@ typedef struct {
   PetscInt                 kplus_single;
   PetscReal                kplus_factor_bytes, kplus_factor_double_bytes;
   PetscInt                 unmatched_nodes;
+  PetscInt                 left_out_friction, left_out_overlapping;
+  PetscReal                left_out_overlap;
   PetscReal                max_nu;
   PetscReal                contact_force[3], normal_force;
   PetscInt                 nsupports;

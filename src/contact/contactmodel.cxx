@@ -170,6 +170,20 @@ PetscErrorCode PairSlaveNode(ContactSurfaceSearch &search, const ZoneFace &maste
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* a node left out of contact for its Dirichlet conditions (mask: its components fixed, kDirichletMoved): counted when it
+   has friction on a fixed component while others are free (rollers on a symmetry plane: a modelling limit, docs/contact.md)
+   or when it overlaps initially, so that the summary can say what the solution does not see */
+PetscErrorCode CountLeftOut(ContactModelData &d, PetscInt z, const ContactNodeInfo &info, unsigned mask)
+{
+  PetscFunctionBegin;
+  if (info.law != CONTACT_FRICTIONLESS && (mask & 7u) != 7u && !(mask & kDirichletMoved)) d.leftout_friction[z]++;
+  if (info.gap < 0) {
+    d.leftout_overlapping[z]++;
+    d.leftout_overlap[z] = PetscMax(d.leftout_overlap[z], -info.gap);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* the nodes of a zone between bodies: every slave node that has a master point within the search distance */
 PetscErrorCode CollectBodiesZoneNodes(ContactModel cm, PetscInt z, const std::map<PetscInt, unsigned> &fixed)
 {
@@ -237,7 +251,10 @@ PetscErrorCode CollectBodiesZoneNodes(ContactModel cm, PetscInt z, const std::ma
         for (int c = 0; c < 3; c++)
           if (!(mask[v] & (1u << c)) && info.n[c] != 0) along = PETSC_TRUE;
       }
-      if (held || !along) continue;
+      if (held || !along) {
+        PetscCall(CountLeftOut(d, z, info, mask[0]));
+        continue;
+      }
       info.fixed = mask[0];
       for (PetscInt v = 0; v < info.nmaster; v++) info.master_fixed[v] = mask[1 + v];
     }
@@ -306,7 +323,10 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<Pets
             if (!(f->second & (1u << c)) && info.n[c] != 0) keep = PETSC_TRUE;
         info.fixed = f->second;
       }
-      if (!keep) continue;
+      if (!keep) {
+        PetscCall(CountLeftOut(d, z, info, f->second));
+        continue;
+      }
     }
     Tangents(info.n, info.t1, info.t2);
     PetscCallCXX(d.nodes.push_back(info));
@@ -609,6 +629,9 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_CONTACT_ROWS, 0));
   PetscCall(DirichletNodes(d->fem, fixed));
   PetscCallCXX(d->unmatched.assign(d->zones.size(), 0));
+  PetscCallCXX(d->leftout_friction.assign(d->zones.size(), 0));
+  PetscCallCXX(d->leftout_overlapping.assign(d->zones.size(), 0));
+  PetscCallCXX(d->leftout_overlap.assign(d->zones.size(), 0));
   PetscCallCXX(d->slave.assign(d->zones.size(), -1));
   PetscCallCXX(d->search.assign(d->zones.size(), 0));
   for (PetscInt z = 0; z < (PetscInt)d->zones.size(); z++) {
@@ -616,6 +639,10 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
     if (d->unmatched[z])
       PetscCall(PetscInfo(cm, "contact zone %" PetscInt_FMT ": %" PetscInt_FMT " slave nodes have no master point within the search distance %g (not in contact)\n", z, d->unmatched[z],
                           (double)d->search[z]));
+    if (d->leftout_friction[z] || d->leftout_overlapping[z])
+      PetscCall(PetscInfo(
+          cm, "contact zone %" PetscInt_FMT ": left out for their Dirichlet conditions: %" PetscInt_FMT " friction nodes with a fixed component, %" PetscInt_FMT " nodes that overlap by up to %g\n", z,
+          d->leftout_friction[z], d->leftout_overlapping[z], (double)d->leftout_overlap[z]));
   }
   PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG, "the contact zones have no admissible node (all held by Dirichlet conditions)");
   /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported
@@ -1114,6 +1141,50 @@ PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel cm, PetscInt *n)
   PetscCheck(cm->data->setup, PetscObjectComm((PetscObject)cm), PETSC_ERR_ORDER, "Call ContactModelSetUp() first");
   *n = 0;
   for (PetscInt u : cm->data->unmatched) *n += u;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
+  ContactModelGetLeftOutNodes - The nodes of the contact faces that their Dirichlet conditions keep out of contact and
+  that the solution may therefore not see: friction nodes with a fixed component, and nodes that overlap initially.
+
+  Not Collective
+
+  Input Parameter:
+. cm - the model (set up)
+
+  Output Parameters:
++ nfriction   - friction nodes (Tresca, Coulomb) with one or two fixed components, e.g. on the symmetry plane of a
+                quarter model (rollers); NULL if not needed
+. noverlap    - nodes left out for any Dirichlet condition (clamped, rollers with friction, moved) whose initial gap is
+                negative; NULL if not needed
+- overlap     - the largest initial overlap (-gap) among those, 0 when there is none; NULL if not needed
+
+  Notes:
+  A contact row acts on the node's displacement along its normal and, with friction, along two tangents. Where a
+  component is fixed (u = 0) its term is dropped; a frictionless row keeps the node as long as a free component
+  lies along the normal, but a tangent along a fixed direction would be a zero row, so a friction node with a fixed
+  component is left out (docs/contact.md, "What is still left out, and said"). On the symmetry plane of a quarter model with
+  friction those nodes carry no contact force at all, and an obstacle that overlaps only them leaves the scene
+  without load. The conefeti driver prints a note when either count is nonzero.
+
+  Level: intermediate
+
+.seealso: `ContactModelGetUnmatchedNodes()`, `ContactModelSetUp()`
+@*/
+PetscErrorCode ContactModelGetLeftOutNodes(ContactModel cm, PetscInt *nfriction, PetscInt *noverlap, PetscReal *overlap)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  PetscCheck(cm->data->setup, PetscObjectComm((PetscObject)cm), PETSC_ERR_ORDER, "Call ContactModelSetUp() first");
+  if (nfriction) *nfriction = 0;
+  if (noverlap) *noverlap = 0;
+  if (overlap) *overlap = 0;
+  for (size_t z = 0; z < cm->data->zones.size(); z++) {
+    if (nfriction) *nfriction += cm->data->leftout_friction[z];
+    if (noverlap) *noverlap += cm->data->leftout_overlapping[z];
+    if (overlap) *overlap = PetscMax(*overlap, cm->data->leftout_overlap[z]);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

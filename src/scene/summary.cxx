@@ -221,6 +221,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
     PetscCall(ContactProblemGetFrictionPolygon(cp, &s->friction_polygon, NULL));
   }
   PetscCall(ContactModelGetUnmatchedNodes(impl.cm, &s->unmatched_nodes));
+  PetscCall(ContactModelGetLeftOutNodes(impl.cm, &s->left_out_friction, &s->left_out_overlapping, &s->left_out_overlap));
   s->max_nu = -1;
   for (const SceneBody &b : impl.bodies) s->max_nu = PetscMax(s->max_nu, b.nu);
   if (cp) PetscCall(ContactModelGetContactForce(impl.cm, -1, s->contact_force, &s->normal_force));
@@ -360,6 +361,16 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                      " slave nodes of zones between bodies have no point of the master face within the search distance and are not contact nodes (faces that overlap only in part, or "
                                      "a gap above -scene_zone<z>_search_distance; -scene_view shows them per zone)\n",
                                      s->unmatched_nodes));
+  if (s->left_out_friction)
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "note: %" PetscInt_FMT " friction nodes of the contact faces have a fixed component (rollers, e.g. a symmetry plane) and are not contact nodes: a tangent along "
+                                     "a fixed direction would be a zero row, so they carry no contact force (docs/contact.md)\n",
+                                     s->left_out_friction));
+  if (s->left_out_overlapping)
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "note: %" PetscInt_FMT " nodes of the contact faces overlap the other side initially (by up to %g) but are not contact nodes (their Dirichlet conditions "
+                                     "keep them out): the solution does not push them out\n",
+                                     s->left_out_overlapping, (double)s->left_out_overlap));
   /* P1 tetrahedra lock as nu -> 0.5: the displacements come out too small, and K_s and F get ill-conditioned
      (more products); the solve itself stays correct for the discrete problem */
   if (s->max_nu > 0.45)
@@ -499,6 +510,9 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Int(out, "stick", r.counts[1]);
   Int(out, "slip", r.counts[2]);
   Int(out, "unmatched_nodes", s->unmatched_nodes);
+  Int(out, "left_out_friction", s->left_out_friction);
+  Int(out, "left_out_overlapping", s->left_out_overlapping);
+  Real(out, "left_out_overlap", s->left_out_overlap);
   Key(out, "contact_force");
   out += "[";
   for (int c = 0; c < 3; c++) {

@@ -23,11 +23,14 @@ struct ContactNodeInfo {
 struct ContactModelData {
   FEM                          fem = nullptr;
   std::vector<ContactZone>     zones;
-  std::vector<ContactNodeInfo> nodes;     /* all contact nodes, the same on every rank */
-  std::vector<PetscInt>        rows;      /* multiplier index of each contact row (node k's rows start at nodes[k].first_row) */
-  std::vector<PetscInt>        unmatched; /* per zone between bodies: slave nodes without a master point within the search distance */
-  std::vector<PetscInt>        slave;     /* per zone between bodies: the slave body (the zone's body or other body); -1 for foundation zones */
-  std::vector<PetscReal>       search;    /* per zone between bodies: the search distance used */
+  std::vector<ContactNodeInfo> nodes;               /* all contact nodes, the same on every rank */
+  std::vector<PetscInt>        rows;                /* multiplier index of each contact row (node k's rows start at nodes[k].first_row) */
+  std::vector<PetscInt>        unmatched;           /* per zone between bodies: slave nodes without a master point within the search distance */
+  std::vector<PetscInt>        leftout_friction;    /* per zone: friction nodes left out for a fixed component (rollers: a symmetry plane) */
+  std::vector<PetscInt>        leftout_overlapping; /* per zone: nodes left out for their Dirichlet conditions that overlap initially (gap < 0) */
+  std::vector<PetscReal>       leftout_overlap;     /* per zone: the largest initial overlap -gap among those */
+  std::vector<PetscInt>        slave;               /* per zone between bodies: the slave body (the zone's body or other body); -1 for foundation zones */
+  std::vector<PetscReal>       search;              /* per zone between bodies: the search distance used */
   FETI                         feti   = nullptr;
   ContactProblem               cp     = nullptr;
   Vec                          lambda = nullptr, u = nullptr, alpha = nullptr;
