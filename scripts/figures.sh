@@ -120,6 +120,7 @@ if want validation; then
   scripts/bench-hertz.py --build "$build" --case hemisphere --sizes 0.04,0.02,0.01,0.007 --write docs/validation.md --plot docs/figures/hertz-hemisphere.png
   scripts/bench-cattaneo.py --build "$build" --case hertz --sizes 0.02,0.014,0.01 --write docs/validation.md --plot-dir docs/figures
   scripts/bench-cattaneo.py --build "$build" --case mindlin --sizes 0.02,0.014,0.01 --write docs/validation.md --plot-dir docs/figures
+  scripts/bench-cattaneo.py --build "$build" --case mindlin --sizes 0.02,0.014,0.01 --targets 0 --write docs/validation.md --section mindlin-press
   scripts/bench-geometry-scale.py --build "$build" --write docs/validation.md
 fi
 
