@@ -772,10 +772,8 @@ PetscErrorCode WithoutLoad(ContactModel cm, PetscBool *none)
     const PetscScalar *ca;
     PetscCall(VecGetLocalSize(c, &m));
     PetscCall(VecGetArrayRead(c, &ca));
-    for (PetscInt i = 0; i < m; i++) {
-      const PetscReal ci = PetscRealPart(ca[i]);
-      if (kinds[i] == FETI_ROW_CONTACT_NORMAL ? ci < 0 : ci != 0) bad = 1;
-    }
+    for (PetscInt i = 0; i < m; i++)
+      if (ContactImposedValue_Private(kinds[i], PetscRealPart(ca[i])) != 0) bad = 1;
     PetscCall(VecRestoreArrayRead(c, &ca));
   }
   PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &bad, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)cm)));

@@ -172,7 +172,7 @@ PetscErrorCode DataDisplacementForce(ContactModel cm, Mat B, Vec cvec, const FET
   PetscCall(VecGetLocalSize(cD, &m));
   PetscCall(VecGetArray(cD, &a));
   for (PetscInt i = 0; i < m; i++) {
-    if (!(kinds[i] == FETI_ROW_DIRICHLET || (kinds[i] == FETI_ROW_CONTACT_NORMAL && PetscRealPart(a[i]) < 0))) a[i] = 0;
+    a[i] = ContactImposedValue_Private(kinds[i], PetscRealPart(a[i]));
     cmax = PetscMax(cmax, PetscAbsScalar(a[i]));
   }
   PetscCall(VecRestoreArray(cD, &a));

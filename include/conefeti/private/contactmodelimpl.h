@@ -20,6 +20,11 @@ struct ContactNodeInfo {
   unsigned   fixed = 0; /* the first body's Dirichlet components at the node (frictionless nodes only): left out of its row */
 };
 
+/* The displacement the data impose on a row of B with value c: a Dirichlet row's value, the overlap part min(c, 0) of a
+   contact gap; 0 on gluing and tangential rows (their values are 0). A model whose rows impose none and whose f is 0
+   has no load (WithoutLoad()); the forces of these displacements scale the equilibrium residual (contactresiduals.cxx) */
+static inline PetscReal ContactImposedValue_Private(FETIRowKind kind, PetscReal c) { return kind == FETI_ROW_CONTACT_NORMAL ? PetscMin(c, 0) : c; }
+
 struct ContactModelData {
   FEM                          fem = nullptr;
   std::vector<ContactZone>     zones;
