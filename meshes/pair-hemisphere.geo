@@ -4,8 +4,8 @@
 //
 // The hemisphere of radius R has its centre at (0,0,R): its curved surface touches the plane z = 0 at the
 // origin. part = 4: the quarter x >= 0, y >= 0 (symmetry planes x = 0 and y = 0: Hertz); part = 2: the half
-// y >= 0 (symmetry plane y = 0 only: a shift along x); part = 1: the whole hemisphere (Cattaneo-Mindlin: today
-// a node with friction on a symmetry plane is left out of contact). The mesh size is h within the
+// y >= 0 (symmetry plane y = 0 only: a shift along x); part = 1: the whole hemisphere (Cattaneo-Mindlin, written
+// when a node with friction on a symmetry plane was left out of contact; docs/contact.md). The mesh size is h within the
 // distance rf of the origin, grows linearly to hc at the distance rf + rg, and is hc beyond.
 // Physical surfaces (face selectors of the scene): grip (the flat face z = R), curved (the spherical surface,
 // the contact face), for part = 2 and 4 sym_y (y = 0), for part = 4 sym_x (x = 0); physical volume: hemisphere.

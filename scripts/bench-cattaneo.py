@@ -6,9 +6,9 @@ The pair: an elastic hemisphere of radius R = 1, flat face up (meshes/pair-hemis
 face touches the top z = 0 of an elastic block [-5,5]x[-5,5]x[-5,0] (meshes/pair-block.geo, body 1, base clamped)
 at the origin. Each body has its own Gmsh mesh, graded toward the contact, the hemisphere's size h there and the
 block's --ratio x h, so the two contact surfaces do not match; a node-to-surface zone joins them (the hemisphere's
-nodes are the slaves). The whole pair is modelled: a zone between bodies leaves out the slave nodes with a
-prescribed displacement component, and those whose master triangle has one, so symmetry planes would cut nodes out
-of the contact. The hemisphere's flat face (the grip) is moved by (dx, 0, -dz), dz = 0.01: P and Q are results,
+nodes are the slaves). The whole pair is modelled (it was written when friction nodes on a symmetry plane were
+left out of contact; they now keep their friction along the plane, docs/contact.md, so a half pair on rollers
+y = 0 would do too, but these meshes are whole). The hemisphere's flat face (the grip) is moved by (dx, 0, -dz), dz = 0.01: P and Q are results,
 the normal and tangential components of the contact force (the JSON line's contact_force on the hemisphere).
 
 Cases:

@@ -84,6 +84,52 @@ PetscErrorCode DirichletNodes(FEM fem, std::map<PetscInt, unsigned> &fixed)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A friction node on rollers: Dirichlet components (mask, none moved) at a node of a friction zone, as on the
+   symmetry plane of a half or quarter model. Its rows drop the fixed components' terms, so its three rows act in the
+   free components only. Where the normal lies in them (within kRollerNormal: the plane's normal is a tangent, as on
+   a symmetry plane, whose mirror image is the model's other half) the node keeps its contact and friction:
+   - one fixed component c: t2 = e_c, t1 = e_c x n. The t2 row is then a zero row (its only term is dropped), so
+     its multiplier has a zero gradient and stays 0 in every solver: the friction disk acts as the interval
+     |l_t1| <= g along the plane. The support takes any force along e_c, as the mirror half would.
+   - two fixed components: the normal is along the free axis and both tangents are fixed: no tangential force can
+     act (on the line where two symmetry planes meet it is 0 by symmetry), so the node is frictionless.
+   Where the normal leaves the free components, a tangent row would repeat the normal one on the free components
+   (both in the plane orthogonal to t1), and the node is left out (CountLeftOut() reports it). With friction
+   polygons (-contact_friction_polygon) the polygon's directions would mix t2 into rows whose t1 part is the
+   projection of the polygon, not its section, so such nodes are left out as well.
+   Returns whether the node is kept; n, t1, t2 and the law are set only then. */
+const PetscReal kRollerNormal = 1e-6;
+
+bool FrictionOnRollers(ContactNodeInfo &info, unsigned mask, PetscInt polygon)
+{
+  int nfixed = 0, fixedc = -1;
+  if (polygon || (mask & kDirichletMoved)) return false;
+  for (int c = 0; c < 3; c++)
+    if (mask & (1u << c)) {
+      nfixed++;
+      fixedc = c;
+      if (std::fabs(info.n[c]) > kRollerNormal) return false;
+    }
+  if (nfixed == 0 || nfixed == 3) return false;
+  for (int c = 0; c < 3; c++)
+    if (mask & (1u << c)) info.n[c] = 0;
+  Normalize(info.n);
+  if (nfixed == 2) {
+    info.law  = CONTACT_FRICTIONLESS;
+    info.coef = 0;
+    Tangents(info.n, info.t1, info.t2);
+    return true;
+  }
+  PetscReal e[3] = {0, 0, 0};
+  e[fixedc]      = 1;
+  info.t1[0]     = e[1] * info.n[2] - e[2] * info.n[1];
+  info.t1[1]     = e[2] * info.n[0] - e[0] * info.n[2];
+  info.t1[2]     = e[0] * info.n[1] - e[1] * info.n[0];
+  Normalize(info.t1);
+  for (int c = 0; c < 3; c++) info.t2[c] = e[c];
+  return true;
+}
+
 /* A face of a zone between bodies: its nodes (with lumped areas and outward normals) and triangles */
 struct ZoneFace {
   PetscInt         body = -1, n = 0, ntri = 0, nb = 0, offset = 0;
@@ -171,7 +217,7 @@ PetscErrorCode PairSlaveNode(ContactSurfaceSearch &search, const ZoneFace &maste
 }
 
 /* a node left out of contact for its Dirichlet conditions (mask: its components fixed, kDirichletMoved): counted when it
-   has friction on a fixed component while others are free (rollers on a symmetry plane: a modelling limit, docs/contact.md)
+   has friction and fixed components that its normal does not lie beside (FrictionOnRollers(): a modelling limit, docs/contact.md)
    or when it overlaps initially, so that the summary can say what the solution does not see */
 PetscErrorCode CountLeftOut(ContactModelData &d, PetscInt z, const ContactNodeInfo &info, unsigned mask)
 {
@@ -233,32 +279,38 @@ PetscErrorCode CollectBodiesZoneNodes(ContactModel cm, PetscInt z, const std::ma
        block pressed against the side of a clamped slab; before, such nodes were left out, and a zone made only of
        them stopped the setup). The node's own terms keep every row of it nonzero and independent of the other
        nodes' rows, so it is left out only when those terms go: when the slave node is fixed in all three
-       components, when it has friction and any fixed component (a tangent along a fixed direction would be a
-       zero row), or when no term along the normal is left; and when the slave or a master node is moved
-       (DirichletNodes(): a nonzero prescribed value). */
+       components, when it has friction and fixed components that its normal does not lie beside
+       (FrictionOnRollers(): on a symmetry plane it keeps its contact and friction), or when no term along the
+       normal is left; and when the slave or a master node is moved (DirichletNodes(): a nonzero prescribed
+       value). */
     {
       auto      f = fixed.find(S.offset + info.node);
       unsigned  mask[4];
       PetscBool held = PETSC_FALSE, along = PETSC_FALSE;
-      mask[0] = f == fixed.end() ? 0u : f->second;
+      bool      rollers = false;
+      mask[0]           = f == fixed.end() ? 0u : f->second;
       for (PetscInt v = 0; v < info.nmaster; v++) {
         auto g      = fixed.find(M.offset + info.master[v]);
         mask[1 + v] = g == fixed.end() ? 0u : g->second;
       }
-      if ((mask[0] & 7u) == 7u || (mask[0] && info.law != CONTACT_FRICTIONLESS)) held = PETSC_TRUE;
-      for (PetscInt v = 0; v <= info.nmaster; v++) {
+      if ((mask[0] & 7u) == 7u) held = PETSC_TRUE;
+      for (PetscInt v = 0; v <= info.nmaster; v++)
         if (mask[v] & kDirichletMoved) held = PETSC_TRUE;
+      if (!held && mask[0] && info.law != CONTACT_FRICTIONLESS) {
+        rollers = FrictionOnRollers(info, mask[0], d.polygon);
+        if (!rollers) held = PETSC_TRUE;
+      }
+      for (PetscInt v = 0; v <= info.nmaster; v++)
         for (int c = 0; c < 3; c++)
           if (!(mask[v] & (1u << c)) && info.n[c] != 0) along = PETSC_TRUE;
-      }
       if (held || !along) {
         PetscCall(CountLeftOut(d, z, info, mask[0]));
         continue;
       }
       info.fixed = mask[0];
       for (PetscInt v = 0; v < info.nmaster; v++) info.master_fixed[v] = mask[1 + v];
+      if (!rollers) Tangents(info.n, info.t1, info.t2);
     }
-    Tangents(info.n, info.t1, info.t2);
     PetscCallCXX(d.nodes.push_back(info));
   }
   if (!found) {
@@ -311,24 +363,28 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<Pets
     /* A node with a Dirichlet component: u is zero there, so a frictionless row may drop that component's term
        and still say N u <= d (a node on a symmetry plane of a quarter model, where the obstacle's normal lies in
        the plane, keeps its contact). It is left out when every component its row acts on is fixed, and when it
-       has friction (a tangent along a fixed direction would be a zero row); zones between bodies apply the same rule
+       has friction and its normal does not lie in its free components (FrictionOnRollers(): on a symmetry plane
+       a friction node keeps its contact, its friction along the plane); zones between bodies apply the same rule
        to the slave node and its master nodes (CollectBodiesZoneNodes()). */
     {
-      auto      f    = fixed.find(offset + nodes[i]);
-      PetscBool keep = PETSC_TRUE;
+      auto      f       = fixed.find(offset + nodes[i]);
+      PetscBool keep    = PETSC_TRUE;
+      bool      rollers = false;
       if (f != fixed.end()) {
         keep = PETSC_FALSE;
+        if (info.law != CONTACT_FRICTIONLESS) rollers = FrictionOnRollers(info, f->second, d.polygon);
         if (info.law == CONTACT_FRICTIONLESS)
           for (int c = 0; c < 3; c++)
             if (!(f->second & (1u << c)) && info.n[c] != 0) keep = PETSC_TRUE;
+        if (rollers) keep = PETSC_TRUE;
         info.fixed = f->second;
       }
       if (!keep) {
         PetscCall(CountLeftOut(d, z, info, f->second));
         continue;
       }
+      if (!rollers) Tangents(info.n, info.t1, info.t2);
     }
-    Tangents(info.n, info.t1, info.t2);
     PetscCallCXX(d.nodes.push_back(info));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -640,9 +696,10 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
       PetscCall(PetscInfo(cm, "contact zone %" PetscInt_FMT ": %" PetscInt_FMT " slave nodes have no master point within the search distance %g (not in contact)\n", z, d->unmatched[z],
                           (double)d->search[z]));
     if (d->leftout_friction[z] || d->leftout_overlapping[z])
-      PetscCall(PetscInfo(
-          cm, "contact zone %" PetscInt_FMT ": left out for their Dirichlet conditions: %" PetscInt_FMT " friction nodes with a fixed component, %" PetscInt_FMT " nodes that overlap by up to %g\n", z,
-          d->leftout_friction[z], d->leftout_overlapping[z], (double)d->leftout_overlap[z]));
+      PetscCall(PetscInfo(cm,
+                          "contact zone %" PetscInt_FMT ": left out for their Dirichlet conditions: %" PetscInt_FMT " friction nodes on rollers their normal leaves, %" PetscInt_FMT
+                          " nodes that overlap by up to %g\n",
+                          z, d->leftout_friction[z], d->leftout_overlapping[z], (double)d->leftout_overlap[z]));
   }
   PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG, "the contact zones have no admissible node (all held by Dirichlet conditions)");
   /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported
@@ -1144,7 +1201,8 @@ PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel cm, PetscInt *n)
 
 /*@C
   ContactModelGetLeftOutNodes - The nodes of the contact faces that their Dirichlet conditions keep out of contact and
-  that the solution may therefore not see: friction nodes with a fixed component, and nodes that overlap initially.
+  that the solution may therefore not see: friction nodes on rollers whose normal leaves the free components, and
+  nodes that overlap initially.
 
   Not Collective
 
@@ -1152,19 +1210,23 @@ PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel cm, PetscInt *n)
 . cm - the model (set up)
 
   Output Parameters:
-+ nfriction   - friction nodes (Tresca, Coulomb) with one or two fixed components, e.g. on the symmetry plane of a
-                quarter model (rollers); NULL if not needed
-. noverlap    - nodes left out for any Dirichlet condition (clamped, rollers with friction, moved) whose initial gap is
++ nfriction   - friction nodes (Tresca, Coulomb) with one or two fixed components whose contact normal does not lie in
+                the free ones (more than 1e-6 out of them); NULL if not needed
+. noverlap    - nodes left out for any Dirichlet condition (clamped, such rollers, moved) whose initial gap is
                 negative; NULL if not needed
 - overlap     - the largest initial overlap (-gap) among those, 0 when there is none; NULL if not needed
 
   Notes:
   A contact row acts on the node's displacement along its normal and, with friction, along two tangents. Where a
-  component is fixed (u = 0) its term is dropped; a frictionless row keeps the node as long as a free component
-  lies along the normal, but a tangent along a fixed direction would be a zero row, so a friction node with a fixed
-  component is left out (docs/contact.md, "What is still left out, and said"). On the symmetry plane of a quarter model with
-  friction those nodes carry no contact force at all, and an obstacle that overlaps only them leaves the scene
-  without load. The conefeti driver prints a note when either count is nonzero.
+  component is fixed (u = 0) its term is dropped. A frictionless row keeps the node as long as a free component
+  lies along the normal. A friction node keeps its contact and friction where its normal lies in its free components,
+  as on the symmetry plane of a half or quarter model: with one fixed component c its tangents are e_c x n and e_c,
+  the second row is a zero row whose multiplier stays 0, so friction acts along the plane only (the mirror half,
+  or the support, takes any force along e_c); with two fixed components no tangent is free and the node is
+  frictionless. Where the normal leaves the free components, a tangent would repeat the normal row on them, and the
+  node is left out (docs/contact.md, "What is still left out, and said"): it carries no contact force, and an
+  obstacle that overlaps only such nodes leaves the scene without load. The conefeti driver prints a note when
+  either count is nonzero.
 
   Level: intermediate
 

@@ -96,13 +96,24 @@ PetscErrorCode ZonePressureMax(ContactModel cm, const NodeValues &v, std::vector
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Whether the node's free components all lie along its normal, so that it cannot move tangentially: the axis of a
+   quarter model, where two symmetry planes fix the other components (FrictionOnRollers() made it frictionless) */
+bool Pinned(const ContactNodeInfo &nd)
+{
+  for (int c = 0; c < 3; c++)
+    if (!(nd.fixed & (1u << c)) && 1 - nd.n[c] * nd.n[c] > 1e-12) return false;
+  return true;
+}
+
 /* The regime from the multipliers: separated without pressure (relative to the largest pressure of the
    node's zone), slip on the boundary of the friction disk (or of the friction polygon of k directions, k > 0),
-   stick inside it. Frictionless nodes in contact slide freely: slip. The margins (1e-4 of the largest pressure,
-   1e-3 of the slip bound) sit above the solver's tolerance. */
-ContactNodeStatus Classify(PetscReal ln, PetscReal lnmax, const PetscReal lt[2], PetscReal g, PetscBool frictionless, PetscInt k)
+   stick inside it. Frictionless nodes in contact slide freely: slip, unless pinned (they cannot move
+   tangentially: stick). The margins (1e-4 of the largest pressure, 1e-3 of the slip bound) sit above the
+   solver's tolerance. */
+ContactNodeStatus Classify(PetscReal ln, PetscReal lnmax, const PetscReal lt[2], PetscReal g, PetscBool frictionless, PetscInt k, bool pinned)
 {
   if (ln <= 1e-4 * lnmax) return CONTACT_NODE_SEPARATED;
+  if (pinned) return CONTACT_NODE_STICK;
   if (frictionless || (k ? ContactPolygonGauge(k, lt, g) >= 1 - 1e-3 : std::hypot(lt[0], lt[1]) >= (1 - 1e-3) * g)) return CONTACT_NODE_SLIP;
   return CONTACT_NODE_STICK;
 }
@@ -211,7 +222,8 @@ PetscErrorCode DataDisplacementForce(ContactModel cm, Mat B, Vec cvec, const FET
   a scene without load (all scales 0) has residuals 0 for the exact solution u = 0, l = 0.
 
   A node is separated when l_n <= 1e-4 times the largest l_n of its zone; among the others, it slips when
-  |l_t| >= (1 - 1e-3) g (on the boundary of its friction disk; frictionless nodes in contact always slip), and
+  |l_t| >= (1 - 1e-3) g (on the boundary of its friction disk; frictionless nodes in contact always slip, unless
+  every free component of theirs lies along the normal), and
   sticks otherwise. Whether stick nodes really do not move is what the slip_rule residual checks.
 
   With friction polygons (-contact_friction_polygon k, `ContactProblemAddPolygonNodes()`) friction_cone and slip_rule
@@ -396,7 +408,7 @@ PetscErrorCode ContactModelComputeResiduals(ContactModel cm, ContactResiduals *r
         /* the disk law the polygon approximates: cone and slip rule of the tangential force sum_j m_j d_j */
         mz[5] = PetscMax(mz[5], PetscMax(std::hypot(lt[0], lt[1]) - g, DiskSlipResidual(lt, tu, g, k)) / lzone[z]);
       }
-      r->counts[Classify(ln, lnmax[z], lt, g, d->mult[d->stride * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE, d->polygon)]++;
+      r->counts[Classify(ln, lnmax[z], lt, g, d->mult[d->stride * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE, d->polygon, Pinned(d->nodes[d->local[j]]))]++;
     }
     PetscCall(MPIU_Allreduce(MPI_IN_PLACE, m.data(), (PetscMPIInt)m.size(), MPIU_REAL, MPIU_MAX, comm));
     for (size_t z = 0; z < nz; z++) r->approximation = PetscMax(r->approximation, m[6 * z + 5]);
@@ -479,7 +491,7 @@ PetscErrorCode ContactModelGetNodeStates(ContactModel cm, PetscReal pressure[], 
       if (traction) traction[3 * j + c] = (v.lt[2 * j] * nd.t1[c] + v.lt[2 * j + 1] * nd.t2[c]) / nd.area;
       if (slip) slip[3 * j + c] = v.tu[2 * j] * nd.t1[c] + v.tu[2 * j + 1] * nd.t2[c];
     }
-    if (status) status[j] = Classify(v.ln[j], lnmax[nd.zone], &v.lt[2 * j], v.g[j], d->mult[d->stride * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE, d->polygon);
+    if (status) status[j] = Classify(v.ln[j], lnmax[nd.zone], &v.lt[2 * j], v.g[j], d->mult[d->stride * j + 1] < 0 ? PETSC_TRUE : PETSC_FALSE, d->polygon, Pinned(nd));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -363,8 +363,9 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                      s->unmatched_nodes));
   if (s->left_out_friction)
     PetscCall(PetscViewerASCIIPrintf(viewer,
-                                     "note: %" PetscInt_FMT " friction nodes of the contact faces have a fixed component (rollers, e.g. a symmetry plane) and are not contact nodes: a tangent along "
-                                     "a fixed direction would be a zero row, so they carry no contact force (docs/contact.md)\n",
+                                     "note: %" PetscInt_FMT " friction nodes of the contact faces are on rollers whose free components their contact normal leaves (or friction polygons are on), "
+                                     "and are not contact nodes: they carry no contact force (docs/contact.md; on a symmetry plane, where the normal lies in the plane, friction nodes keep "
+                                     "their contact and friction along the plane)\n",
                                      s->left_out_friction));
   if (s->left_out_overlapping)
     PetscCall(PetscViewerASCIIPrintf(viewer,

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # usage: make-meshes.sh SOURCE_DIR OUT_DIR
 # The mesh files of the tests/mesh tests, made at test time (none is committed): the generator's box in the
-# four Gmsh encodings (write-box-msh.py), broken files for the error tests, and meshes/block-hole.geo, two-volumes.geo and block-unstructured.geo meshed by gmsh.
+# four Gmsh encodings (write-box-msh.py) and mirrored boxes, broken files for the error tests, and meshes/block-hole.geo, two-volumes.geo and block-unstructured.geo meshed by gmsh.
 set -euo pipefail
 src=$1; out=$2
 mkdir -p "$out"
@@ -13,6 +13,10 @@ $w "$out/box-4.1.msh" $box --version 4.1
 $w "$out/box-4.1-binary.msh" $box --version 4.1 --binary
 $w "$out/inverted.msh" $box --invert
 $w "$out/hexahedra.msh" $box --hexahedra
+# whole models whose halves (quarters) are generated boxes on rollers (symmetry-plane.py)
+$w "$out/brick-mirrored.msh" --lower 0,0,0 --upper 3,1,1 --cells 12,4,4 --mirror y
+$w "$out/slab-mirrored.msh" --lower 0,0,-0.501 --upper 3,1,-0.001 --cells 12,4,2 --mirror y
+$w "$out/block-mirrored.msh" --lower=-1,-1,0 --upper 1,1,1 --cells 8,8,4 --mirror xy
 head -c 1500 "$out/box-4.1.msh" >"$out/truncated.msh"
 head -c 3000 "$out/box-4.1-binary.msh" >"$out/truncated-binary.msh"
 gmsh -3 "$src/meshes/block-hole.geo" -o "$out/block-hole.msh" >"$out/block-hole.log" 2>&1 || { cat "$out/block-hole.log"; exit 1; }

@@ -4,12 +4,16 @@
 so that reading the file back must give the generator's model exactly.
 
 usage: write-box-msh.py OUT.msh --lower x,y,z --upper x,y,z --cells nx,ny,nz [--version 2.2|4.1] [--binary]
-                        [--invert] [--hexahedra]
+                        [--invert] [--hexahedra] [--mirror x|y|z|xy|...]
 
 Physical groups: the faces x0 x1 y0 y1 z0 z1 are the surfaces "left" "right" "front" "back" "bottom" "top",
 except x1, which is the unnamed surface 7 (an unnamed group is selected by its number); the volume is
 "solid". --invert lists the nodes of the first tetrahedron in the wrong order (an inverted element);
---hexahedra writes the hexahedra instead of tetrahedra (a mesh with no tetrahedron)."""
+--hexahedra writes the hexahedra instead of tetrahedra (a mesh with no tetrahedron). --mirror y (an even number of
+cells along y) cuts the cells of the lower half along y as the mirror images of the upper half's (their diagonal and
+their boundary quads reflected), so that the mesh is symmetric about the middle plane and its upper half is the
+generator's box of that half: a whole model to compare a half model on rollers with. --mirror xy does so along x and
+y (a whole model for a quarter model)."""
 import argparse
 
 import gmsh
@@ -27,10 +31,21 @@ p.add_argument("--version", default="4.1")
 p.add_argument("--binary", action="store_true")
 p.add_argument("--invert", action="store_true")
 p.add_argument("--hexahedra", action="store_true")
+p.add_argument("--mirror", default="", help="axes along which the lower half mirrors the upper half: x, y, z, xy, ...")
 a = p.parse_args()
 lo = [float(v) for v in a.lower.split(",")]
 hi = [float(v) for v in a.upper.split(",")]
 n = [int(v) for v in a.cells.split(",")]
+if set(a.mirror) - set("xyz"):
+    p.error("--mirror takes axes among x, y, z, got '%s'" % a.mirror)
+axes = ["xyz".index(c) for c in a.mirror]
+for e in axes:
+    if n[e] % 2:
+        p.error("--mirror %s needs an even number of cells along %s, got %d" % (a.mirror, "xyz"[e], n[e]))
+
+
+def mirrored(index, axis):  # is the cell (or quad) with this index along axis in a reflected lower half?
+    return axis in axes and index < n[axis] // 2
 
 
 def node(i, j, k):  # 1-based Gmsh tag of the generator's node id i + (nx+1)(j + (ny+1)k)
@@ -51,13 +66,18 @@ for k in range(n[2]):
                 cells += [node(i, j, k), node(i + 1, j, k), node(i + 1, j + 1, k), node(i, j + 1, k),
                           node(i, j, k + 1), node(i + 1, j, k + 1), node(i + 1, j + 1, k + 1), node(i, j + 1, k + 1)]
                 continue
+            flip = [mirrored(c, e) for e, c in enumerate((i, j, k))]
+
+            def corner(off):  # the cell's corner at these offsets, reflected along the mirror axis in the lower half
+                o = [1 - off[e] if flip[e] else off[e] for e in range(3)]
+                return node(i + o[0], j + o[1], k + o[2])
             for t in range(6):
                 off = [0, 0, 0]
-                v = [node(i, j, k)]
+                v = [corner(off)]
                 for s in range(3):
                     off[KUHN[t][s]] = 1
-                    v.append(node(i + off[0], j + off[1], k + off[2]))
-                if ODD[t]:
+                    v.append(corner(off))
+                if ODD[t] != (sum(flip) % 2 == 1):  # a reflection reverses the orientation
                     v[1], v[2] = v[2], v[1]
                 cells += v
 if a.invert:
@@ -78,12 +98,16 @@ for face, (tag, name) in NAMES.items():
     tris = []
     for b in range(n[w]):
         for c in range(n[u]):
+            fu, fw = mirrored(c, u), mirrored(b, w)
+
             def at(du, dw):
                 ijk = [0, 0, 0]
-                ijk[d], ijk[u], ijk[w] = side * n[d], c + du, b + dw
+                ijk[d], ijk[u], ijk[w] = side * n[d], c + (1 - du if fu else du), b + (1 - dw if fw else dw)
                 return node(*ijk)
             if a.hexahedra:
                 tris += [at(0, 0), at(1, 0), at(1, 1), at(0, 1)]
+            elif fu != fw:  # reflected once: the same cut as the tetrahedra, the orientation kept
+                tris += [at(0, 0), at(1, 1), at(1, 0), at(0, 0), at(0, 1), at(1, 1)]
             else:
                 tris += [at(0, 0), at(1, 0), at(1, 1), at(0, 0), at(1, 1), at(0, 1)]
     s = gmsh.model.addDiscreteEntity(2)

@@ -17,7 +17,7 @@ struct ContactNodeInfo {
   ContactLaw law;
   PetscReal  coef; /* Tresca: bound as a nodal force; Coulomb: F */
   PetscInt   first_row;
-  unsigned   fixed = 0; /* the first body's Dirichlet components at the node (frictionless nodes only): left out of its row */
+  unsigned   fixed = 0; /* the node's Dirichlet components: their terms are left out of its rows (a friction node's t2 = e_c then gives a zero row: FrictionOnRollers()) */
 };
 
 /* The displacement the data impose on a row of B with value c: a Dirichlet row's value, the overlap part min(c, 0) of a
@@ -31,7 +31,7 @@ struct ContactModelData {
   std::vector<ContactNodeInfo> nodes;               /* all contact nodes, the same on every rank */
   std::vector<PetscInt>        rows;                /* multiplier index of each contact row (node k's rows start at nodes[k].first_row) */
   std::vector<PetscInt>        unmatched;           /* per zone between bodies: slave nodes without a master point within the search distance */
-  std::vector<PetscInt>        leftout_friction;    /* per zone: friction nodes left out for a fixed component (rollers: a symmetry plane) */
+  std::vector<PetscInt>        leftout_friction;    /* per zone: friction nodes left out for fixed components their normal does not lie beside */
   std::vector<PetscInt>        leftout_overlapping; /* per zone: nodes left out for their Dirichlet conditions that overlap initially (gap < 0) */
   std::vector<PetscReal>       leftout_overlap;     /* per zone: the largest initial overlap -gap among those */
   std::vector<PetscInt>        slave;               /* per zone between bodies: the slave body (the zone's body or other body); -1 for foundation zones */
