@@ -222,7 +222,11 @@ PetscErrorCode PairSlaveNode(ContactSurfaceSearch &search, const ZoneFace &maste
 PetscErrorCode CountLeftOut(ContactModelData &d, PetscInt z, const ContactNodeInfo &info, unsigned mask)
 {
   PetscFunctionBegin;
-  if (info.law != CONTACT_FRICTIONLESS && (mask & 7u) != 7u && !(mask & kDirichletMoved)) d.leftout_friction[z]++;
+  if (info.law != CONTACT_FRICTIONLESS && (mask & 7u) != 7u && !(mask & kDirichletMoved)) {
+    d.leftout_friction[z]++;
+    for (int c = 0; c < 3; c++) /* how far the normal leaves the free components (-info: is it a symmetry plane's node?) */
+      if (mask & (1u << c)) d.leftout_normal[z] = PetscMax(d.leftout_normal[z], PetscAbsReal(info.n[c]));
+  }
   if (info.gap < 0) {
     d.leftout_overlapping[z]++;
     d.leftout_overlap[z] = PetscMax(d.leftout_overlap[z], -info.gap);
@@ -686,6 +690,7 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   PetscCall(DirichletNodes(d->fem, fixed));
   PetscCallCXX(d->unmatched.assign(d->zones.size(), 0));
   PetscCallCXX(d->leftout_friction.assign(d->zones.size(), 0));
+  PetscCallCXX(d->leftout_normal.assign(d->zones.size(), 0));
   PetscCallCXX(d->leftout_overlapping.assign(d->zones.size(), 0));
   PetscCallCXX(d->leftout_overlap.assign(d->zones.size(), 0));
   PetscCallCXX(d->slave.assign(d->zones.size(), -1));
@@ -697,9 +702,9 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
                           (double)d->search[z]));
     if (d->leftout_friction[z] || d->leftout_overlapping[z])
       PetscCall(PetscInfo(cm,
-                          "contact zone %" PetscInt_FMT ": left out for their Dirichlet conditions: %" PetscInt_FMT " friction nodes on rollers their normal leaves, %" PetscInt_FMT
-                          " nodes that overlap by up to %g\n",
-                          z, d->leftout_friction[z], d->leftout_overlapping[z], (double)d->leftout_overlap[z]));
+                          "contact zone %" PetscInt_FMT ": left out for their Dirichlet conditions: %" PetscInt_FMT
+                          " friction nodes on rollers their normal leaves (its fixed components up to %g), %" PetscInt_FMT " nodes that overlap by up to %g\n",
+                          z, d->leftout_friction[z], (double)d->leftout_normal[z], d->leftout_overlapping[z], (double)d->leftout_overlap[z]));
   }
   PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG, "the contact zones have no admissible node (all held by Dirichlet conditions)");
   /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported

@@ -32,6 +32,7 @@ struct ContactModelData {
   std::vector<PetscInt>        rows;                /* multiplier index of each contact row (node k's rows start at nodes[k].first_row) */
   std::vector<PetscInt>        unmatched;           /* per zone between bodies: slave nodes without a master point within the search distance */
   std::vector<PetscInt>        leftout_friction;    /* per zone: friction nodes left out for fixed components their normal does not lie beside */
+  std::vector<PetscReal>       leftout_normal;      /* per zone: the largest component of those nodes' normals along a fixed direction */
   std::vector<PetscInt>        leftout_overlapping; /* per zone: nodes left out for their Dirichlet conditions that overlap initially (gap < 0) */
   std::vector<PetscReal>       leftout_overlap;     /* per zone: the largest initial overlap -gap among those */
   std::vector<PetscInt>        slave;               /* per zone between bodies: the slave body (the zone's body or other body); -1 for foundation zones */
