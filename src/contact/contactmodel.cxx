@@ -86,8 +86,8 @@ PetscErrorCode DirichletNodes(FEM fem, std::map<PetscInt, unsigned> &fixed)
 
 /* A friction node on rollers: Dirichlet components (mask, none moved) at a node of a friction zone, as on the
    symmetry plane of a half or quarter model. Its rows drop the fixed components' terms, so its three rows act in the
-   free components only. Where the normal lies in them (within kRollerNormal: the plane's normal is a tangent, as on
-   a symmetry plane, whose mirror image is the model's other half) the node keeps its contact and friction:
+   free components only. Where the normal lies in them (within kRollerNormal, below: the plane's normal is a tangent,
+   as on a symmetry plane, whose mirror image is the model's other half) the node keeps its contact and friction:
    - one fixed component c: t2 = e_c, t1 = e_c x n. The t2 row is then a zero row (its only term is dropped), so
      its multiplier has a zero gradient and stays 0 in every solver: the friction disk acts as the interval
      |l_t1| <= g along the plane. The support takes any force along e_c, as the mirror half would.
@@ -97,8 +97,15 @@ PetscErrorCode DirichletNodes(FEM fem, std::map<PetscInt, unsigned> &fixed)
    (both in the plane orthogonal to t1), and the node is left out (CountLeftOut() reports it). With friction
    polygons (-contact_friction_polygon) the polygon's directions would mix t2 into rows whose t1 part is the
    projection of the polygon, not its section, so such nodes are left out as well.
+   The normal is projected into the free components first. Within kRollerNormal that is the mirror image's part:
+   between bodies a node that touches its master surface takes the slave face's lumped normal, which on a symmetry
+   plane averages only the model's side of a curved face and leans out of the plane by about h/(2R) (0.018 at the tip
+   of the meshed half Hertz pair at h = 0.03 R); the mirror half would cancel exactly that. Obstacle normals and the
+   directions chi(x) - x of a symmetric pair lie in the plane anyway. A roller face really inclined to the contact by
+   less than that would see its gap scaled by at most 1/sqrt(1 - 0.1^2) (0.5%) and its slip across the roller
+   direction ignored.
    Returns whether the node is kept; n, t1, t2 and the law are set only then. */
-const PetscReal kRollerNormal = 1e-6;
+const PetscReal kRollerNormal = 0.1;
 
 bool FrictionOnRollers(ContactNodeInfo &info, unsigned mask, PetscInt polygon)
 {
@@ -1216,7 +1223,7 @@ PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel cm, PetscInt *n)
 
   Output Parameters:
 + nfriction   - friction nodes (Tresca, Coulomb) with one or two fixed components whose contact normal does not lie in
-                the free ones (more than 1e-6 out of them); NULL if not needed
+                the free ones (more than 0.1 out of them); NULL if not needed
 . noverlap    - nodes left out for any Dirichlet condition (clamped, such rollers, moved) whose initial gap is
                 negative; NULL if not needed
 - overlap     - the largest initial overlap (-gap) among those, 0 when there is none; NULL if not needed
