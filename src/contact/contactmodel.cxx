@@ -40,6 +40,14 @@ void Normalize(PetscReal v[3])
   for (int i = 0; i < 3; i++) v[i] /= s;
 }
 
+/* c = a x b */
+void Cross(const PetscReal a[3], const PetscReal b[3], PetscReal c[3])
+{
+  c[0] = a[1] * b[2] - a[2] * b[1];
+  c[1] = a[2] * b[0] - a[0] * b[2];
+  c[2] = a[0] * b[1] - a[1] * b[0];
+}
+
 /* t1, t2 with (n, t1, t2) orthonormal, t1 built from the axis least aligned with n (deterministic) */
 void Tangents(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3])
 {
@@ -51,9 +59,7 @@ void Tangents(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3])
   const PetscReal d = e[0] * n[0] + e[1] * n[1] + e[2] * n[2];
   for (int i = 0; i < 3; i++) t1[i] = e[i] - d * n[i];
   Normalize(t1);
-  t2[0] = n[1] * t1[2] - n[2] * t1[1];
-  t2[1] = n[2] * t1[0] - n[0] * t1[2];
-  t2[2] = n[0] * t1[1] - n[1] * t1[0];
+  Cross(n, t1, t2);
 }
 
 /* The Dirichlet components of every node (global node -> mask of fixed components, bits 0-2). A node fixed in all
@@ -129,9 +135,7 @@ bool FrictionOnRollers(ContactNodeInfo &info, unsigned mask, PetscInt polygon)
   }
   PetscReal e[3] = {0, 0, 0};
   e[fixedc]      = 1;
-  info.t1[0]     = e[1] * info.n[2] - e[2] * info.n[1];
-  info.t1[1]     = e[2] * info.n[0] - e[0] * info.n[2];
-  info.t1[2]     = e[0] * info.n[1] - e[1] * info.n[0];
+  Cross(e, info.n, info.t1);
   Normalize(info.t1);
   for (int c = 0; c < 3; c++) info.t2[c] = e[c];
   return true;
@@ -383,11 +387,12 @@ PetscErrorCode CollectZoneNodes(ContactModel cm, PetscInt z, const std::map<Pets
       bool      rollers = false;
       if (f != fixed.end()) {
         keep = PETSC_FALSE;
-        if (info.law != CONTACT_FRICTIONLESS) rollers = FrictionOnRollers(info, f->second, d.polygon);
-        if (info.law == CONTACT_FRICTIONLESS)
+        if (info.law != CONTACT_FRICTIONLESS) {
+          rollers = FrictionOnRollers(info, f->second, d.polygon);
+          keep    = rollers ? PETSC_TRUE : PETSC_FALSE;
+        } else
           for (int c = 0; c < 3; c++)
             if (!(f->second & (1u << c)) && info.n[c] != 0) keep = PETSC_TRUE;
-        if (rollers) keep = PETSC_TRUE;
         info.fixed = f->second;
       }
       if (!keep) {
