@@ -36,8 +36,8 @@ BLOCK = ("-scene_body0_E 1e9 -scene_body0_nu 0.3 -scene_body0_fix z0 -scene_zone
 QUARTER = "-scene_body0_lower 0,0,0 -scene_body0_upper 1,1,1 -scene_body0_cells 4,4,4 -scene_body0_subdomains 2,2,1 -scene_body0_fix_x x0 -scene_body0_fix_y y0"
 
 
-def laws(law):
-    return "-scene_zone0_law coulomb -scene_zone0_friction 0.3" if law == "coulomb" else "-scene_zone0_law tresca -scene_zone0_slip_bound 1.2e7"
+def laws(law, slip_bound):
+    return "-scene_zone0_law coulomb -scene_zone0_friction 0.3" if law == "coulomb" else "-scene_zone0_law tresca -scene_zone0_slip_bound " + slip_bound
 
 
 def zone(case):
@@ -66,11 +66,11 @@ def main():
     ap.add_argument("--extra", default="")
     a = ap.parse_args()
     if a.case == "quarter":
-        common = " ".join([BLOCK, laws(a.law).replace("1.2e7", "1e7"), "-json"])
+        common = " ".join([BLOCK, laws(a.law, "1e7"), "-json"])
         half = common + " -scene_name quarter " + QUARTER
         whole = common + " -scene_name whole -scene_body0_mesh %s/block-mirrored.msh -scene_body0_subdomains 8" % a.meshes
     else:
-        common = " ".join([LOADS, zone(a.case), laws(a.law), "-json"])
+        common = " ".join([LOADS, zone(a.case), laws(a.law, "1.2e7"), "-json"])
         half = common + " -scene_name half " + HALF_BRICK
         whole = common + " -scene_name whole -scene_body0_mesh %s/brick-mirrored.msh -scene_body0_subdomains 6" % a.meshes
     if a.case == "bodies":
