@@ -118,9 +118,11 @@ if want validation; then
   scripts/bench-hertz.py --build "$build" --case box --sizes 10,20,30 --write docs/validation.md --plot docs/figures/hertz-box.png
   scripts/bench-hertz.py --build "$build" --case indentation --sizes 0.04,0.02,0.01 --write docs/validation.md --plot docs/figures/hertz-indentation.png
   scripts/bench-hertz.py --build "$build" --case hemisphere --sizes 0.04,0.02,0.01,0.007 --write docs/validation.md --plot docs/figures/hertz-hemisphere.png
-  scripts/bench-cattaneo.py --build "$build" --case hertz --sizes 0.02,0.014,0.01 --write docs/validation.md --plot-dir docs/figures
-  scripts/bench-cattaneo.py --build "$build" --case mindlin --sizes 0.02,0.014,0.01 --write docs/validation.md --plot-dir docs/figures
-  scripts/bench-cattaneo.py --build "$build" --case mindlin --sizes 0.02,0.014,0.01 --targets 0 --write docs/validation.md --section mindlin-press
+  scripts/bench-cattaneo.py --build "$build" --case hertz --part 2 --sizes 0.02,0.014,0.01,0.007,0.005 --write docs/validation.md --plot-dir docs/figures
+  scripts/bench-cattaneo.py --build "$build" --case hertz --sizes 0.02,0.014,0.01 --write docs/validation.md --section hertz-whole
+  scripts/bench-cattaneo.py --build "$build" --case mindlin --part 2 --sizes 0.02,0.014,0.01,0.007,0.005 --write docs/validation.md --plot-dir docs/figures
+  scripts/bench-cattaneo.py --build "$build" --case mindlin --sizes 0.02,0.014,0.01 --write docs/validation.md --section mindlin-whole
+  scripts/bench-cattaneo.py --build "$build" --case mindlin --part 2 --sizes 0.02,0.014,0.01,0.007,0.005 --targets 0 --write docs/validation.md --section mindlin-press
   scripts/bench-geometry-scale.py --build "$build" --write docs/validation.md
 fi
 
