@@ -231,13 +231,13 @@ def analyse(case, base, js, part, h):
     res["a_th"], res["p0_th"] = hertz_of_P(case, Pth)
     res["p0_fit"], res["a_fit"] = fit_p0(r, p, res["a_th"])
     res["p_rings"] = ring_means(r, p, area, res["a_th"], touching)[:2]
-    # a half pair: the mean of p over Hertz's p(r) for the nodes on the symmetry plane y = 0 and for the others, over
-    # r < 0.7 a (where p(r) is not small), to see whether the plane's nodes carry their share
+    # a half (quarter) model: the mean of p over Hertz's p(r) for the nodes on the symmetry planes and for the others,
+    # over r < 0.7 a (where p(r) is not small), to see whether the planes' nodes carry their share
     ph = res["p0_th"] * np.sqrt(np.clip(1 - (r / res["a_th"]) ** 2, 0, None))
     inner = r < 0.7 * res["a_th"]
-    on_plane = inner & (np.abs(X[:, 1]) <= 1e-9 * R)
+    on_plane = inner & ((np.abs(X[:, 1]) <= 1e-9 * R) | ((np.abs(X[:, 0]) <= 1e-9 * R) if part == 4 else False))
     res["plane_ratio"] = (float(np.mean(p[on_plane] / ph[on_plane])), int(on_plane.sum()), float(np.mean(p[inner & ~on_plane] / ph[inner & ~on_plane])),
-                          int((inner & ~on_plane).sum())) if part == 2 and on_plane.any() and (inner & ~on_plane).any() else None
+                          int((inner & ~on_plane).sum())) if part > 1 and on_plane.any() and (inner & ~on_plane).any() else None
     # the contact radius from the second moment of the normal forces: for Hertz's p(r), the mean of r^2 over the
     # pressure is 2 a^2/5 (free of the node that happens to lie at the edge)
     lam = p * area
@@ -297,7 +297,7 @@ def hertz_table(case, rows, ratio):
     out += ["", "Hertz from %s: E* = %.4g, a = (3 P R/(4 E*))^(1/3), p0 = 3 P/(2 pi a^2).%s" % ("the applied P" if rows[0]["P_applied"] else "each run's P", estar(case), model_note(case, rows))]
     ratios = ["h = %.4g: %.3f (%d nodes) and %.3f (%d)" % ((x["h"],) + x["plane_ratio"]) for x in rows if x.get("plane_ratio")]
     if ratios:
-        out += ["", "Mean of p / p_Hertz(r) over the nodes with r < 0.7 a, on the symmetry plane y = 0 and off it: " + "; ".join(ratios) + "."]
+        out += ["", "Mean of p / p_Hertz(r) over the nodes with r < 0.7 a, on the symmetry plane%s and off it: " % (" y = 0" if rows[0]["part"] == 2 else "s") + "; ".join(ratios) + "."]
     return "\n".join(out)
 
 
