@@ -10,6 +10,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdarg>
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <set>
@@ -198,6 +200,20 @@ struct Reader {
 const char *const SelectorUsage = "use FACE or FACE/COND[/COND...] with FACE one of x0 x1 y0 y1 z0 z1 (or, on a body from -scene_body<b>_mesh, a physical surface of the mesh) and COND like x>1, "
                                   "y<=0.5 (a condition on the centroids of the face's triangles)";
 
+/* The boundary tag of a selector with conditions is its text. A contact zone keeps its faces' tags in
+   ContactZone's fixed-size names, so a longer text (conditions with many digits) is tagged by its start and a
+   hash of the whole (FNV-1a), which is as unique as the text and the same on every rank */
+std::string ConditionTag(const std::string &text)
+{
+  constexpr size_t kMax = sizeof(ContactZone::face) - 1;
+  if (text.size() <= kMax) return text;
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+  char hex[17];
+  std::snprintf(hex, sizeof(hex), "%016llx", (unsigned long long)h);
+  return text.substr(0, kMax - 17) + "#" + hex;
+}
+
 /* FACE[/AXIS OP VALUE]..., OP one of > >= < <= */
 PetscErrorCode ParseSelector(MPI_Comm comm, const std::string &option, const std::string &given, SceneSelector &sel)
 {
@@ -246,7 +262,7 @@ PetscErrorCode ParseSelector(MPI_Comm comm, const std::string &option, const std
     c.value = v;
     sel.conditions.push_back(c);
   }
-  sel.tag = sel.conditions.empty() ? (sel.face >= 0 ? std::string(SceneFaceNames[sel.face]) : sel.name) : text;
+  sel.tag = sel.conditions.empty() ? (sel.face >= 0 ? std::string(SceneFaceNames[sel.face]) : sel.name) : ConditionTag(text);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
