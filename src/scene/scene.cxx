@@ -211,7 +211,7 @@ std::string ConditionTag(const std::string &text)
   for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
   char hex[17];
   std::snprintf(hex, sizeof(hex), "%016llx", (unsigned long long)h);
-  return text.substr(0, kMax - 17) + "#" + hex;
+  return text.substr(0, kMax - 1 - (sizeof(hex) - 1)) + "#" + hex; /* start, '#', 16 hex digits */
 }
 
 /* FACE[/AXIS OP VALUE]..., OP one of > >= < <= */
