@@ -31,7 +31,7 @@ PETSC_EXTERN PetscLogEvent CONTACTSCENE_SetUp, CONTACTSCENE_Solve, CONTACTSCENE_
   Fields:
 + body   - the body
 . option - the option stem that set it: fix, fix_x, fix_y, fix_z, or displace<k>
-. face   - the face selector as given
+. face   - the face selector as given (one longer than 63 characters: its start, `#` and a hash of the whole, as a contact zone names it)
 - force  - the resultant force (fx, fy, fz)
 
   Level: intermediate

@@ -247,7 +247,9 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
           ContactSceneSupportForce &f = s->supports[k];
           f.body                      = (PetscInt)b;
           PetscCall(PetscStrncpy(f.option, sp.kind.c_str(), sizeof(f.option)));
-          PetscCall(PetscStrncpy(f.face, sp.selector.text.c_str(), sizeof(f.face)));
+          /* a selector too long for the field is shown by its tag (start and hash), as a contact zone's face */
+          const std::string &shown = sp.selector.text.size() < sizeof(f.face) ? sp.selector.text : sp.selector.tag;
+          PetscCall(PetscStrncpy(f.face, shown.c_str(), sizeof(f.face)));
           for (int c = 0; c < 3; c++) f.force[c] = reaction[3 * k + c];
         }
         k++;
