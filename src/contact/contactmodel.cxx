@@ -719,6 +719,11 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
                           z, d->leftout_friction[z], (double)d->leftout_normal[z], d->leftout_overlapping[z], (double)d->leftout_overlap[z]));
   }
   PetscCheck(d->zones.empty() || !d->nodes.empty(), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONG, "the contact zones have no admissible node (all held by Dirichlet conditions)");
+  {
+    PetscInt merged;
+    PetscCall(ContactMergeSharedNodes_Private(cm, &merged));
+    if (merged) PetscCall(PetscInfo(cm, "%" PetscInt_FMT " copies of contact nodes that two zones give the same row merged into their first zone's node\n", merged));
+  }
   /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported
      as converged); named here, before any factorization (contactrigidmotions.cxx) */
   {

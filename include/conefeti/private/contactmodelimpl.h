@@ -74,6 +74,9 @@ struct _p_ContactModel {
 /* a foundation zone's node: its gap and normal from the obstacle (contactobstacle.cxx) */
 PETSC_INTERN PetscErrorCode ContactObstacleNodeGeometry_Private(ContactModel, PetscInt, ContactNodeInfo &);
 
+/* one contact node for the copies of a node that zones give the same row (contactsharednodes.cxx); merged: the copies dropped */
+PETSC_INTERN PetscErrorCode ContactMergeSharedNodes_Private(ContactModel, PetscInt *);
+
 /* "<check> of body b is <value> (<what it means>)" for the check c of r */
 PETSC_INTERN PetscErrorCode ContactResidualsDescribe_Private(const ContactResiduals *, ContactCheck, char[], size_t);
 
