@@ -225,6 +225,22 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
   }
   PetscCall(DMGetCoordinatesLocal(dm, &X));
   PetscCall(DMGetCoordinateSection(dm, &cs));
+  {
+    /* a curved (second-order) mesh keeps coordinates on edges too, and none on some vertices */
+    PetscInt pStart, pEnd, curved = 0;
+    PetscCall(PetscSectionGetChart(cs, &pStart, &pEnd));
+    for (PetscInt q = pStart; q < pEnd; q++) {
+      PetscInt dof;
+      PetscCall(PetscSectionGetDof(cs, q, &dof));
+      if ((q < vStart || q >= vEnd) ? dof > 0 : dof != 3) curved++;
+    }
+    if (curved) {
+      body.error = ConeFETIFormat("%s: the mesh has second-order (curved) elements: %" PetscInt_FMT " of its points carry coordinates other than one x,y,z per vertex; a body is a mesh of "
+                                  "linear tetrahedra (in Gmsh: Mesh.ElementOrder 1, or gmsh -3 -order 1)",
+                                  name, curved);
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+  }
   PetscCall(VecGetArrayRead(X, &x));
   for (PetscInt v = vStart; v < vEnd; v++) {
     PetscInt dof, off;
@@ -267,6 +283,38 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
     }
     if (det < 0) std::swap(id[1], id[2]);
     for (PetscInt k = 0; k < 4; k++) body.tets[4 * t + k] = id[k];
+  }
+  {
+    /* one body is one connected piece: a second piece would float apart from the first in the same subdomains,
+       with rigid motions that no kernel of the body's subdomains describes (and METIS cannot split it) */
+    std::vector<PetscInt> root(body.coords.size() / 3);
+    for (size_t i = 0; i < root.size(); i++) root[i] = (PetscInt)i;
+    auto find = [&root](PetscInt i) {
+      while (root[i] != i) i = root[i] = root[root[i]];
+      return i;
+    };
+    for (size_t t = 0; t < body.tets.size() / 4; t++)
+      for (int k = 1; k < 4; k++) {
+        const PetscInt a = find(body.tets[4 * t]), b = find(body.tets[4 * t + k]);
+        if (a != b) root[std::max(a, b)] = std::min(a, b);
+      }
+    std::map<PetscInt, long> pieces; /* tetrahedra per piece, by its first node */
+    for (size_t t = 0; t < body.tets.size() / 4; t++) pieces[find(body.tets[4 * t])]++;
+    if (pieces.size() > 1) {
+      std::string list;
+      for (const auto &q : pieces) {
+        if (list.size() > 200) {
+          list += ", ...";
+          break;
+        }
+        list += ConeFETIFormat("%s%ld tetrahedra at (%g, %g, %g)", list.empty() ? "" : ", ", q.second, (double)body.coords[3 * q.first], (double)body.coords[3 * q.first + 1],
+                               (double)body.coords[3 * q.first + 2]);
+      }
+      body.error = ConeFETIFormat("%s: the mesh has %d disconnected pieces (%s); a body is one connected piece: give each piece a body of its own (with -scene_body<b>_volume when the file "
+                                  "has a physical volume per piece)",
+                                  name, (int)pieces.size(), list.c_str());
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
   }
   /* facet sets: "Face Sets" by value (named by the number), every other label that holds triangles by its name */
   {

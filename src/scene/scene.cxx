@@ -486,7 +486,7 @@ PetscErrorCode ReadZone(const Reader &r, PetscInt z, PetscBool exists, PetscInt 
   zone.type      = CONTACT_ZONE_FOUNDATION;
   zone.normal[2] = 1;
   zone.law       = CONTACT_FRICTIONLESS;
-  PetscCall(r.Enum(s + "type", "Where the zone touches: foundation (a rigid obstacle) or bodies (another body, node to node)", ContactZoneTypes, (PetscEnum *)&zone.type, &set));
+  PetscCall(r.Enum(s + "type", "Where the zone touches: foundation (a rigid obstacle) or bodies (another body, node to surface)", ContactZoneTypes, (PetscEnum *)&zone.type, &set));
   PetscCall(r.Int(s + "body", "The body whose face may touch", "a body index", &zone.body, &set));
   PetscCall(r.String(s + "face", "The face (or part) that may touch: FACE[/COND...], e.g. z0/x>1", "a face selector", face, &setface));
   PetscCall(r.Reals(s + "point", "Foundation: a point of the rigid plane", "3 numbers x,y,z", 3, 3, zone.point, NULL, &setpoint));
@@ -981,7 +981,7 @@ PetscErrorCode ContactSceneSetOptionsPrefix(ContactScene scene, const char prefi
 
   Options Database Keys:
 + -scene_name <name>                         - a name for the summary and the output
-. -scene_refine <r>                          - multiply every body's cells by r (mesh sizes of one scene)
+. -scene_refine <r>                          - multiply every box body's cells by r (mesh sizes of one scene; not for mesh files)
 . -scene_view                                - view the scene after `ContactSceneSetUp()`
 . -scene_body<b>_lower, _upper <x,y,z>       - corners of box b (bodies are numbered 0, 1, ... without gaps)
 . -scene_body<b>_cells <nx,ny,nz>            - hexahedra along each axis (each cut into 6 tetrahedra)
@@ -1040,7 +1040,8 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   Reader r{PetscOptionsObject, prefix, comm, help};
   PetscCall(PetscOptionsString("-scene_name", "Name of the scene (summary, output)", "ContactSceneSetFromOptions", name, name, sizeof(name), &set));
   PetscCheck(strlen(name) < sizeof(name) - 1, comm, PETSC_ERR_ARG_SIZ, "-scene_name: at most %d characters", (int)sizeof(name) - 2); /* PETSc cuts longer strings */
-  PetscCall(r.Int("-scene_refine", "Multiply every body's cells by this factor", "a positive integer", &impl.refine, &set));
+  PetscBool refineset;
+  PetscCall(r.Int("-scene_refine", "Multiply every body's cells by this factor", "a positive integer", &impl.refine, &refineset));
   PetscCheck(impl.refine >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": the refinement factor must be a positive integer", r.Full("-scene_refine").c_str(), impl.refine);
   PetscCall(PetscOptionsName("-scene_view", "View the scene after ContactSceneSetUp()", "ContactSceneView", &set));
   impl.bodies.clear();
@@ -1062,6 +1063,16 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
     PetscCall(ReadZone(r, z, exists, (PetscInt)impl.bodies.size(), spec));
     if (exists) PetscCallCXX(impl.zones.push_back(spec));
     if (!exists) break;
+  }
+  if (refineset && impl.refine > 1) {
+    /* it multiplies box cells only: on a scene of mesh files it would change nothing, without a word */
+    bool box = false;
+    for (const SceneBody &body : impl.bodies) box = box || body.mesh.empty();
+    PetscCheck(
+        box || impl.bodies.empty(), comm, PETSC_ERR_ARG_WRONG,
+        "%s %" PetscInt_FMT
+        ": every body of the scene comes from a mesh file, and the refinement multiplies the cells of box bodies only; refine the mesh where it was made (in Gmsh: -clscale or Mesh.MeshSizeFactor)",
+        r.Full("-scene_refine").c_str(), impl.refine);
   }
   PetscOptionsEnd();
   impl.name = name;

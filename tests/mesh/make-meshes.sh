@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # usage: make-meshes.sh SOURCE_DIR OUT_DIR
 # The mesh files of the tests/mesh tests, made at test time (none is committed): the generator's box in the
-# four Gmsh encodings (write-box-msh.py) and mirrored boxes, broken files for the error tests, and meshes/block-hole.geo, two-volumes.geo and block-unstructured.geo meshed by gmsh.
+# four Gmsh encodings (write-box-msh.py) and mirrored boxes, broken files for the error tests, and meshes/block-hole.geo, two-volumes.geo and block-unstructured.geo meshed by gmsh
+# (block-hole.geo also in second order, for an error test).
 set -euo pipefail
 src=$1; out=$2
 mkdir -p "$out"
@@ -22,4 +23,13 @@ head -c 3000 "$out/box-4.1-binary.msh" >"$out/truncated-binary.msh"
 gmsh -3 "$src/meshes/block-hole.geo" -o "$out/block-hole.msh" >"$out/block-hole.log" 2>&1 || { cat "$out/block-hole.log"; exit 1; }
 gmsh -3 "$src/meshes/two-volumes.geo" -o "$out/two-volumes.msh" >"$out/two-volumes.log" 2>&1 || { cat "$out/two-volumes.log"; exit 1; }
 gmsh -3 "$src/meshes/block-unstructured.geo" -o "$out/block-unstructured.msh" >"$out/block-unstructured.log" 2>&1 || { cat "$out/block-unstructured.log"; exit 1; }
+# a curved (second-order) mesh, and one file of two separate blocks without physical volumes: one body each, both errors
+gmsh -3 -order 2 "$src/meshes/block-hole.geo" -o "$out/block-hole-order2.msh" >"$out/block-hole-order2.log" 2>&1 || { cat "$out/block-hole-order2.log"; exit 1; }
+cat >"$out/two-pieces.geo" <<'GEO'
+SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 1};
+Box(2) = {2, 0, 0, 1, 1, 1};
+Mesh.MeshSizeMax = 0.5;
+GEO
+gmsh -3 "$out/two-pieces.geo" -o "$out/two-pieces.msh" >"$out/two-pieces.log" 2>&1 || { cat "$out/two-pieces.log"; exit 1; }
 echo "make-meshes.sh: meshes in $out"
