@@ -93,6 +93,7 @@ typedef struct {
 . left_out_friction, left_out_overlapping, left_out_overlap - nodes of the contact faces that their Dirichlet conditions keep out of contact (`ContactModelGetLeftOutNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
+. bodies_zones  - the contact zones between bodies (their forces on the zones' other bodies are the opposite of those in contact_force)
 . normal_force  - the sum of the normal contact forces l_n over all contact nodes
 . nsupports     - the Dirichlet conditions (clamped and displaced faces) of all bodies; the first CONTACTSCENE_MAX_SUPPORTS are in supports
 . supports      - their reactions, body by body in the order of the options (_fix, _fix_x, _fix_y, _fix_z, then _displace0, _displace1, ...)
@@ -131,6 +132,7 @@ typedef struct {
   PetscReal                left_out_overlap;
   PetscReal                max_nu;
   PetscReal                contact_force[3], normal_force;
+  PetscInt                 bodies_zones;
   PetscInt                 nsupports;
   ContactSceneSupportForce supports[CONTACTSCENE_MAX_SUPPORTS];
   PetscReal                reaction[3], applied_load[3];

@@ -51,6 +51,23 @@ static PetscErrorCode CheckWritable(MPI_Comm comm, const char *option, const std
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* A file the run will write must not be a directory: the rename at the end would fail after the solve */
+static PetscErrorCode CheckNotDirectory(MPI_Comm comm, const char *option, const std::string &path)
+{
+  PetscMPIInt rank;
+  int         dir = 0;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) {
+    struct stat st;
+    dir = stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+  }
+  PetscCallMPI(MPI_Bcast(&dir, 1, MPI_INT, 0, comm));
+  PetscCheck(!dir, comm, PETSC_ERR_FILE_WRITE, "%s: cannot write %s: it is a directory (checked before the solve)", option, path.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* rank 0 writes the JSON line to <path>.tmp and renames it: a reader never sees half a line */
 static PetscErrorCode WriteJSONFile(MPI_Comm comm, const char *path, const char *json)
 {
@@ -163,6 +180,12 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
   if (hasoutput) PetscCall(CheckBaseName(comm, output));
   if (hasoutput) PetscCall(CheckWritable(comm, "-output", std::string(output) + ".xmf.tmp"));
   if (hasjson) PetscCall(CheckWritable(comm, "-summary_json", std::string(jsonfile) + ".tmp"));
+  if (hasoutput) PetscCall(CheckNotDirectory(comm, "-output", std::string(output) + ".h5"));
+  if (hasoutput) PetscCall(CheckNotDirectory(comm, "-output", std::string(output) + ".xmf"));
+  if (hasjson) PetscCall(CheckNotDirectory(comm, "-summary_json", jsonfile));
+  if (hasoutput && hasjson)
+    PetscCheck(std::string(jsonfile) != std::string(output) + ".h5" && std::string(jsonfile) != std::string(output) + ".xmf", comm, PETSC_ERR_ARG_INCOMP,
+               "-summary_json %s is a file that -output %s writes: give them different names", jsonfile, output);
   PetscCall(ConeFETIGetVersion(&major, &minor, &patch));
   PetscCall(DriverProgressSet(scene, quiet ? DRIVER_PROGRESS_NONE : (DriverProgressMode)progress));
   PetscCall(ContactSceneSetUp(scene));

@@ -225,6 +225,8 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   s->max_nu = -1;
   for (const SceneBody &b : impl.bodies) s->max_nu = PetscMax(s->max_nu, b.nu);
   if (cp) PetscCall(ContactModelGetContactForce(impl.cm, -1, s->contact_force, &s->normal_force));
+  s->bodies_zones = 0;
+  for (const SceneZoneSpec &z : impl.zones) s->bodies_zones += z.zone.type == CONTACT_ZONE_BODIES ? 1 : 0;
   /* the reaction of every clamped or displaced face, and the loads they balance with the contact forces */
   {
     Vec                    u;
@@ -276,6 +278,15 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* a number of the table in format, or NOT FINITE: the table never prints nan (docs/output.md) */
+static std::string TableNumber(PetscReal v, const char *format)
+{
+  char buf[32];
+  if (std::isfinite((double)v)) snprintf(buf, sizeof(buf), format, (double)v);
+  else snprintf(buf, sizeof(buf), "NOT FINITE");
+  return std::string(buf);
+}
+
 /*@C
   ContactSceneSummaryView - Print the summary as a human-readable table (the layout of the seed paper's tables, then the details).
 
@@ -323,13 +334,7 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
     PetscCall(PetscViewerASCIIPrintf(viewer, "contact nodes: %" PetscInt_FMT " = %" PetscInt_FMT " separated + %" PetscInt_FMT " stick + %" PetscInt_FMT " slip\n", s->contact_nodes, r.counts[0],
                                      r.counts[1], r.counts[2]));
   {
-    /* a residual that is not a finite number is said so, not printed as nan */
-    auto E = [](PetscReal v) {
-      char buf[32];
-      if (std::isfinite((double)v)) snprintf(buf, sizeof(buf), "%.1e", (double)v);
-      else snprintf(buf, sizeof(buf), "NOT FINITE");
-      return std::string(buf);
-    };
+    auto        E    = [](PetscReal v) { return TableNumber(v, "%.1e"); };
     std::string line = "residuals (relative): equilibrium " + E(r.equilibrium) + ", gluing " + E(r.gluing);
     if (s->pipeline != CONTACT_PIPELINE_LINEAR)
       line += ", non-penetration " + E(r.penetration) + ", normal sign " + E(r.normal_sign) + ", complementarity " + E(r.complementarity) + ", friction cone " + E(r.friction_cone) + ", slip rule " +
@@ -344,19 +349,24 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                        "approximates, the solution's friction residual is %s (the approximation's own error, not in the verdict)\n",
                                        s->friction_polygon, E(r.approximation).c_str()));
   }
-  if (s->pipeline != CONTACT_PIPELINE_LINEAR)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "contact force on the bodies: (%.6e, %.6e, %.6e); sum of the normal forces %.6e\n", (double)s->contact_force[0], (double)s->contact_force[1],
-                                     (double)s->contact_force[2], (double)s->normal_force));
-  for (PetscInt k = 0; k < PetscMin(s->nsupports, (PetscInt)CONTACTSCENE_MAX_SUPPORTS); k++) {
-    const ContactSceneSupportForce &f = s->supports[k];
-    PetscCall(PetscViewerASCIIPrintf(viewer, "reaction of body %" PetscInt_FMT " %s %s: (%.6e, %.6e, %.6e)\n", f.body, f.option, f.face, (double)f.force[0], (double)f.force[1], (double)f.force[2]));
+  {
+    auto N = [](PetscReal v) { return TableNumber(v, "%.6e"); };
+    auto V = [&N](const PetscReal v[3]) { return "(" + N(v[0]) + ", " + N(v[1]) + ", " + N(v[2]) + ")"; };
+    if (s->pipeline != CONTACT_PIPELINE_LINEAR)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "contact force on the bodies: %s; sum of the normal forces %s\n", V(s->contact_force).c_str(), N(s->normal_force).c_str()));
+    for (PetscInt k = 0; k < PetscMin(s->nsupports, (PetscInt)CONTACTSCENE_MAX_SUPPORTS); k++) {
+      const ContactSceneSupportForce &f = s->supports[k];
+      PetscCall(PetscViewerASCIIPrintf(viewer, "reaction of body %" PetscInt_FMT " %s %s: %s\n", f.body, f.option, f.face, V(f.force).c_str()));
+    }
+    if (s->nsupports > CONTACTSCENE_MAX_SUPPORTS)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "(%" PetscInt_FMT " more supports: only their sum below)\n", s->nsupports - (PetscInt)CONTACTSCENE_MAX_SUPPORTS));
+    if (s->nsupports)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "forces on the bodies: reactions %s + loads %s%s\n", V(s->reaction).c_str(), V(s->applied_load).c_str(),
+                                       s->pipeline == CONTACT_PIPELINE_LINEAR ? ""
+                                       : s->bodies_zones ? " + the contact forces of the foundation zones (those between bodies act on both bodies and cancel; the contact force above "
+                                                           "counts them on the zones' first bodies)"
+                                                         : " + contact force above"));
   }
-  if (s->nsupports > CONTACTSCENE_MAX_SUPPORTS)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "(%" PetscInt_FMT " more supports: only their sum below)\n", s->nsupports - (PetscInt)CONTACTSCENE_MAX_SUPPORTS));
-  if (s->nsupports)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "forces on the bodies: reactions (%.6e, %.6e, %.6e) + loads (%.6e, %.6e, %.6e)%s\n", (double)s->reaction[0], (double)s->reaction[1],
-                                     (double)s->reaction[2], (double)s->applied_load[0], (double)s->applied_load[1], (double)s->applied_load[2],
-                                     s->pipeline != CONTACT_PIPELINE_LINEAR ? " + contact force above" : ""));
   if (s->unmatched_nodes)
     PetscCall(PetscViewerASCIIPrintf(viewer,
                                      "note: %" PetscInt_FMT
