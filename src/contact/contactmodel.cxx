@@ -598,6 +598,12 @@ PetscErrorCode ContactModelDestroy(ContactModel *cm)
 + cm   - the model
 - zone - the zone (copied)
 
+  Notes:
+  Zones may share nodes (two zones that split a face share the line between them). Where two zones give a node
+  the same row (the same partner, normal and gap), `ContactModelSetUp()` makes it one contact node of the first
+  zone, with the area of both zones' triangles and their friction weighted by their areas; one triangle in two
+  zones with different friction, and a Tresca zone next to a Coulomb zone, are errors.
+
   Level: beginner
 
 .seealso: `ContactZone`, `ContactModelSetUp()`
@@ -684,8 +690,9 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   d = cm->data;
   if (d->setup) PetscFunctionReturn(PETSC_SUCCESS);
   PetscObjectOptionsBegin((PetscObject)cm);
-  PetscCall(PetscOptionsReal("-contact_acceptance_factor", "A solve converges only when every mechanical residual is at most this times the solver's relative tolerance", "ContactModelSolve",
-                             d->acceptance_factor, &d->acceptance_factor, NULL));
+  /* the contact problem reads it too (for its KKT residual): the same text, so that -help lists one meaning */
+  PetscCall(PetscOptionsReal("-contact_acceptance_factor", "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol",
+                             "ContactModelSolve", d->acceptance_factor, &d->acceptance_factor, NULL));
   PetscCall(
       PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual does not", "ContactModelSolve", d->refine_max, &d->refine_max, NULL));
   PetscCall(PetscOptionsInt("-contact_friction_polygon",
@@ -1085,6 +1092,7 @@ PetscErrorCode ContactModelGetFETI(ContactModel cm, FETI *feti)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  PetscCheck(cm->data->setup, PETSC_COMM_SELF, PETSC_ERR_ORDER, "ContactModelGetFETI: call ContactModelSetUp() first (it creates the FETI problem)");
   *feti = cm->data->feti;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -1296,6 +1304,7 @@ PetscErrorCode ContactModelGetNodes(ContactModel cm, PetscInt *n, const PetscInt
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
   d = cm->data;
+  PetscCheck(d->setup, PETSC_COMM_SELF, PETSC_ERR_ORDER, "ContactModelGetNodes: call ContactModelSetUp() first (it finds the contact nodes)");
   if (n) *n = (PetscInt)d->local.size();
   if (body) *body = d->lbody.data();
   if (node) *node = d->lnode.data();

@@ -144,7 +144,16 @@ PetscErrorCode ContactProblemSetEquality(ContactProblem cp, Mat G, Vec e)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCheck(G && e, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_NULL, "ContactProblemSetEquality: give both G and e (%s is NULL)", G ? "e" : "G");
+  PetscValidHeaderSpecific(G, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(e, VEC_CLASSID, 3);
   PetscCall(CheckNotSetUp(cp, "the equality"));
+  {
+    PetscInt m, N;
+    PetscCall(MatGetSize(G, &m, NULL));
+    PetscCall(VecGetSize(e, &N));
+    PetscCheck(m == N, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_SIZ, "ContactProblemSetEquality: G has %" PetscInt_FMT " rows, e has %" PetscInt_FMT " entries", m, N);
+  }
   PetscCall(Replace((PetscObject)G, (PetscObject *)&cp->data->G));
   PetscCall(Replace((PetscObject)e, (PetscObject *)&cp->data->e));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -207,6 +216,8 @@ PetscErrorCode ContactProblemAddNodes(ContactProblem cp, ContactLaw law, PetscIn
   PetscCall(CheckNotSetUp(cp, "contact nodes"));
   d = cp->data;
   PetscCheck(n >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddNodes: negative count %" PetscInt_FMT, n);
+  PetscCheck(law == CONTACT_FRICTIONLESS || law == CONTACT_TRESCA || law == CONTACT_COULOMB, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddNodes: %d is no ContactLaw", (int)law);
+  PetscCheck(normal || n == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "ContactProblemAddNodes: %" PetscInt_FMT " nodes need their normal multiplier indices (normal is NULL)", n);
   PetscCheck(law == CONTACT_FRICTIONLESS || (t1 && t2 && coef) || n == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "ContactProblemAddNodes: %s nodes need t1, t2 and coefficients", ContactLaws[law]);
   PetscCheck(law == CONTACT_FRICTIONLESS || !d->polygon || n == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
              "ContactProblemAddNodes: the problem has friction polygons (ContactProblemAddPolygonNodes()); its %s nodes cannot have disks too", ContactLaws[law]);
@@ -259,6 +270,7 @@ PetscErrorCode ContactProblemAddPolygonNodes(ContactProblem cp, ContactLaw law, 
   PetscCall(CheckNotSetUp(cp, "contact nodes"));
   d = cp->data;
   PetscCheck(n >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddPolygonNodes: negative count %" PetscInt_FMT, n);
+  PetscCheck(law == CONTACT_FRICTIONLESS || law == CONTACT_TRESCA || law == CONTACT_COULOMB, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddPolygonNodes: %d is no ContactLaw", (int)law);
   PetscCheck(law != CONTACT_FRICTIONLESS, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "ContactProblemAddPolygonNodes: frictionless nodes have no friction polygon (ContactProblemAddNodes())");
   PetscCheck(k >= 2, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemAddPolygonNodes: a friction polygon needs k >= 2 directions, got %" PetscInt_FMT, k);
   PetscCheck(!d->polygon || d->polygon == k, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "ContactProblemAddPolygonNodes: the problem's polygons have %" PetscInt_FMT " directions, not %" PetscInt_FMT,
@@ -388,6 +400,7 @@ PetscErrorCode ContactProblemGetPipeline(ContactProblem cp, ContactPipeline *pip
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCheck(cp->data->setup, PETSC_COMM_SELF, PETSC_ERR_ORDER, "ContactProblemGetPipeline: call ContactProblemSetUp() first (it chooses the pipeline)");
   *pipeline = cp->data->pipeline;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -464,6 +477,7 @@ PetscErrorCode ContactProblemGetTao(ContactProblem cp, Tao *tao)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCheck(cp->data->setup, PETSC_COMM_SELF, PETSC_ERR_ORDER, "ContactProblemGetTao: call ContactProblemSetUp() first (it creates the solver)");
   *tao = cp->data->tao;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -472,7 +486,7 @@ PetscErrorCode ContactProblemGetTao(ContactProblem cp, Tao *tao)
   ContactProblemGetSlipBounds - The slip bound of every local contact node for given multipliers:
   the given bound (Tresca), F_k max(l_n,k, 0) (Coulomb), 0 (frictionless).
 
-  Collective
+  Not Collective
 
   Input Parameters:
 + cp     - the problem
@@ -493,7 +507,19 @@ PetscErrorCode ContactProblemGetSlipBounds(ContactProblem cp, Vec lambda, PetscR
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCheck(lambda, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "ContactProblemGetSlipBounds: lambda is NULL");
+  PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
   d = cp->data;
+  PetscCheck(d->h, PETSC_COMM_SELF, PETSC_ERR_ORDER, "ContactProblemGetSlipBounds: call ContactProblemSetOperator() first");
+  {
+    PetscInt n, N, hn, hN;
+    PetscCall(VecGetLocalSize(lambda, &n));
+    PetscCall(VecGetSize(lambda, &N));
+    PetscCall(VecGetLocalSize(d->h, &hn));
+    PetscCall(VecGetSize(d->h, &hN));
+    PetscCheck(n == hn && N == hN, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "ContactProblemGetSlipBounds: lambda has %" PetscInt_FMT " entries (%" PetscInt_FMT " on this rank), the multipliers %" PetscInt_FMT " (%" PetscInt_FMT ")", N, n, hN, hn);
+  }
   PetscCall(VecGetOwnershipRange(lambda, &rstart, NULL));
   PetscCall(VecGetArrayRead(lambda, &l));
   for (size_t k = 0; k < d->normal.size(); k++) {

@@ -367,10 +367,13 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_start_max_it <100>           - most CG steps of that start
 . -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum |l_n| presses
 . -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; a `ContactModel` takes dirichlet when at most half its subdomains use dense K+ blocks in F;
-with one, the inner solvers default to the projected CG expansion; see `ContactProblemGetPC()`) . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain
-update); 1 monolithic, 0 merged, 3 otherwise
-(`TaoSMALXESetAnderson()`)
+                                          with one, the inner solvers default to the projected CG expansion; see `ContactProblemGetPC()`)
+. -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
+
+  Notes:
+  After `ContactProblemSetUp()` the solvers' options and the tolerance still take effect; the Coulomb algorithm,
+  which the setup built the solver for, can no longer change (an error).
 
   Level: beginner
 
@@ -378,11 +381,13 @@ update); 1 monolithic, 0 merged, 3 otherwise
 @*/
 PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
 {
-  ContactProblemData *d;
+  ContactProblemData     *d;
+  ContactCoulombAlgorithm built;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
-  d = cp->data;
+  d     = cp->data;
+  built = d->algorithm;
   PetscObjectOptionsBegin((PetscObject)cp);
   PetscCall(PetscOptionsEnum("-contact_coulomb_algorithm", "Coulomb friction: msa (Algorithm 1), merged (Algorithm 2), monolithic", "ContactCoulombAlgorithm", ContactCoulombAlgorithms,
                              (PetscEnum)d->algorithm, (PetscEnum *)&d->algorithm, NULL));
@@ -416,6 +421,13 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscCheck(d->msa_max_it > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_max_it must be positive, got %" PetscInt_FMT, d->msa_max_it);
   PetscCheck((d->fixed_point_rtol > 0 && d->fixed_point_rtol < 1) || d->fixed_point_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_fixed_point_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", (double)d->fixed_point_rtol);
+  if (d->setup) {
+    /* the setup built the solver (blocks, hooks) for one algorithm: running it with another's fails half-way */
+    PetscCheck(d->algorithm == built, PetscObjectComm((PetscObject)cp), PETSC_ERR_ORDER,
+               "-contact_coulomb_algorithm %s after ContactProblemSetUp(), which built the solver for %s: set it before the setup", ContactCoulombAlgorithms[d->algorithm],
+               ContactCoulombAlgorithms[built]);
+    PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol)); /* -contact_rtol, as the setup gave it */
+  }
   if (d->tao) PetscCall(TaoSetFromOptions(d->tao));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -544,8 +556,11 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
 {
   ContactProblemData *d = cp->data;
   PetscBool           stagnated, stalled;
+  const char         *prefix; /* the options the sentences name are the user's, with the problem's prefix */
 
   PetscFunctionBegin;
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cp, &prefix));
+  if (!prefix) prefix = "";
   PetscCall(TaoSMALXEGetStagnated(d->tao, &stagnated));
   PetscCall(TaoSMALXEGetStalled(d->tao, &stalled));
   d->stats.converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
@@ -562,12 +577,14 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
     PetscCall(TaoGetSolutionStatus(d->tao, NULL, NULL, &gp, &feas, NULL, NULL));
     /* the cause the loop's structure points to: merged's Gauss-Seidel sweep, whose blocks the penalty
        couples (the METIS bricks stalled so at rho = ||PFP||, at any F), or radii that lock the loop */
-    const char *cause = !d->has_coulomb                          ? ""
-                        : d->algorithm == CONTACT_COULOMB_MERGED ? ": merged's Gauss-Seidel sweep too slow (try -contact_coulomb_algorithm monolithic) or radii F l_n locking the loop (large F)"
-                                                                 : ": the radii F l_n can lock the loop (large F); try a smaller F or msa";
+    char cause[160] = "";
+    if (d->has_coulomb && d->algorithm == CONTACT_COULOMB_MERGED)
+      PetscCall(PetscSNPrintf(cause, sizeof(cause), ": merged's Gauss-Seidel sweep too slow (try -%scontact_coulomb_algorithm monolithic) or radii F l_n locking the loop (large F)", prefix));
+    else if (d->has_coulomb) PetscCall(PetscSNPrintf(cause, sizeof(cause), ": the radii F l_n can lock the loop (large F); try a smaller F or msa"));
     PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "stalled: %" PetscInt_FMT " outer iterations, the last ones without progress (|gP| %.3g, |G l - e| %.3g)%s", its, (double)gp,
                             (double)feas, cause));
-  } else if (reason == TAO_DIVERGED_MAXITS) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -contact_tao_max_it)", its));
+  } else if (reason == TAO_DIVERGED_MAXITS)
+    PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
   else if (reason == TAO_DIVERGED_NAN)
     PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
                             "not converged: a quantity of the solve is not a finite number (DIVERGED_NAN) after %" PetscInt_FMT

@@ -35,6 +35,10 @@ static PetscErrorCode FETIReset(FETI feti)
   impl.growsset      = PETSC_FALSE;
   impl.ncoarsesolves = 0;
   PetscCall(FETICoarseSolverDestroy(impl.coarse));
+  /* an operator that the caller still holds (a ContactProblem's F and Q) loses its FETI object: a product with it is
+     then an error naming it (ShellGetFETI()), not a read of freed memory */
+  for (Mat A : {impl.F, impl.G, impl.P, impl.Q, impl.Kplus, impl.PFP})
+    if (A) PetscCall(MatShellSetContext(A, NULL));
   PetscCall(MatDestroy(&impl.F));
   PetscCall(MatDestroy(&impl.G));
   PetscCall(MatDestroy(&impl.P));
@@ -98,6 +102,25 @@ PetscErrorCode FETICreate(MPI_Comm comm, FETI *feti)
   PetscCallCXX(f->impl = new FETI_Impl());
   PetscCall(PetscStrncpy(f->impl->subsolver, MATSOLVERCHOLMOD, sizeof(f->impl->subsolver)));
   *feti = f;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FETICheckVec_Private(FETI feti, Vec v, FETIVecSpace space, const char fn[], const char arg[])
+{
+  FETI_Impl  &impl = *feti->impl;
+  const Vec   ref  = space == FETI_VEC_PRIMAL ? impl.wp1 : space == FETI_VEC_DUAL ? impl.wd1 : impl.wc1;
+  const char *name = space == FETI_VEC_PRIMAL ? "primal" : space == FETI_VEC_DUAL ? "dual" : "coarse";
+  PetscInt    n, N, rn, rN;
+
+  PetscFunctionBegin;
+  if (!ref) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(VecGetLocalSize(v, &n));
+  PetscCall(VecGetSize(v, &N));
+  PetscCall(VecGetLocalSize(ref, &rn));
+  PetscCall(VecGetSize(ref, &rN));
+  /* the global sizes are the same on every rank; a local size may differ on one rank only */
+  PetscCheck(N == rN, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_SIZ, "%s(): %s has %" PetscInt_FMT " entries, a %s vector %" PetscInt_FMT " (FETICreateVecs())", fn, arg, N, name, rN);
+  PetscCheck(n == rn, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "%s(): %s has %" PetscInt_FMT " entries on this rank, a %s vector %" PetscInt_FMT " (FETICreateVecs())", fn, arg, n, name, rn);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -16,6 +16,12 @@ static PetscErrorCode ShellGetFETI(Mat A, FETI *feti)
 {
   PetscFunctionBegin;
   PetscCall(MatShellGetContext(A, feti));
+  if (!*feti) { /* FETIReset() took it away */
+    const char *name;
+    PetscCall(PetscObjectGetName((PetscObject)A, &name));
+    SETERRQ(PetscObjectComm((PetscObject)A), PETSC_ERR_ARG_WRONGSTATE,
+            "FETI operator %s: its FETI object was destroyed (or given new subdomains); keep the FETI object as long as its operators are used (a ContactProblem's solves)", name);
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -85,7 +91,11 @@ PetscErrorCode FETIApplyK(FETI feti, Vec x, Vec y)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  PetscValidHeaderSpecific(x, VEC_CLASSID, 2);
+  PetscValidHeaderSpecific(y, VEC_CLASSID, 3);
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscCall(FETICheckVec_Private(feti, x, FETI_VEC_PRIMAL, "FETIApplyK", "x"));
+  PetscCall(FETICheckVec_Private(feti, y, FETI_VEC_PRIMAL, "FETIApplyK", "y"));
   PetscCall(VecGetArrayRead(x, &xa));
   PetscCall(VecGetArray(y, &ya));
   for (FETISubdomain &sd : impl.sub) {
@@ -777,7 +787,9 @@ static PetscErrorCode CheckSetUp(FETI feti)
 - Q - I - P
 
   Notes:
-  Any output may be NULL. The matrices belong to the FETI object: do not destroy them.
+  Any output may be NULL. The matrices belong to the FETI object: do not destroy them. A reference taken to
+  one (a `ContactProblem` takes F and Q) does not keep the FETI object alive: a product with it after
+  `FETIDestroy()` is an error that says so, so destroy the FETI object after those who use its operators.
   F, P, Q are symmetric and support `MatMult()` and `MatMultTranspose()`.
 
   Level: beginner

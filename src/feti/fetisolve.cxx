@@ -39,6 +39,9 @@ PetscErrorCode FETIComputeAlphaFromEquality(FETI feti, Vec w, Vec alpha)
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscValidHeaderSpecific(w, VEC_CLASSID, 2);
   PetscValidHeaderSpecific(alpha, VEC_CLASSID, 3);
+  PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscCall(FETICheckVec_Private(feti, w, FETI_VEC_DUAL, "FETIComputeAlphaFromEquality", "w"));
+  PetscCall(FETICheckVec_Private(feti, alpha, FETI_VEC_COARSE, "FETIComputeAlphaFromEquality", "alpha"));
   PetscCall(VecGetSize(alpha, &ncoarse));
   if (!ncoarse) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(FETIGetOperators(feti, NULL, &G, NULL, NULL));
@@ -82,6 +85,9 @@ PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
   PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
   PetscValidHeaderSpecific(alpha, VEC_CLASSID, 4);
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscCall(FETICheckVec_Private(feti, lambda, FETI_VEC_DUAL, "FETIComputeAlpha", "lambda"));
+  if (mask) PetscCall(FETICheckVec_Private(feti, mask, FETI_VEC_DUAL, "FETIComputeAlpha", "mask"));
+  PetscCall(FETICheckVec_Private(feti, alpha, FETI_VEC_COARSE, "FETIComputeAlpha", "alpha"));
   if (!impl.ncoarse) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(MatMult(impl.F, lambda, impl.residual));
   PetscCall(VecAXPY(impl.residual, -1.0, impl.h));
@@ -139,6 +145,9 @@ PetscErrorCode FETIRecoverPrimal(FETI feti, Vec lambda, Vec alpha, Vec u)
   PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
   PetscValidHeaderSpecific(u, VEC_CLASSID, 4);
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
+  PetscCall(FETICheckVec_Private(feti, lambda, FETI_VEC_DUAL, "FETIRecoverPrimal", "lambda"));
+  if (alpha) PetscCall(FETICheckVec_Private(feti, alpha, FETI_VEC_COARSE, "FETIRecoverPrimal", "alpha"));
+  PetscCall(FETICheckVec_Private(feti, u, FETI_VEC_PRIMAL, "FETIRecoverPrimal", "u"));
   if (!alpha) {
     PetscCall(FETIComputeAlpha(feti, lambda, NULL, impl.alpha));
     alpha = impl.alpha;
@@ -206,6 +215,8 @@ PetscErrorCode FETISolveLinear(FETI feti, Vec lambda, Vec u)
   PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
   PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
   PetscCall(FETISetUp(feti));
+  PetscCall(FETICheckVec_Private(feti, lambda, FETI_VEC_DUAL, "FETISolveLinear", "lambda"));
+  if (u) PetscCall(FETICheckVec_Private(feti, u, FETI_VEC_PRIMAL, "FETISolveLinear", "u"));
   PetscCall(FETIGetKSP(feti, &ksp));
   PetscCall(KSPSetOperators(ksp, impl.PFP, impl.PFP));
   if (impl.progress.fn && !impl.progressmonitor) {

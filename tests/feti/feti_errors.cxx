@@ -113,6 +113,28 @@ static PetscErrorCode RunCase(const char *name)
     if (!strcmp(name, "huge_box")) PetscCall(FEMAddBox(fem, lo, hi, huge, NULL));
     else
       for (int b = 0; b < 3; b++) PetscCall(FEMAddBox(fem, lo, hi, big, NULL));
+  } else if (!strcmp(name, "recover_primal_dual_u") || !strcmp(name, "apply_k_dual_x") || !strcmp(name, "alpha_primal")) {
+    /* vectors of the wrong space: FETIRecoverPrimal() wrote K+(f - B'l) past the end of a short u before it said so,
+       FETIApplyK() read past a short x and returned success */
+    Vec u, lambda, alpha;
+    PetscCall(Scene(&fem, &feti));
+    PetscCall(FETISetUp(feti));
+    PetscCall(FETICreateVecs(feti, &u, &lambda, &alpha));
+    if (!strcmp(name, "recover_primal_dual_u")) PetscCall(FETIRecoverPrimal(feti, lambda, NULL, lambda));
+    else if (!strcmp(name, "apply_k_dual_x")) PetscCall(FETIApplyK(feti, lambda, u));
+    else PetscCall(FETIComputeAlpha(feti, lambda, NULL, u));
+  } else if (!strcmp(name, "operator_after_destroy")) {
+    /* a caller's reference to F outlives the FETI object: the product is an error, not a read of freed memory */
+    Mat F;
+    Vec u, lambda, alpha, y;
+    PetscCall(Scene(&fem, &feti));
+    PetscCall(FETISetUp(feti));
+    PetscCall(FETICreateVecs(feti, &u, &lambda, &alpha));
+    PetscCall(FETIGetOperators(feti, &F, NULL, NULL, NULL));
+    PetscCall(PetscObjectReference((PetscObject)F));
+    PetscCall(FETIDestroy(&feti));
+    PetscCall(VecDuplicate(lambda, &y));
+    PetscCall(MatMult(F, lambda, y));
   } else SETERRQ(PETSC_COMM_WORLD, PETSC_ERR_ARG_WRONG, "unknown -case %s", name);
   PetscCall(FETIDestroy(&feti));
   PetscCall(FEMDestroy(&fem));

@@ -100,6 +100,15 @@ PETSC_INTERN PetscLogEvent FETI_Kernels, FETI_Reorder;
 /* the set-up of a FETI preconditioner (boundary masks; the Dirichlet preconditioner's interior factors), inside FETISetUp's event */
 PETSC_INTERN PetscLogEvent FETI_PCSetUp;
 
+/* v must be a vector of that space of the set-up FETI (the layout FETICreateVecs() gives): fn and arg name it in the error,
+   before a wrong size is read or written past its end */
+enum FETIVecSpace {
+  FETI_VEC_PRIMAL,
+  FETI_VEC_DUAL,
+  FETI_VEC_COARSE
+};
+PETSC_INTERN PetscErrorCode FETICheckVec_Private(FETI, Vec, FETIVecSpace, const char[], const char[]);
+
 struct FETICoarseSplit; /* feticoarsesplit.cxx */
 PETSC_INTERN PetscErrorCode FETICoarseSplitCreate(MPI_Comm, Mat, FETICoarseSplit **, PetscBool *);
 PETSC_INTERN PetscErrorCode FETICoarseSplitSolve(FETICoarseSplit *, const PetscScalar *, PetscScalar *);

@@ -102,6 +102,7 @@ PetscErrorCode KSPQPSetNormEstimate(KSP ksp, PetscReal norm)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(ksp, KSP_CLASSID, 1);
+  PetscCall(QPComposeReal_Private((PetscObject)ksp, "KSPQPNormEstimate", norm)); /* for a QP type chosen later */
   PetscTryMethod(ksp, "KSPQPSetNormEstimate_C", (KSP, PetscReal), (ksp, norm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -151,17 +152,21 @@ PetscErrorCode KSPQPResetCounters(KSP ksp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Called at the end of each KSP QP type's create function: adopts the set and bounds given while the
-   KSP had another type (the setters keep them on the KSP, see qpadopt.h). */
+/* Called at the end of each KSP QP type's create function: adopts the set, bounds and norm estimate given while
+   the KSP had another type (the setters keep them on the KSP, see qpadopt.h). */
 PetscErrorCode KSPQPAdoptComposed_Private(KSP ksp)
 {
   PetscObject set, lb, ub;
+  PetscReal   norm;
+  PetscBool   hasnorm;
 
   PetscFunctionBegin;
   PetscCall(PetscObjectQuery((PetscObject)ksp, "KSPQPConstraints", &set));
+  PetscCall(QPQueryReal_Private((PetscObject)ksp, "KSPQPNormEstimate", &norm, &hasnorm));
   PetscCall(PetscObjectQuery((PetscObject)ksp, "KSPMPRGPLowerBounds", &lb));
   PetscCall(PetscObjectQuery((PetscObject)ksp, "KSPMPRGPUpperBounds", &ub));
   if (set) PetscTryMethod(ksp, "KSPQPSetConstraints_C", (KSP, SeparableSet), (ksp, (SeparableSet)set));
   if (lb || ub) PetscTryMethod(ksp, "KSPMPRGPSetBounds_C", (KSP, Vec, Vec), (ksp, (Vec)lb, (Vec)ub));
+  if (hasnorm) PetscTryMethod(ksp, "KSPQPSetNormEstimate_C", (KSP, PetscReal), (ksp, norm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

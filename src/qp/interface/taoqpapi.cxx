@@ -104,6 +104,7 @@ PetscErrorCode TaoQPSetNormEstimate(Tao tao, PetscReal norm)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
   PetscValidLogicalCollectiveReal(tao, norm, 2);
+  PetscCall(QPComposeReal_Private((PetscObject)tao, "TaoQPNormEstimate", norm)); /* for a QP type chosen later */
   PetscTryMethod(tao, "TaoQPSetNormEstimate_C", (Tao, PetscReal), (tao, norm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -179,14 +180,17 @@ PetscErrorCode TaoQPResetCounters(Tao tao)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Called at the end of each QP type's TaoCreate_XXX(): adopts the set and the linear term given
-   while the Tao had another type (TaoQPSetConstraints() and TaoQPSetLinearTerm() keep them on the Tao). */
+/* Called at the end of each QP type's TaoCreate_XXX(): adopts the set, the linear term, the norm estimate and the
+   expansion flags given while the Tao had another type (their setters keep them on the Tao). */
 PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
 {
   PetscObject set, b, projcg, lagged;
+  PetscReal   norm;
+  PetscBool   hasnorm;
 
   PetscFunctionBegin;
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPConstraints", &set));
+  PetscCall(QPQueryReal_Private((PetscObject)tao, "TaoQPNormEstimate", &norm, &hasnorm));
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPLinearTerm", &b));
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPExpansionProjCG", &projcg));
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPExpansionLagged", &lagged));
@@ -201,6 +205,38 @@ PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
     void *flg;
     PetscCall(PetscContainerGetPointer((PetscContainer)lagged, &flg));
     PetscTryMethod(tao, "TaoQPSetExpansionLagged_C", (Tao, PetscBool), (tao, *static_cast<PetscBool *>(flg)));
+  }
+  if (hasnorm) PetscTryMethod(tao, "TaoQPSetNormEstimate_C", (Tao, PetscReal), (tao, norm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode QPComposeReal_Private(PetscObject obj, const char name[], PetscReal v)
+{
+  PetscContainer container;
+  PetscReal     *value;
+
+  PetscFunctionBegin;
+  PetscCall(PetscNew(&value));
+  *value = v;
+  PetscCall(PetscContainerCreate(PetscObjectComm(obj), &container));
+  PetscCall(PetscContainerSetPointer(container, value));
+  PetscCall(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
+  PetscCall(PetscObjectCompose(obj, name, (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode QPQueryReal_Private(PetscObject obj, const char name[], PetscReal *v, PetscBool *found)
+{
+  PetscObject container;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectQuery(obj, name, &container));
+  *found = container ? PETSC_TRUE : PETSC_FALSE;
+  if (container) {
+    void *value;
+    PetscCall(PetscContainerGetPointer((PetscContainer)container, &value));
+    *v = *static_cast<PetscReal *>(value);
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -327,6 +363,10 @@ PetscErrorCode TaoQPSetExpansionLagged(Tao tao, PetscBool flg)
   a symmetric positive definite preconditioner of the face's Hessian A_FF. Other steps and the
   stopping test are unpreconditioned, so the result and its accuracy do not depend on M. A PC that
   needs an assembled matrix does not work with a MATSHELL Hessian.
+
+  With a long prefix, PETSc 3.18's -help may print the PC's options with the prefix cut short (e.g.
+  -contact_tao_smalxe_subsolvpc_type); the option that works is the full prefix, here
+  -contact_tao_smalxe_subsolver_tao_mpgp_pc_type.
 
   Level: intermediate
 

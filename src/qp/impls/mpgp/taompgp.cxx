@@ -4,6 +4,7 @@
 #include <conefeti/private/reproduciblesum.h>
 #include <conefeti/private/qpadopt.h>
 #include <petsc/private/taoimpl.h>
+#include <cstring>
 
 namespace {
 
@@ -389,9 +390,15 @@ PetscErrorCode TaoSetFromOptions_MPGP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptio
   }
   PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), prefix, qp->options, &qp->core, &qp->norm, &qp->counters_view));
   {
-    PC        pc;
-    PetscBool given;
+    PC          pc;
+    PetscBool   given;
+    const char *pcprefix;
+    char        want[256];
     PetscCall(TaoQPGetPC_MPGP(tao, &pc));
+    /* under the Tao's prefix as it is now (TaoSetOptionsPrefix() after the PC was made does not reach it) */
+    PetscCall(PetscSNPrintf(want, sizeof(want), "%s%s", prefix ? prefix : "", qp->options->pc_prefix));
+    PetscCall(PCGetOptionsPrefix(pc, &pcprefix));
+    if (strcmp(pcprefix ? pcprefix : "", want)) PetscCall(PCSetOptionsPrefix(pc, want));
     PetscCall(TaoMPGPHasPCOption(qp, "-pc_type", &given));
     if (given) qp->pc_given = PETSC_TRUE;
     PetscCall(PCSetFromOptions(pc));

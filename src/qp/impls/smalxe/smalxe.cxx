@@ -29,6 +29,7 @@
 #include <petsc/private/taoimpl.h>
 #include <cstring>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace {
@@ -41,12 +42,13 @@ enum SMALXEUpdate {
 const char *const SMALXEUpdates[] = {"M", "rho", "none", "SMALXEUpdate", "SMALXE_UPDATE_", NULL};
 
 struct SMALXEBlock {
-  IS         is      = nullptr; /* NULL: the whole vector (monolithic inner solve) */
-  Tao        sub     = nullptr;
-  Mat        H       = nullptr; /* this block of the inner Hessian (owned only when is != NULL) */
-  Vec        x       = nullptr; /* block of the solution (owned only when is != NULL) */
-  Vec        b       = nullptr; /* linear term of the block problem */
-  VecScatter scatter = nullptr; /* full vector -> block */
+  IS          is      = nullptr; /* NULL: the whole vector (monolithic inner solve) */
+  Tao         sub     = nullptr;
+  Mat         H       = nullptr; /* this block of the inner Hessian (owned only when is != NULL) */
+  Vec         x       = nullptr; /* block of the solution (owned only when is != NULL) */
+  Vec         b       = nullptr; /* linear term of the block problem */
+  VecScatter  scatter = nullptr; /* full vector -> block */
+  std::string suffix;            /* of its options prefix after ours */
 
   PetscObjectState set_version = 0; /* of the parent set when the block's subset was copied from it */
 };
@@ -1237,9 +1239,16 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCheck(s->pc_q_scale > 0 && !PetscIsInfOrNanReal(s->pc_q_scale), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_pc_q_scale must be finite and > 0, got %g", p, (double)s->pc_q_scale);
   PetscCheck(s->sweeps >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_sweeps must be >= 1, got %" PetscInt_FMT, p, s->sweeps);
   PetscCheck(s->norm_method != QP_NORM_USER || s->norm_user > 0, comm, PETSC_ERR_ARG_WRONG, "-%stao_smalxe_norm_method user needs -%stao_smalxe_norm <value>", p, p);
-  /* the nested solvers read their options with ours (their type: from the options, else decided at setup) */
+  /* the nested solvers read their options with ours (their type: from the options, else decided at setup), under
+     our prefix as it is now: TaoSetOptionsPrefix() after TaoSetType() does not reach them (KSPSetOptionsPrefix()
+     passes it to the PC; TAO has no such hook) */
   for (auto &blk : s->blocks) {
-    PetscBool typed;
+    PetscBool   typed;
+    const char *subprefix;
+    char        want[256];
+    PetscCall(PetscSNPrintf(want, sizeof(want), "%s%s", p, blk.suffix.c_str()));
+    PetscCall(TaoGetOptionsPrefix(blk.sub, &subprefix));
+    if (!blk.suffix.empty() && strcmp(subprefix ? subprefix : "", want)) PetscCall(TaoSetOptionsPrefix(blk.sub, want));
     PetscCall(PetscOptionsHasName(((PetscObject)blk.sub)->options, ((PetscObject)blk.sub)->prefix, "-tao_type", &typed));
     if (typed || ((PetscObject)blk.sub)->type_name) PetscCall(TaoSetFromOptions(blk.sub));
   }
@@ -1484,6 +1493,7 @@ PetscErrorCode SetBlocks_SMALXE(Tao tao, PetscInt n, const IS is[])
     blk.is = is[k];
     PetscCall(PetscSNPrintf(suffix, sizeof(suffix), "tao_smalxe_block%" PetscInt_FMT "_", k));
     PetscCall(CreateSubsolver(tao, suffix, &blk.sub));
+    PetscCallCXX(blk.suffix = suffix);
     PetscCallCXX(s->blocks.push_back(blk));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -1683,6 +1693,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   if (!tao->max_it_changed) tao->max_it = 1000;
 
   PetscCall(CreateSubsolver(tao, "tao_smalxe_subsolver_", &blk.sub));
+  PetscCallCXX(blk.suffix = "tao_smalxe_subsolver_");
   PetscCallCXX(s->blocks.push_back(blk));
 
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetConstraints_C", SetConstraints_SMALXE));
