@@ -7,7 +7,8 @@
      brick -k 12 -friction 0.1 -contact_coulomb_algorithm msa
      brick -k 4 -law frictionless                   (no tangential multipliers, mprgp only)
      brick -k 4 -paper_m -gap 3e-3                  (a contact strip of the paper's size, see below)
-   Prints the pipeline, the counts of the paper's tables (n, m, Iter, n_A = QPP + QPQ), the node
+   Prints the pipeline, the counts of the paper's tables (n, m, Iter, n_A = QPP + QPQ + other: every Hessian
+   product of the solve, where the conefeti driver's n_A leaves out the bonded start's, "other"), the node
    states and the mechanical residuals. Exit status: 0 when the solve converged, 2 when it did not
    (as the conefeti driver). */
 #include <conefeti.h>

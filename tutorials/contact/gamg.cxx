@@ -12,8 +12,8 @@
    The subdomain options are read (they must be valid) but do not matter here.
 
    Sample runs (from the repository root):
-     build/gamg -options_file petsc-options/brick.opts -scene_refine 12
-     mpiexec -n 2 build/gamg -options_file petsc-options/brick.opts -scene_refine 30 -gamg_ksp_monitor -log_view
+     build/tutorials/contact/gamg -options_file petsc-options/brick.opts -scene_refine 12
+     mpiexec -n 2 build/tutorials/contact/gamg -options_file petsc-options/brick.opts -scene_refine 30 -gamg_ksp_monitor -log_view
 
    Output: one JSON line starting with {"gamg": with
      scene, ranks, n (unknowns without the Dirichlet dofs: the driver's n), n_global (with them), iter, converged,

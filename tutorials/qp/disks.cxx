@@ -369,6 +369,13 @@ int main(int argc, char **argv)
       PetscCall(KSPGetPC(ksp, &pc));
       PetscCall(PCSetType(pc, PCCHOLESKY));
       PetscCall(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
+      {
+        /* MUMPS sizes its workspace from the first KKT matrix; the later ones fill in more (INFOG(1) = -9), and
+           pdipm (PETSc 3.18) then repeats the failed step without end: 200% more room, unless given */
+        PetscBool set;
+        PetscCall(PetscOptionsHasName(NULL, NULL, "-mat_mumps_icntl_14", &set));
+        if (!set) PetscCall(PetscOptionsSetValue(NULL, "-mat_mumps_icntl_14", "200"));
+      }
       PetscCall(KSPSetFromOptions(ksp));
     }
   }
