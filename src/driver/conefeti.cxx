@@ -24,47 +24,38 @@
 #include <csignal>
 #include <cstring>
 #include <string>
+#include <vector>
 #include <sys/stat.h>
 
 static const char usage[] = "conefeti: 3D contact problems of linear elasticity with Coulomb friction by FETI.\n"
                             "Give a scene with -options_file petsc-options/<scene>.opts (docs/scenes.md).\n\n";
 
-/* Rank 0 creates and removes `path`: run before the solve, so that a missing directory or a read-only
-   place fails in a second, naming the option, and not after a long solve */
-static PetscErrorCode CheckWritable(MPI_Comm comm, const char *option, const std::string &path)
+/* Rank 0 creates and removes `tmp`, the temporary name the run writes first, and checks that no file it renames
+   to is a directory: run before the solve, so that a missing directory, a read-only place or a directory in the
+   way fails in a second, naming the option, and not after a long solve */
+static PetscErrorCode CheckWritable(MPI_Comm comm, const char *option, const std::string &tmp, const std::vector<std::string> &finals)
 {
   PetscMPIInt rank;
-  int         err = 0;
-
-  PetscFunctionBegin;
-  PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  if (!rank) {
-    FILE *f = fopen(path.c_str(), "w");
-    if (!f) err = errno ? errno : EIO;
-    else {
-      if (fclose(f) != 0) err = errno ? errno : EIO;
-      (void)remove(path.c_str());
-    }
-  }
-  PetscCallMPI(MPI_Bcast(&err, 1, MPI_INT, 0, comm));
-  PetscCheck(!err, comm, PETSC_ERR_FILE_WRITE, "%s: cannot write %s: %s (checked before the solve)", option, path.c_str(), strerror(err));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-/* A file the run will write must not be a directory: the rename at the end would fail after the solve */
-static PetscErrorCode CheckNotDirectory(MPI_Comm comm, const char *option, const std::string &path)
-{
-  PetscMPIInt rank;
-  int         dir = 0;
+  int         err[2] = {0, -1}; /* errno, and which final file (-1: tmp) */
 
   PetscFunctionBegin;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank) {
     struct stat st;
-    dir = stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+    for (size_t k = 0; k < finals.size() && !err[0]; k++)
+      if (stat(finals[k].c_str(), &st) == 0 && S_ISDIR(st.st_mode)) {
+        err[0] = EISDIR;
+        err[1] = (int)k;
+      }
+    FILE *f = err[0] ? NULL : fopen(tmp.c_str(), "w");
+    if (!err[0] && !f) err[0] = errno ? errno : EIO;
+    else if (f) {
+      if (fclose(f) != 0) err[0] = errno ? errno : EIO;
+      (void)remove(tmp.c_str());
+    }
   }
-  PetscCallMPI(MPI_Bcast(&dir, 1, MPI_INT, 0, comm));
-  PetscCheck(!dir, comm, PETSC_ERR_FILE_WRITE, "%s: cannot write %s: it is a directory (checked before the solve)", option, path.c_str());
+  PetscCallMPI(MPI_Bcast(err, 2, MPI_INT, 0, comm));
+  PetscCheck(!err[0], comm, PETSC_ERR_FILE_WRITE, "%s: cannot write %s: %s (checked before the solve)", option, err[1] < 0 ? tmp.c_str() : finals[err[1]].c_str(), strerror(err[0]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -178,11 +169,8 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
     }
   }
   if (hasoutput) PetscCall(CheckBaseName(comm, output));
-  if (hasoutput) PetscCall(CheckWritable(comm, "-output", std::string(output) + ".xmf.tmp"));
-  if (hasjson) PetscCall(CheckWritable(comm, "-summary_json", std::string(jsonfile) + ".tmp"));
-  if (hasoutput) PetscCall(CheckNotDirectory(comm, "-output", std::string(output) + ".h5"));
-  if (hasoutput) PetscCall(CheckNotDirectory(comm, "-output", std::string(output) + ".xmf"));
-  if (hasjson) PetscCall(CheckNotDirectory(comm, "-summary_json", jsonfile));
+  if (hasoutput) PetscCall(CheckWritable(comm, "-output", std::string(output) + ".xmf.tmp", {std::string(output) + ".h5", std::string(output) + ".xmf"}));
+  if (hasjson) PetscCall(CheckWritable(comm, "-summary_json", std::string(jsonfile) + ".tmp", {jsonfile}));
   if (hasoutput && hasjson)
     PetscCheck(std::string(jsonfile) != std::string(output) + ".h5" && std::string(jsonfile) != std::string(output) + ".xmf", comm, PETSC_ERR_ARG_INCOMP,
                "-summary_json %s is a file that -output %s writes: give them different names", jsonfile, output);

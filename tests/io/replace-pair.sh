@@ -11,7 +11,7 @@ mkdir -p "$base.xmf"
 out=$("$@" -output "$base" 2>&1); rc=$?
 fail=0
 [ $rc -ne 0 ] || { echo "replace-pair.sh: the run exited with 0 although $base.xmf is a directory"; fail=1; }
-echo "$out" | grep -Eq -- "-output: cannot (replace $base.xmf: Is a directory|write $base.xmf: it is a directory \(checked before the solve\))" || { echo "replace-pair.sh: no message naming $base.xmf"; echo "$out" | grep ERROR | head -3; fail=1; }
+echo "$out" | grep -Eq -- "-output: cannot (replace $base.xmf: Is a directory|write $base.xmf: Is a directory \(checked before the solve\))" || { echo "replace-pair.sh: no message naming $base.xmf"; echo "$out" | grep ERROR | head -3; fail=1; }
 for f in "$base.h5" "$base.h5.tmp" "$base.xmf.tmp" "$base.h5.old"; do [ -e "$f" ] && { echo "replace-pair.sh: $f left behind"; fail=1; }; done
 rmdir "$base.xmf"
 "$@" -output "$base" >/dev/null 2>&1 || { echo "replace-pair.sh: the first write failed"; fail=1; }
