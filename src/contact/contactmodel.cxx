@@ -521,6 +521,8 @@ PetscErrorCode BuildContactProblem(ContactModel cm)
 
 } // namespace
 
+void ContactTangents_Private(const PetscReal n[3], PetscReal t1[3], PetscReal t2[3]) { Tangents(n, t1, t2); }
+
 /*@C
   ContactModelCreate - A contact model on a finite element model (the FEM must be set up).
 

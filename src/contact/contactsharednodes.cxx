@@ -3,7 +3,9 @@
    A face selector takes whole boundary triangles, so two zones that split a face (z0/x<1 and z0/x>1, two physical
    surfaces side by side) share the nodes of the line between them, and two zones that select the same triangles
    share all of their nodes. Where both zones give such a node the same row (the same partner, normal and gap: the
-   same obstacle plane, or the same master point), two copies of the row would split its force between two
+   same obstacle plane, or the same master point; on a curved face split between two zones the copies of a
+   touching slave node differ in their faces' lumped normals only, and get the normal of both), two copies of the row
+   would split its force between two
    multipliers in no particular way, and each copy's pressure would divide its part of the force by its zone's part of
    the node's area: the pressure at the seam came out anything from half to twice the true one, and a zone given twice
    halved it everywhere. So the copies become one node, numbered in the first zone, whose area is that of the union of
@@ -28,16 +30,45 @@ constexpr PetscReal kSameDirection = 1e-12;
 constexpr PetscReal kSameGap       = 1e-9;
 constexpr PetscReal kSameWeight    = 1e-12;
 
+/* whether the normals differ (beyond roundoff) */
+bool OtherNormal(const ContactNodeInfo &a, const ContactNodeInfo &b)
+{
+  for (int c = 0; c < 3; c++)
+    if (std::fabs(a.n[c] - b.n[c]) > kSameDirection) return true;
+  return false;
+}
+
+/* The same row: the same partner, gap and normal. Between bodies, a slave node that touches its master point takes
+   its face's normal, lumped over the triangles of one zone's face: on a curved face split between two zones the
+   copies at the seam then differ in the normal alone, and the row of the face they make together has their
+   area-weighted normal (MergeNormal()); nodes with fixed components keep their own rule (FrictionOnRollers()). */
 bool SameRow(const ContactNodeInfo &a, const ContactNodeInfo &b)
 {
   if (a.other_body != b.other_body || a.nmaster != b.nmaster) return false;
   const PetscReal scale = std::max({PetscReal(1), std::fabs(a.x[0]), std::fabs(a.x[1]), std::fabs(a.x[2])});
-  for (int c = 0; c < 3; c++)
-    if (std::fabs(a.n[c] - b.n[c]) > kSameDirection) return false;
+  if (OtherNormal(a, b) && (a.other_body < 0 || a.fixed || b.fixed)) return false;
   if (std::fabs(a.gap - b.gap) > kSameGap * scale) return false;
   for (PetscInt v = 0; v < a.nmaster; v++)
     if (a.master[v] != b.master[v] || std::fabs(a.weight[v] - b.weight[v]) > kSameWeight) return false;
   return true;
+}
+
+/* the normal of the copies' faces together: their lumped normals weighted by their areas; the gap along it, and the
+   tangents */
+void MergeNormal(const std::vector<const ContactNodeInfo *> &copies, ContactNodeInfo &k)
+{
+  PetscReal n[3] = {0, 0, 0}, len = 0;
+  for (const ContactNodeInfo *c : copies)
+    for (int i = 0; i < 3; i++) n[i] += c->area * c->n[i];
+  for (int i = 0; i < 3; i++) len += n[i] * n[i];
+  len = std::sqrt(len);
+  if (!(len > 0)) return;
+  k.gap = 0;
+  for (int i = 0; i < 3; i++) {
+    k.n[i] = n[i] / len;
+    k.gap += (k.chi[i] - k.x[i]) * k.n[i];
+  }
+  ContactTangents_Private(k.n, k.t1, k.t2);
 }
 
 /* the face of zone z on the node's body: the zone's face, or between bodies the face of whichever body is the slave */
@@ -148,6 +179,15 @@ PetscErrorCode ContactMergeSharedNodes_Private(ContactModel cm, PetscInt *merged
           break;
         }
       ContactNodeInfo k = d.nodes[keep];
+      {
+        std::vector<const ContactNodeInfo *> copies;
+        bool                                 other = false;
+        for (size_t g : group) {
+          PetscCallCXX(copies.push_back(&d.nodes[g]));
+          other = other || OtherNormal(d.nodes[g], d.nodes[group[0]]);
+        }
+        if (other) MergeNormal(copies, k);
+      }
       k.zone            = first.zone;
       k.law             = law;
       k.coef            = law == CONTACT_COULOMB ? coulomb / area : law == CONTACT_TRESCA ? tresca : 0;

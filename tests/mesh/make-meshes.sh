@@ -23,6 +23,9 @@ head -c 3000 "$out/box-4.1-binary.msh" >"$out/truncated-binary.msh"
 gmsh -3 "$src/meshes/block-hole.geo" -o "$out/block-hole.msh" >"$out/block-hole.log" 2>&1 || { cat "$out/block-hole.log"; exit 1; }
 gmsh -3 "$src/meshes/two-volumes.geo" -o "$out/two-volumes.msh" >"$out/two-volumes.log" 2>&1 || { cat "$out/two-volumes.log"; exit 1; }
 gmsh -3 "$src/meshes/block-unstructured.geo" -o "$out/block-unstructured.msh" >"$out/block-unstructured.log" 2>&1 || { cat "$out/block-unstructured.log"; exit 1; }
+# the Hertz pair of petsc-options/hertz-pair.opts, coarse (a curved slave face split between two zones)
+gmsh -3 "$src/meshes/pair-hemisphere.geo" -setnumber part 1 -setnumber h 0.05 -o "$out/pair-hemisphere.msh" >"$out/pair-hemisphere.log" 2>&1 || { cat "$out/pair-hemisphere.log"; exit 1; }
+gmsh -3 "$src/meshes/pair-block.geo" -setnumber part 1 -setnumber h 0.06 -o "$out/pair-block.msh" >"$out/pair-block.log" 2>&1 || { cat "$out/pair-block.log"; exit 1; }
 # a curved (second-order) mesh, and one file of two separate blocks without physical volumes: one body each, both errors
 gmsh -3 -order 2 "$src/meshes/block-hole.geo" -o "$out/block-hole-order2.msh" >"$out/block-hole-order2.log" 2>&1 || { cat "$out/block-hole-order2.log"; exit 1; }
 cat >"$out/two-pieces.geo" <<'GEO'

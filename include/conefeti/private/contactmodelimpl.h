@@ -74,6 +74,9 @@ struct _p_ContactModel {
 /* a foundation zone's node: its gap and normal from the obstacle (contactobstacle.cxx) */
 PETSC_INTERN PetscErrorCode ContactObstacleNodeGeometry_Private(ContactModel, PetscInt, ContactNodeInfo &);
 
+/* t1, t2 with (n, t1, t2) orthonormal, as every contact node gets them (contactmodel.cxx) */
+PETSC_INTERN void ContactTangents_Private(const PetscReal[3], PetscReal[3], PetscReal[3]);
+
 /* one contact node for the copies of a node that zones give the same row (contactsharednodes.cxx); merged: the copies dropped */
 PETSC_INTERN PetscErrorCode ContactMergeSharedNodes_Private(ContactModel, PetscInt *);
 
