@@ -372,8 +372,9 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
 
   Notes:
-  After `ContactProblemSetUp()` the solvers' options and the tolerance still take effect; the Coulomb algorithm,
-  which the setup built the solver for, can no longer change (an error).
+  After `ContactProblemSetUp()` the solvers' options (-contact_tao_*) and -contact_rtol still take effect; the
+  Coulomb algorithm, which the setup built the solver for, can no longer change (an error), and -contact_pc_type
+  is put in place at the setup only.
 
   Level: beginner
 
@@ -422,10 +423,12 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscCheck((d->fixed_point_rtol > 0 && d->fixed_point_rtol < 1) || d->fixed_point_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
              "-contact_fixed_point_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", (double)d->fixed_point_rtol);
   if (d->setup) {
-    /* the setup built the solver (blocks, hooks) for one algorithm: running it with another's fails half-way */
-    PetscCheck(d->algorithm == built, PetscObjectComm((PetscObject)cp), PETSC_ERR_ORDER,
-               "-contact_coulomb_algorithm %s after ContactProblemSetUp(), which built the solver for %s: set it before the setup", ContactCoulombAlgorithms[d->algorithm],
-               ContactCoulombAlgorithms[built]);
+    /* the setup built the solver (blocks, hooks) for one algorithm: running it with another's fails half-way; the
+       problem keeps the one it was built for */
+    const ContactCoulombAlgorithm asked = d->algorithm;
+    d->algorithm                        = built;
+    PetscCheck(asked == built || d->pipeline != CONTACT_PIPELINE_COULOMB, PetscObjectComm((PetscObject)cp), PETSC_ERR_ORDER,
+               "-contact_coulomb_algorithm %s after ContactProblemSetUp(), which built the solver for %s: set it before the setup", ContactCoulombAlgorithms[asked], ContactCoulombAlgorithms[built]);
     PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol)); /* -contact_rtol, as the setup gave it */
   }
   if (d->tao) PetscCall(TaoSetFromOptions(d->tao));

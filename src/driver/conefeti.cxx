@@ -21,6 +21,8 @@
 #include <conefeti/compat.h>
 #include "driver.h"
 #include <cerrno>
+#include <climits>
+#include <cstdlib>
 #include <csignal>
 #include <cstring>
 #include <string>
@@ -57,6 +59,19 @@ static PetscErrorCode CheckWritable(MPI_Comm comm, const char *option, const std
   PetscCallMPI(MPI_Bcast(err, 2, MPI_INT, 0, comm));
   PetscCheck(!err[0], comm, PETSC_ERR_FILE_WRITE, "%s: cannot write %s: %s (checked before the solve)", option, err[1] < 0 ? tmp.c_str() : finals[err[1]].c_str(), strerror(err[0]));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether two paths name one file (which need not exist yet): the same name in the same directory, the directories
+   compared after realpath() (./a.h5 and a.h5, dir/../a.h5) */
+static bool SameFile(const std::string &a, const std::string &b)
+{
+  const auto canonical = [](const std::string &path) {
+    const size_t      slash = path.find_last_of('/');
+    const std::string dir   = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    char              buf[PATH_MAX];
+    return realpath(dir.c_str(), buf) ? std::string(buf) + "/" + path.substr(slash == std::string::npos ? 0 : slash + 1) : path;
+  };
+  return canonical(a) == canonical(b);
 }
 
 /* rank 0 writes the JSON line to <path>.tmp and renames it: a reader never sees half a line */
@@ -171,9 +186,14 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
   if (hasoutput) PetscCall(CheckBaseName(comm, output));
   if (hasoutput) PetscCall(CheckWritable(comm, "-output", std::string(output) + ".xmf.tmp", {std::string(output) + ".h5", std::string(output) + ".xmf"}));
   if (hasjson) PetscCall(CheckWritable(comm, "-summary_json", std::string(jsonfile) + ".tmp", {jsonfile}));
-  if (hasoutput && hasjson)
-    PetscCheck(std::string(jsonfile) != std::string(output) + ".h5" && std::string(jsonfile) != std::string(output) + ".xmf", comm, PETSC_ERR_ARG_INCOMP,
-               "-summary_json %s is a file that -output %s writes: give them different names", jsonfile, output);
+  if (hasoutput && hasjson) {
+    int         clash = 0; /* rank 0's file system decides, as for the writes */
+    PetscMPIInt rank;
+    PetscCallMPI(MPI_Comm_rank(comm, &rank));
+    if (!rank) clash = SameFile(jsonfile, std::string(output) + ".h5") || SameFile(jsonfile, std::string(output) + ".xmf");
+    PetscCallMPI(MPI_Bcast(&clash, 1, MPI_INT, 0, comm));
+    PetscCheck(!clash, comm, PETSC_ERR_ARG_INCOMP, "-summary_json %s is a file that -output %s writes: give them different names", jsonfile, output);
+  }
   PetscCall(ConeFETIGetVersion(&major, &minor, &patch));
   PetscCall(DriverProgressSet(scene, quiet ? DRIVER_PROGRESS_NONE : (DriverProgressMode)progress));
   PetscCall(ContactSceneSetUp(scene));

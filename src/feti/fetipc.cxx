@@ -383,11 +383,13 @@ static PetscErrorCode PCSetUp_FETI(PC pc)
 static PetscErrorCode PCApply_FETI(PC pc, Vec x, Vec y)
 {
   PC_FETI           *data = (PC_FETI *)pc->data;
-  FETI_Impl         &impl = *data->feti->impl;
   const PetscScalar *in;
   PetscScalar       *out;
 
   PetscFunctionBegin;
+  PetscCall(FETIFromMat(pc->pmat, &data->feti)); /* an error, not freed memory, once the FETI object is gone */
+  PetscCheck(data->feti, PetscObjectComm((PetscObject)pc), PETSC_ERR_ARG_WRONGSTATE, "PC %s: its operator is no longer one of a FETI problem", ((PetscObject)pc)->type_name);
+  FETI_Impl &impl = *data->feti->impl;
   PetscCall(PetscLogEventBegin(FETI_Preconditioner, data->feti, 0, 0, 0));
   if (data->projected) PetscCall(FETIApplyP(data->feti, x, data->wd));
   else PetscCall(VecCopy(x, data->wd));
@@ -466,6 +468,11 @@ static PetscErrorCode PCView_FETI(PC pc, PetscViewer viewer)
   if (ascii)
     PetscCall(PetscViewerASCIIPrintf(viewer, "FETI %s preconditioner, applied as %s\n", data->dirichlet ? "Dirichlet (B S_bb B')" : "lumped (B K_bb B')",
                                      data->projected ? "P M^-1 P" : "M^-1 (the caller projects)"));
+  if (data->feti && pc->pmat) { /* the FETI object may be gone (FETIReset() took it from its operators) */
+    void *ctx = NULL;
+    PetscCall(MatShellGetContext(pc->pmat, &ctx));
+    if (!ctx) data->feti = NULL;
+  }
   if (ascii && data->dirichlet && data->feti && pc->setupcalled) {
     const FETI_Impl &impl = *data->feti->impl;
     PetscCall(PetscViewerASCIIPushTab(viewer));

@@ -1036,12 +1036,12 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)scene, &prefix));
   PetscCall(PetscOptionsHasHelp(NULL, &help));
   PetscCall(PetscStrncpy(name, impl.name.c_str(), sizeof(name)));
+  PetscBool refineset = PETSC_FALSE;
   PetscObjectOptionsBegin((PetscObject)scene);
   Reader r{PetscOptionsObject, prefix, comm, help};
   PetscCall(PetscOptionsString("-scene_name", "Name of the scene (summary, output)", "ContactSceneSetFromOptions", name, name, sizeof(name), &set));
   PetscCheck(strlen(name) < sizeof(name) - 1, comm, PETSC_ERR_ARG_SIZ, "-scene_name: at most %d characters", (int)sizeof(name) - 2); /* PETSc cuts longer strings */
-  PetscBool refineset;
-  PetscCall(r.Int("-scene_refine", "Multiply every body's cells by this factor", "a positive integer", &impl.refine, &refineset));
+  PetscCall(r.Int("-scene_refine", "Multiply every box body's cells by this factor", "a positive integer", &impl.refine, &refineset));
   PetscCheck(impl.refine >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "%s %" PetscInt_FMT ": the refinement factor must be a positive integer", r.Full("-scene_refine").c_str(), impl.refine);
   PetscCall(PetscOptionsName("-scene_view", "View the scene after ContactSceneSetUp()", "ContactSceneView", &set));
   impl.bodies.clear();
@@ -1064,6 +1064,7 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
     if (exists) PetscCallCXX(impl.zones.push_back(spec));
     if (!exists) break;
   }
+  PetscOptionsEnd();
   if (refineset && impl.refine > 1) {
     /* it multiplies box cells only: on a scene of mesh files it would change nothing, without a word */
     bool box = false;
@@ -1072,9 +1073,8 @@ PetscErrorCode ContactSceneSetFromOptions(ContactScene scene)
         box || impl.bodies.empty(), comm, PETSC_ERR_ARG_WRONG,
         "%s %" PetscInt_FMT
         ": every body of the scene comes from a mesh file, and the refinement multiplies the cells of box bodies only; refine the mesh where it was made (in Gmsh: -clscale or Mesh.MeshSizeFactor)",
-        r.Full("-scene_refine").c_str(), impl.refine);
+        ("-" + std::string(prefix ? prefix : "") + "scene_refine").c_str(), impl.refine);
   }
-  PetscOptionsEnd();
   impl.name = name;
   PetscCall(CheckUnused(comm, prefix));
   PetscCall(CheckBoxSelectors(comm, impl));

@@ -5,6 +5,7 @@
 #include <conefeti/private/qpadopt.h>
 #include <petsc/private/taoimpl.h>
 #include <cstring>
+#include <string>
 
 namespace {
 
@@ -34,6 +35,7 @@ struct TAO_MPGP {
   PetscBool   counters_view = PETSC_FALSE;
   Tao         tao           = nullptr;
   PC          pc            = nullptr; /* preconditioning in face, options -tao_mprgp_pc_* or -tao_mpgp_pc_*; PCNONE until a solve chooses from the Hessian */
+  std::string pc_prefix;               /* the options prefix we gave pc (a prefix the user gives it instead is kept) */
 
   /* The PC type, the expansion and Gamma the user did not set follow the Hessian (mpgpdefaults.cxx) at each solve */
   MPGPHessianDefaults defaults;                   /* of the last solve's Hessian */
@@ -106,6 +108,7 @@ PetscErrorCode TaoQPGetPC_MPGP(Tao tao, PC *pc)
     PetscCall(TaoGetOptionsPrefix(tao, &tprefix));
     PetscCall(PCSetOptionsPrefix(qp->pc, tprefix));
     PetscCall(PCAppendOptionsPrefix(qp->pc, qp->options->pc_prefix));
+    PetscCallCXX(qp->pc_prefix = std::string(tprefix ? tprefix : "") + qp->options->pc_prefix);
     PetscCall(PCSetType(qp->pc, PCNONE));
   }
   *pc = qp->pc;
@@ -395,10 +398,14 @@ PetscErrorCode TaoSetFromOptions_MPGP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptio
     const char *pcprefix;
     char        want[256];
     PetscCall(TaoQPGetPC_MPGP(tao, &pc));
-    /* under the Tao's prefix as it is now (TaoSetOptionsPrefix() after the PC was made does not reach it) */
+    /* under the Tao's prefix as it is now (TaoSetOptionsPrefix() after the PC was made does not reach it), unless
+       the user gave the PC a prefix of their own */
     PetscCall(PetscSNPrintf(want, sizeof(want), "%s%s", prefix ? prefix : "", qp->options->pc_prefix));
     PetscCall(PCGetOptionsPrefix(pc, &pcprefix));
-    if (strcmp(pcprefix ? pcprefix : "", want)) PetscCall(PCSetOptionsPrefix(pc, want));
+    if (qp->pc_prefix == (pcprefix ? pcprefix : "") && qp->pc_prefix != want) {
+      PetscCall(PCSetOptionsPrefix(pc, want));
+      PetscCallCXX(qp->pc_prefix = want);
+    }
     PetscCall(TaoMPGPHasPCOption(qp, "-pc_type", &given));
     if (given) qp->pc_given = PETSC_TRUE;
     PetscCall(PCSetFromOptions(pc));

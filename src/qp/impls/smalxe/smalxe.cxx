@@ -49,6 +49,7 @@ struct SMALXEBlock {
   Vec         b       = nullptr; /* linear term of the block problem */
   VecScatter  scatter = nullptr; /* full vector -> block */
   std::string suffix;            /* of its options prefix after ours */
+  std::string prefix;            /* the options prefix we gave it (a prefix the user gives it instead is kept) */
 
   PetscObjectState set_version = 0; /* of the parent set when the block's subset was copied from it */
 };
@@ -540,6 +541,17 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
 }
 
 /* ---------- setup ---------- */
+
+/* what TaoSetFromOptions_SMALXE() compares with: the prefix the nested solver has now, which we gave it */
+PetscErrorCode RememberPrefix(SMALXEBlock &blk)
+{
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(blk.sub, &prefix));
+  PetscCallCXX(blk.prefix = prefix ? prefix : "");
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode CreateSubsolver(Tao tao, const char *suffix, Tao *sub)
 {
@@ -1241,14 +1253,17 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCheck(s->norm_method != QP_NORM_USER || s->norm_user > 0, comm, PETSC_ERR_ARG_WRONG, "-%stao_smalxe_norm_method user needs -%stao_smalxe_norm <value>", p, p);
   /* the nested solvers read their options with ours (their type: from the options, else decided at setup), under
      our prefix as it is now: TaoSetOptionsPrefix() after TaoSetType() does not reach them (KSPSetOptionsPrefix()
-     passes it to the PC; TAO has no such hook) */
+     passes it to the PC; TAO has no such hook); a prefix the user gave one of them is kept */
   for (auto &blk : s->blocks) {
     PetscBool   typed;
     const char *subprefix;
     char        want[256];
     PetscCall(PetscSNPrintf(want, sizeof(want), "%s%s", p, blk.suffix.c_str()));
     PetscCall(TaoGetOptionsPrefix(blk.sub, &subprefix));
-    if (!blk.suffix.empty() && strcmp(subprefix ? subprefix : "", want)) PetscCall(TaoSetOptionsPrefix(blk.sub, want));
+    if (blk.prefix == (subprefix ? subprefix : "") && blk.prefix != want) { /* ours, not one the user gave it */
+      PetscCall(TaoSetOptionsPrefix(blk.sub, want));
+      PetscCallCXX(blk.prefix = want);
+    }
     PetscCall(PetscOptionsHasName(((PetscObject)blk.sub)->options, ((PetscObject)blk.sub)->prefix, "-tao_type", &typed));
     if (typed || ((PetscObject)blk.sub)->type_name) PetscCall(TaoSetFromOptions(blk.sub));
   }
@@ -1494,6 +1509,7 @@ PetscErrorCode SetBlocks_SMALXE(Tao tao, PetscInt n, const IS is[])
     PetscCall(PetscSNPrintf(suffix, sizeof(suffix), "tao_smalxe_block%" PetscInt_FMT "_", k));
     PetscCall(CreateSubsolver(tao, suffix, &blk.sub));
     PetscCallCXX(blk.suffix = suffix);
+    PetscCall(RememberPrefix(blk));
     PetscCallCXX(s->blocks.push_back(blk));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -1694,6 +1710,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
 
   PetscCall(CreateSubsolver(tao, "tao_smalxe_subsolver_", &blk.sub));
   PetscCallCXX(blk.suffix = "tao_smalxe_subsolver_");
+  PetscCall(RememberPrefix(blk));
   PetscCallCXX(s->blocks.push_back(blk));
 
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoQPSetConstraints_C", SetConstraints_SMALXE));
