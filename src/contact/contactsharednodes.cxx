@@ -180,13 +180,13 @@ PetscErrorCode ContactMergeSharedNodes_Private(ContactModel cm, PetscInt *merged
         }
       ContactNodeInfo k = d.nodes[keep];
       {
-        std::vector<const ContactNodeInfo *> copies;
+        std::vector<const ContactNodeInfo *> rows; /* the group's copies */
         bool                                 other = false;
         for (size_t g : group) {
-          PetscCallCXX(copies.push_back(&d.nodes[g]));
+          PetscCallCXX(rows.push_back(&d.nodes[g]));
           other = other || OtherNormal(d.nodes[g], d.nodes[group[0]]);
         }
-        if (other) MergeNormal(copies, k);
+        if (other) MergeNormal(rows, k);
       }
       k.zone            = first.zone;
       k.law             = law;

@@ -180,6 +180,36 @@ PetscErrorCode TaoQPResetCounters(Tao tao)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+namespace {
+
+/* a value kept on obj under name: the container made on the first call is reused (smalxe gives its inner solver a
+   norm estimate at every change of the penalty) */
+template <typename T> PetscErrorCode ComposeValue(PetscObject obj, const char *name, T v)
+{
+  PetscObject    composed;
+  PetscContainer container;
+  T             *value;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectQuery(obj, name, &composed));
+  if (composed) {
+    void *p;
+    PetscCall(PetscContainerGetPointer((PetscContainer)composed, &p));
+    *static_cast<T *>(p) = v;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscNew(&value));
+  *value = v;
+  PetscCall(PetscContainerCreate(PetscObjectComm(obj), &container));
+  PetscCall(PetscContainerSetPointer(container, value));
+  PetscCall(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
+  PetscCall(PetscObjectCompose(obj, name, (PetscObject)container));
+  PetscCall(PetscContainerDestroy(&container));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace
+
 /* Called at the end of each QP type's TaoCreate_XXX(): adopts the set, the linear term, the norm estimate and the
    expansion flags given while the Tao had another type (their setters keep them on the Tao). */
 PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
@@ -212,17 +242,8 @@ PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
 
 PetscErrorCode QPComposeReal_Private(PetscObject obj, const char name[], PetscReal v)
 {
-  PetscContainer container;
-  PetscReal     *value;
-
   PetscFunctionBegin;
-  PetscCall(PetscNew(&value));
-  *value = v;
-  PetscCall(PetscContainerCreate(PetscObjectComm(obj), &container));
-  PetscCall(PetscContainerSetPointer(container, value));
-  PetscCall(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
-  PetscCall(PetscObjectCompose(obj, name, (PetscObject)container));
-  PetscCall(PetscContainerDestroy(&container));
+  PetscCall(ComposeValue(obj, name, v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -240,27 +261,6 @@ PetscErrorCode QPQueryReal_Private(PetscObject obj, const char name[], PetscReal
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
-
-namespace {
-
-/* keeps a flag on the Tao, for a QP type chosen later (TaoQPAdoptComposed_Private()) */
-PetscErrorCode ComposeFlag(Tao tao, const char *name, PetscBool flg)
-{
-  PetscContainer container;
-  PetscBool     *value;
-
-  PetscFunctionBegin;
-  PetscCall(PetscNew(&value));
-  *value = flg;
-  PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)tao), &container));
-  PetscCall(PetscContainerSetPointer(container, value));
-  PetscCall(PetscContainerSetUserDestroy(container, PetscContainerUserDestroyDefault));
-  PetscCall(PetscObjectCompose((PetscObject)tao, name, (PetscObject)container));
-  PetscCall(PetscContainerDestroy(&container));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-} // namespace
 
 /*@C
   TaoQPSetExpansionProjCG - Whether the expansion steps of TAO `mprgp` / `mpgp` first try the projected
@@ -297,7 +297,7 @@ PetscErrorCode TaoQPSetExpansionProjCG(Tao tao, PetscBool flg)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
   PetscValidLogicalCollectiveBool(tao, flg, 2);
-  PetscCall(ComposeFlag(tao, "TaoQPExpansionProjCG", flg));
+  PetscCall(ComposeValue((PetscObject)tao, "TaoQPExpansionProjCG", flg)); /* for a QP type chosen later */
   PetscTryMethod(tao, "TaoQPSetExpansionProjCG_C", (Tao, PetscBool), (tao, flg));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -335,7 +335,7 @@ PetscErrorCode TaoQPSetExpansionLagged(Tao tao, PetscBool flg)
   PetscFunctionBegin;
   PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
   PetscValidLogicalCollectiveBool(tao, flg, 2);
-  PetscCall(ComposeFlag(tao, "TaoQPExpansionLagged", flg));
+  PetscCall(ComposeValue((PetscObject)tao, "TaoQPExpansionLagged", flg)); /* for a QP type chosen later */
   PetscTryMethod(tao, "TaoQPSetExpansionLagged_C", (Tao, PetscBool), (tao, flg));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
