@@ -686,6 +686,7 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
 {
   ContactModelData            *d;
   std::map<PetscInt, unsigned> fixed;
+  const char                  *prefix; /* the options the errors name are the user's, with the model's prefix */
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
@@ -701,12 +702,13 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
                             "Replace each friction disk by a regular 2k-gon inscribed in it, k tangential multipliers with simple bounds (the seed paper's Table 3; 0: disks)", "ContactModelSetUp",
                             d->polygon, &d->polygon, NULL));
   PetscOptionsEnd();
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cm, &prefix));
   PetscCheck(d->polygon == 0 || (d->polygon >= 2 && d->polygon <= 64), PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
-             "-contact_friction_polygon must be 0 (friction disks) or a number of directions between 2 and 64, got %" PetscInt_FMT, d->polygon);
+             "-%scontact_friction_polygon must be 0 (friction disks) or a number of directions between 2 and 64, got %" PetscInt_FMT, prefix ? prefix : "", d->polygon);
   d->stride = 1 + (d->polygon ? d->polygon : 2);
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
-             "-contact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", (double)d->acceptance_factor);
-  PetscCheck(d->refine_max >= 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE, "-contact_refine_max must be >= 0, got %" PetscInt_FMT, d->refine_max);
+             "-%scontact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", prefix ? prefix : "", (double)d->acceptance_factor);
+  PetscCheck(d->refine_max >= 0, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_refine_max must be >= 0, got %" PetscInt_FMT, prefix ? prefix : "", d->refine_max);
   PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_CONTACT_ROWS, 0));
   PetscCall(DirichletNodes(d->fem, fixed));
   PetscCallCXX(d->unmatched.assign(d->zones.size(), 0));

@@ -146,7 +146,7 @@ PetscErrorCode ContactProblemPCOptions_Private(ContactProblem cp, CONEFETI_OPTIO
   PetscCall(PetscOptionsBool("-contact_pc_inner_projector", "With -contact_pc_type: FETI's M with its own projector on both sides, P M P (true, two coarse solves more per application), or M alone",
                              "ContactProblemGetPC", d->pc_inner_projector, &d->pc_inner_projector, NULL));
   PetscCheck(d->pc_contact_scale > 0 && !PetscIsInfOrNanReal(d->pc_contact_scale), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
-             "-contact_pc_contact_scale must be finite and > 0, got %g", (double)d->pc_contact_scale);
+             "-%scontact_pc_contact_scale must be finite and > 0, got %g", PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "", (double)d->pc_contact_scale);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -384,11 +384,14 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
 {
   ContactProblemData     *d;
   ContactCoulombAlgorithm built;
+  const char             *prefix; /* the options the errors name are the user's, with the problem's prefix */
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
   d     = cp->data;
   built = d->algorithm;
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cp, &prefix));
+  if (!prefix) prefix = "";
   PetscObjectOptionsBegin((PetscObject)cp);
   PetscCall(PetscOptionsEnum("-contact_coulomb_algorithm", "Coulomb friction: msa (Algorithm 1), merged (Algorithm 2), monolithic", "ContactCoulombAlgorithm", ContactCoulombAlgorithms,
                              (PetscEnum)d->algorithm, (PetscEnum *)&d->algorithm, NULL));
@@ -413,22 +416,23 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscOptionsEnd();
   PetscCall(ContactProblemSetFromOptionsPC_Private(cp)); /* -contact_pc_type ... (contactpc.cxx) */
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
-             "-contact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", (double)d->acceptance_factor);
-  PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_rtol must be in (0, 1), got %g", (double)d->rtol);
+             "-%scontact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", prefix, (double)d->acceptance_factor);
+  PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_rtol must be in (0, 1), got %g", prefix, (double)d->rtol);
   PetscCheck((d->msa_rtol > 0 && d->msa_rtol < 1) || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
-             "-contact_msa_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", (double)d->msa_rtol);
-  PetscCheck(d->msa_start_rtol > 0 && d->msa_start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_start_rtol must be in (0, 1), got %g",
+             "-%scontact_msa_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", prefix, (double)d->msa_rtol);
+  PetscCheck(d->msa_start_rtol > 0 && d->msa_start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_msa_start_rtol must be in (0, 1), got %g", prefix,
              (double)d->msa_start_rtol);
-  PetscCheck(d->msa_max_it > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_msa_max_it must be positive, got %" PetscInt_FMT, d->msa_max_it);
+  PetscCheck(d->msa_max_it > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_msa_max_it must be positive, got %" PetscInt_FMT, prefix, d->msa_max_it);
   PetscCheck((d->fixed_point_rtol > 0 && d->fixed_point_rtol < 1) || d->fixed_point_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
-             "-contact_fixed_point_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", (double)d->fixed_point_rtol);
+             "-%scontact_fixed_point_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", prefix, (double)d->fixed_point_rtol);
   if (d->setup) {
     /* the setup built the solver (blocks, hooks) for one algorithm: running it with another's fails half-way; the
        problem keeps the one it was built for */
     const ContactCoulombAlgorithm asked = d->algorithm;
     d->algorithm                        = built;
     PetscCheck(asked == built || d->pipeline != CONTACT_PIPELINE_COULOMB, PetscObjectComm((PetscObject)cp), PETSC_ERR_ORDER,
-               "-contact_coulomb_algorithm %s after ContactProblemSetUp(), which built the solver for %s: set it before the setup", ContactCoulombAlgorithms[asked], ContactCoulombAlgorithms[built]);
+               "-%scontact_coulomb_algorithm %s after ContactProblemSetUp(), which built the solver for %s: set it before the setup", prefix, ContactCoulombAlgorithms[asked],
+               ContactCoulombAlgorithms[built]);
     PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol)); /* -contact_rtol, as the setup gave it */
   }
   if (d->tao) PetscCall(TaoSetFromOptions(d->tao));
@@ -462,6 +466,7 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
   d = cp->data;
   if (d->setup) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cp, &prefix));
   PetscCheck(d->F && d->h, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_WRONGSTATE, "ContactProblem: call ContactProblemSetOperator() first");
   PetscCheck(!(d->Q && d->G), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_WRONGSTATE, "ContactProblem: give the equality once, as a projector or as G l = e");
   PetscCall(VecGetOwnershipRange(d->h, &d->rstart, NULL));
@@ -489,10 +494,10 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
   }
   /* merged's tangential block gets a copy of the set that the pre-solve hook changes in place: disk radii only */
   PetscCheck(!(d->polygon && d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED), PetscObjectComm((PetscObject)cp), PETSC_ERR_SUP,
-             "-contact_friction_polygon %" PetscInt_FMT ": friction polygons run with -contact_coulomb_algorithm monolithic or msa, not merged", d->polygon);
+             "-%scontact_friction_polygon %" PetscInt_FMT ": friction polygons run with -%scontact_coulomb_algorithm monolithic or msa, not merged", prefix ? prefix : "", d->polygon,
+             prefix ? prefix : "");
   PetscCall(BuildSet(cp));
   PetscCall(TaoCreate(PetscObjectComm((PetscObject)cp), &d->tao));
-  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cp, &prefix));
   PetscCall(PetscSNPrintf(taoprefix, sizeof(taoprefix), "%scontact_", prefix ? prefix : ""));
   PetscCall(TaoSetOptionsPrefix(d->tao, taoprefix));
   PetscCall(TaoSetType(d->tao, TAOSMALXE));

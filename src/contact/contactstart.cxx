@@ -52,20 +52,21 @@ PetscErrorCode CompressiveShare(ContactProblem cp, Vec lambda, PetscReal *share)
 /* -contact_start_rtol, -contact_start_max_it, -contact_start_compressive (read in ContactProblemSetFromOptions()'s block) */
 PetscErrorCode ContactProblemStartOptions_Private(ContactProblem cp, CONEFETI_OPTIONS_ITEMS PetscOptionsObject)
 {
-  ContactProblemData *d = cp->data;
+  ContactProblemData *d      = cp->data;
+  const char         *prefix = PetscOptionsObject->prefix ? PetscOptionsObject->prefix : "";
 
   PetscFunctionBegin;
   PetscCall(PetscOptionsReal("-contact_start_rtol",
                              "A cold solve first runs projected CG on the problem without the contact inequalities (nodes bonded) to this relative residual (0: start from the given multipliers)",
                              "ContactProblemSolve", d->start_rtol, &d->start_rtol, NULL));
   PetscCall(PetscOptionsInt("-contact_start_max_it", "Most CG steps of that start (-contact_start_rtol)", "ContactProblemSolve", d->start_max_it, &d->start_max_it, NULL));
-  PetscCheck(d->start_rtol >= 0 && d->start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_start_rtol must be in [0, 1) (0: no start solve), got %g",
+  PetscCheck(d->start_rtol >= 0 && d->start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_start_rtol must be in [0, 1) (0: no start solve), got %g", prefix,
              (double)d->start_rtol);
   PetscCall(PetscOptionsReal("-contact_start_compressive", "The start is abandoned (the given multipliers kept) when less than this share of its normal force sum |l_n| is compressive",
                              "ContactProblemSolve", d->start_compressive, &d->start_compressive, NULL));
-  PetscCheck(d->start_compressive >= 0 && d->start_compressive <= 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_start_compressive must be in [0, 1], got %g",
+  PetscCheck(d->start_compressive >= 0 && d->start_compressive <= 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_start_compressive must be in [0, 1], got %g", prefix,
              (double)d->start_compressive);
-  PetscCheck(d->start_max_it >= 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-contact_start_max_it must be >= 1, got %" PetscInt_FMT, d->start_max_it);
+  PetscCheck(d->start_max_it >= 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_start_max_it must be >= 1, got %" PetscInt_FMT, prefix, d->start_max_it);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -591,14 +591,17 @@ PetscErrorCode FETISetFromOptions(FETI feti)
       "FETISetUp", FETICoarseModes, (PetscEnum)impl.coarsemode, (PetscEnum *)&impl.coarsemode, NULL));
   PetscCall(PetscOptionsInt("-feti_coarse_redundant_dim", "Coarse dimension below which -feti_coarse_mode auto factors G G' on every rank (redundant) instead of on rank 0 alone", "FETISetUp",
                             impl.coarseredundantdim, &impl.coarseredundantdim, NULL));
-  PetscCheck(impl.coarseredundantdim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_coarse_redundant_dim %" PetscInt_FMT " must be >= 0", impl.coarseredundantdim);
+  PetscCheck(impl.coarseredundantdim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_redundant_dim %" PetscInt_FMT " must be >= 0", prefix ? prefix : "",
+             impl.coarseredundantdim);
   PetscCall(PetscOptionsInt("-feti_coarse_split_dim",
                             "Coarse dimension from which -feti_coarse_mode auto solves G G' by two parts and a separator, one part per rank (split), below -feti_coarse_redundant_dim", "FETISetUp",
                             impl.coarsesplitdim, &impl.coarsesplitdim, NULL));
-  PetscCheck(impl.coarsesplitdim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_coarse_split_dim %" PetscInt_FMT " must be >= 0", impl.coarsesplitdim);
+  PetscCheck(impl.coarsesplitdim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_split_dim %" PetscInt_FMT " must be >= 0", prefix ? prefix : "",
+             impl.coarsesplitdim);
   PetscCall(PetscOptionsInt("-feti_coarse_parallel_dim", "Coarse dimension from which -feti_coarse_mode auto factors G G' in parallel (MUMPS) instead of on rank 0", "FETISetUp",
                             impl.coarseparalleldim, &impl.coarseparalleldim, NULL));
-  PetscCheck(impl.coarseparalleldim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_coarse_parallel_dim %" PetscInt_FMT " must be >= 0", impl.coarseparalleldim);
+  PetscCheck(impl.coarseparalleldim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_parallel_dim %" PetscInt_FMT " must be >= 0", prefix ? prefix : "",
+             impl.coarseparalleldim);
   PetscCall(PetscOptionsBool("-feti_rigid_rows", "G and G' from the node coordinates and each subdomain's transform of its rigid-body modes (false: from the stored rows of R)", "FETISetUp",
                              impl.rigidrows, &impl.rigidrows, NULL));
   {
@@ -609,9 +612,10 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscCall(PetscOptionsName("-feti_view", "View the FETI problem after setup", "FETIView", NULL));
   PetscOptionsEnd();
   PetscCall(FETISetKplusType(feti, kplustype));
-  PetscCheck(impl.kerneltol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_kernel_tol %g must be positive", (double)impl.kerneltol);
-  PetscCheck(impl.checktol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_check_tol %g must be positive", (double)impl.checktol);
-  PetscCheck(impl.nfixingcandidates >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-feti_fixing_nodes %" PetscInt_FMT " must be non-negative", impl.nfixingcandidates);
+  PetscCheck(impl.kerneltol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_kernel_tol %g must be positive", prefix ? prefix : "", (double)impl.kerneltol);
+  PetscCheck(impl.checktol > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_check_tol %g must be positive", prefix ? prefix : "", (double)impl.checktol);
+  PetscCheck(impl.nfixingcandidates >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_fixing_nodes %" PetscInt_FMT " must be non-negative", prefix ? prefix : "",
+             impl.nfixingcandidates);
   PetscCall(FETICreateKSP(feti));
   PetscCall(KSPSetFromOptions(impl.ksp));
   PetscFunctionReturn(PETSC_SUCCESS);

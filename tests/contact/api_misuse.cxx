@@ -64,6 +64,10 @@ static PetscErrorCode RunCase(const char *name, PetscBool *mistake)
     PetscCall(ContactProblemSetUp(cp));
     PetscCall(PetscOptionsSetValue(NULL, "-contact_coulomb_algorithm", "merged")); /* ran merged on monolithic's solver */
     PetscCall(ContactProblemSetFromOptions(cp));
+  } else if (!strcmp(name, "prefixed")) { /* a bad value of a prefixed option: the error names the option as given */
+    PetscCall(ContactProblemSetOptionsPrefix(cp, "my_"));
+    PetscCall(AddCoulombNodes(cp));
+    PetscCall(ContactProblemSetFromOptions(cp));
   } else if (!strcmp(name, "prefix_after_type")) {
     /* not a mistake: a prefix given after the type reaches the nested solver and its PC at TaoSetFromOptions(), as
        KSPSetOptionsPrefix() reaches the PC (they kept the prefix of their creation) */

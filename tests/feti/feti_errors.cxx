@@ -89,6 +89,11 @@ static PetscErrorCode RunCase(const char *name)
       PetscCall(FETISetSubdomainKernel(feti, 0, R));
     } else PetscCall(FETISetSubdomainCoordinates(feti, 0, coords));
     PetscCall(FETISetUp(feti));
+  } else if (!strcmp(name, "prefixed")) { /* a bad value of a prefixed option: the error names the option as given */
+    PetscCall(CreateTestScene(PETSC_COMM_WORLD, &fem));
+    PetscCall(FEMCreateFETI(fem, &feti));
+    PetscCall(FETISetOptionsPrefix(feti, "my_"));
+    PetscCall(FETISetFromOptions(feti));
   } else if (!strcmp(name, "setup")) { /* a valid scene: the options on the command line are the mistake */
     PetscCall(Scene(&fem, &feti));
     PetscCall(FETISetUp(feti));
