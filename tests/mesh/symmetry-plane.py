@@ -66,11 +66,11 @@ def main():
     ap.add_argument("--extra", default="")
     a = ap.parse_args()
     if a.case == "quarter":
-        common = " ".join([BLOCK, laws(a.law, "1e7"), "-json"])
+        common = " ".join([BLOCK, laws(a.law, "1e7")])
         half = common + " -scene_name quarter " + QUARTER
         whole = common + " -scene_name whole -scene_body0_mesh %s/block-mirrored.msh -scene_body0_subdomains 8" % a.meshes
     else:
-        common = " ".join([LOADS, zone(a.case), laws(a.law, "1.2e7"), "-json"])
+        common = " ".join([LOADS, zone(a.case), laws(a.law, "1.2e7")])
         half = common + " -scene_name half " + HALF_BRICK
         whole = common + " -scene_name whole -scene_body0_mesh %s/brick-mirrored.msh -scene_body0_subdomains 6" % a.meshes
     if a.case == "bodies":
