@@ -315,7 +315,8 @@ PetscErrorCode FEMCreateFETIWithRows(FEM fem, PetscInt nextra, const FETIRowKind
                             (double)hold, (double)impl.dirichlethold));
         impl.dirichletrows[sd.id] = 1;
         dirichlet.clear();
-      } else if (!dirichlet.empty()) PetscCall(PetscInfo(fem, "Subdomain %" PetscInt_FMT ": Dirichlet dofs kept in the primal, hold %g\n", sd.id, (double)hold));
+      } else if (!dirichlet.empty() && impl.dirichlethold > 0) PetscCall(PetscInfo(fem, "Subdomain %" PetscInt_FMT ": Dirichlet dofs kept in the primal, hold %g\n", sd.id, (double)hold));
+      else if (!dirichlet.empty()) PetscCall(PetscInfo(fem, "Subdomain %" PetscInt_FMT ": Dirichlet dofs kept in the primal (hold not computed: -fem_dirichlet_min_hold 0)\n", sd.id));
       PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)dirichlet.size(), dirichlet.data(), PETSC_COPY_VALUES, &is));
       PetscCall(FETISetSubdomainDirichletDofs(*feti, s, is));
       PetscCall(ISDestroy(&is));
