@@ -8,7 +8,8 @@
 
    The contact zones are ignored: no contact row, no foundation, the zone's face is free. So this is the linear
    elasticity problem the contact solve starts from, the same mesh and the same supports and loads; a scene whose
-   bodies are held only by contact has no such problem and ends with an error naming its Dirichlet supports.
+   bodies are held only by contact has no such problem: a body without a Dirichlet support ends the run with an error
+   naming the body (twobodies.opts, stack.opts).
    The subdomain options are read (they must be valid) but do not matter here.
 
    Sample runs (from the repository root):
@@ -25,6 +26,7 @@
    Exit status: 0 when CG converged, 2 when it did not, as the conefeti driver; PETSc's error code for bad input. */
 #include <conefeti.h>
 #include <sys/resource.h>
+#include <vector>
 
 namespace {
 
@@ -78,9 +80,29 @@ PetscErrorCode Main(int *status)
   PetscCall(FEMAssembleGlobal(fem, &K, &f));
   PetscCall(FEMGetGlobalDirichletDofs(fem, &dirichlet));
   PetscCall(ISGetSize(dirichlet, &ndirichlet));
-  PetscCall(ISDestroy(&dirichlet));
-  /* the contact zones are ignored, so only the Dirichlet supports hold the bodies */
+  /* the contact zones are ignored, so only the Dirichlet supports hold the bodies: every body needs one */
   PetscCheck(ndirichlet > 0, comm, PETSC_ERR_ARG_WRONG, "gamg: the scene has no Dirichlet support (-scene_body<b>_fix): without its contact zones, which this program ignores, K is singular");
+  {
+    PetscInt        nbodies, nlocal;
+    const PetscInt *dofs;
+    PetscCall(FEMGetNumBodies(fem, &nbodies));
+    std::vector<PetscInt> held(nbodies, 0), first(nbodies, 0), count(nbodies, 0);
+    for (PetscInt b = 0; b < nbodies; b++) {
+      PetscCall(FEMGetBodyNodeOffset(fem, b, &first[b]));
+      PetscCall(FEMGetBodyNodes(fem, b, &count[b], NULL));
+    }
+    PetscCall(ISGetLocalSize(dirichlet, &nlocal));
+    PetscCall(ISGetIndices(dirichlet, &dofs));
+    for (PetscInt i = 0; i < nlocal; i++)
+      for (PetscInt b = 0; b < nbodies; b++)
+        if (dofs[i] / 3 >= first[b] && dofs[i] / 3 < first[b] + count[b]) held[b] = 1;
+    PetscCall(ISRestoreIndices(dirichlet, &dofs));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, held.data(), (PetscMPIInt)nbodies, MPIU_INT, MPI_MAX, comm));
+    for (PetscInt b = 0; b < nbodies; b++)
+      PetscCheck(held[b], comm, PETSC_ERR_ARG_WRONG,
+                 "gamg: body %" PetscInt_FMT " has no Dirichlet support (-scene_body%" PetscInt_FMT "_fix): it is held only by contact, which this program ignores, so K is singular", b, b);
+  }
+  PetscCall(ISDestroy(&dirichlet));
   PetscCall(FEMCreateGlobalCoordinates(fem, &coords));
   PetscCall(MatNullSpaceCreateRigidBody(coords, &nearnull));
   PetscCall(MatSetNearNullSpace(K, nearnull));

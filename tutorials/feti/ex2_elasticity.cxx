@@ -13,7 +13,7 @@
    Sample runs
      ./feti_ex2_elasticity -cells 24 -fem_subdomains 3,3,3 -feti_ksp_monitor -log_view
      mpiexec -n 2 ./feti_ex2_elasticity -cells 32 -fem_subdomains 4,4,4 -fem_dirichlet primal -feti_pc_type lumped
-     mpiexec -n 2 ./feti_ex2_elasticity -cells 32 -solver gamg
+     mpiexec -n 2 ./feti_ex2_elasticity -cells 32 -fem_subdomains 4,4,4 -solver gamg
      ./feti_ex2_elasticity -cells 24 -fem_decomposition metis -fem_subdomains 20 -feti_sub_pc_factor_mat_solver_type mumps
 
    What to expect

@@ -6,7 +6,7 @@
    Run (from the repository root; docs/scale.md, "The projector's cost"):
      build/tutorials/feti/feti_ex3_projector_cost -options_file petsc-options/brick.opts -scene_refine 24 -scene_body0_subdomains 12,4,4
    Expect one line: the sizes, then milliseconds of CPU per product (rank 0's) and Q / F, e.g. at n = 135 000 a
-   Q of about a tenth of an F product. -ex3_repeat sets the repetitions (F is timed every tenth). */
+   Q of about a twentieth of an F product (0.047 in docs/scale.md). -ex3_repeat sets the repetitions (F is timed every tenth). */
 #include <conefeti.h>
 #include <ctime>
 
