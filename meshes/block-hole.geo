@@ -4,7 +4,7 @@
 // The physical groups are the names the scene uses: bottom (z = 0), top (z = 1), hole, sides, and the
 // volume steel. Only elements of physical groups are written, so the volume needs one too.
 SetFactory("OpenCASCADE");
-h = DefineNumber[0.18, Name "mesh size"];
+DefineConstant[ h = {0.18, Name "mesh size"} ]; // gmsh -setnumber h <size> overrides it
 Box(1) = {0, 0, 0, 2, 1, 1};
 Cylinder(2) = {1, 0, 0.5, 0, 1, 0, 0.25};
 BooleanDifference(3) = {Volume{1}; Delete;}{Volume{2}; Delete;};
