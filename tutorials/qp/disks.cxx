@@ -39,7 +39,7 @@
 
    What to expect
    --------------
-   mpgp meets the target: about 170 products at -n 70 and 1100 at -n 224 with its defaults, which for this
+   mpgp meets the target: about 170 products at -n 70 and 1000 at -n 224 with its defaults, which for this
    assembled Hessian are ICC(0) in face, the projected CG expansion and Gamma = 2 (about 600 and 5200 with
    -tao_mpgp_pc_type none -tao_mpgp_expansion_projcg 0 -tao_mpgp_gamma 1, and without arc steps too about
    2000 and 20000, almost all of its iterations then being projected-gradient steps along the circles); almm stops
