@@ -762,9 +762,7 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
      mechanical residuals they reach: a tolerance below CONTACT_SINGLE_PRECISION_MIN_RTOL keeps the double
      factors (-feti_kplus_precision chooses either way) */
   if (!d->zones.empty()) {
-    PetscReal   rtol = CONTACT_DEFAULT_RTOL;
-    const char *prefix;
-    PetscCall(PetscObjectGetOptionsPrefix((PetscObject)cm, &prefix));
+    PetscReal rtol = CONTACT_DEFAULT_RTOL;
     PetscCall(PetscOptionsGetReal(((PetscObject)cm)->options, prefix, "-contact_rtol", &rtol, NULL));
     if (rtol >= CONTACT_SINGLE_PRECISION_MIN_RTOL) PetscCall(FETISetKplusPrecision(d->feti, FETI_KPLUS_PRECISION_SINGLE));
   }

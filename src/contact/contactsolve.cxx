@@ -419,12 +419,12 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
              "-%scontact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", prefix, (double)d->acceptance_factor);
   PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_rtol must be in (0, 1), got %g", prefix, (double)d->rtol);
   PetscCheck((d->msa_rtol > 0 && d->msa_rtol < 1) || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
-             "-%scontact_msa_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", prefix, (double)d->msa_rtol);
+             "-%scontact_msa_rtol must be in (0, 1) (or -1: -%scontact_rtol), got %g", prefix, prefix, (double)d->msa_rtol);
   PetscCheck(d->msa_start_rtol > 0 && d->msa_start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_msa_start_rtol must be in (0, 1), got %g", prefix,
              (double)d->msa_start_rtol);
   PetscCheck(d->msa_max_it > 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_msa_max_it must be positive, got %" PetscInt_FMT, prefix, d->msa_max_it);
   PetscCheck((d->fixed_point_rtol > 0 && d->fixed_point_rtol < 1) || d->fixed_point_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
-             "-%scontact_fixed_point_rtol must be in (0, 1) (or -1: -contact_rtol), got %g", prefix, (double)d->fixed_point_rtol);
+             "-%scontact_fixed_point_rtol must be in (0, 1) (or -1: -%scontact_rtol), got %g", prefix, prefix, (double)d->fixed_point_rtol);
   if (d->setup) {
     /* the setup built the solver (blocks, hooks) for one algorithm: running it with another's fails half-way; the
        problem keeps the one it was built for */

@@ -8,8 +8,10 @@
 
    The contact zones are ignored: no contact row, no foundation, the zone's face is free. So this is the linear
    elasticity problem the contact solve starts from, the same mesh and the same supports and loads; a scene whose
-   bodies are held only by contact has no such problem: a body without a Dirichlet support ends the run with an error
-   naming the body (twobodies.opts, stack.opts).
+   bodies are held only by contact has no such problem: a body without any Dirichlet support ends the run with an
+   error naming the body (twobodies.opts, stack.opts). A body supported only in part (rollers that leave it a rigid
+   motion, as stack.opts's slab) is not caught here: K is then singular and CG's answer meaningless; the conefeti
+   driver's check of free rigid motions (docs/contact.md) is the one that names such motions.
    The subdomain options are read (they must be valid) but do not matter here.
 
    Sample runs (from the repository root):
