@@ -11,11 +11,11 @@ mkdir -p "$base.xmf"
 out=$("$@" -output "$base" 2>&1); rc=$?
 fail=0
 [ $rc -ne 0 ] || { echo "replace-pair.sh: the run exited with 0 although $base.xmf is a directory"; fail=1; }
-echo "$out" | grep -Eq -- "-output: cannot (replace $base.xmf: Is a directory|write $base.xmf: Is a directory \(checked before the solve\))" || { echo "replace-pair.sh: no message naming $base.xmf"; echo "$out" | grep ERROR | head -3; fail=1; }
+echo "$out" | grep -Eq -- "-output: cannot (replace $base.xmf: Is a directory|write $base.xmf: Is a directory \(checked before the solve\))" || { echo "replace-pair.sh: no message naming $base.xmf; the run printed:"; echo "$out" | tail -5; fail=1; }
 for f in "$base.h5" "$base.h5.tmp" "$base.xmf.tmp" "$base.h5.old"; do [ -e "$f" ] && { echo "replace-pair.sh: $f left behind"; fail=1; }; done
 rmdir "$base.xmf"
-"$@" -output "$base" >/dev/null 2>&1 || { echo "replace-pair.sh: the first write failed"; fail=1; }
-"$@" -output "$base" -scene_name second >/dev/null 2>&1 || { echo "replace-pair.sh: the second write failed"; fail=1; }
+out=$("$@" -output "$base" 2>&1) || { echo "replace-pair.sh: the first write failed:"; echo "$out" | tail -5; fail=1; }
+out=$("$@" -output "$base" -scene_name second 2>&1) || { echo "replace-pair.sh: the second write failed:"; echo "$out" | tail -5; fail=1; }
 grep -q 'scene "second"' "$base.xmf" || { echo "replace-pair.sh: the second run did not replace $base.xmf"; fail=1; }
 for f in "$base.h5.old" "$base.xmf.old"; do [ -e "$f" ] && { echo "replace-pair.sh: $f left behind"; fail=1; }; done
 [ $fail -eq 0 ] && echo "replace-pair.sh: the pair was replaced together or not at all"
