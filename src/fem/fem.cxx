@@ -692,9 +692,12 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
   PetscBool            settype, setparts, setE, setnu;
   PetscReal            E = 2.12e11, nu = 0.277;
   char                 mattype[16];
+  const char          *prefix; /* the options the errors name are the user's, with the FEM's prefix */
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(fem, FEM_CLASSID, 1);
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)fem, &prefix));
+  if (!prefix) prefix = "";
   PetscCall(PetscStrncpy(mattype, impl.sbaij ? "sbaij" : "aij", sizeof(mattype)));
   PetscObjectOptionsBegin((PetscObject)fem);
   PetscCall(PetscOptionsEnum("-fem_decomposition", "Decomposition of the bodies into subdomains", "FEMSetDecomposition", FEMDecompositionTypes, (PetscEnum)type, (PetscEnum *)&type, &settype));
@@ -711,22 +714,23 @@ PetscErrorCode FEMSetFromOptions(FEM fem)
   PetscCall(PetscOptionsName("-fem_view", "View the model after setup", "FEMView", NULL));
   PetscOptionsEnd();
   /* checked where read, also when every body has its own material: inf passes "E > 0" and fails much later (FETI's K+ check) */
-  PetscCheck(!setE || (E > 0 && !PetscIsInfOrNanReal(E)), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_E %g: Young's modulus must be a finite positive number", (double)E);
-  PetscCheck(!setnu || (nu > -1 && nu < 0.5), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_nu %g: Poisson's ratio must lie in (-1, 0.5)", (double)nu);
+  PetscCheck(!setE || (E > 0 && !PetscIsInfOrNanReal(E)), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-%sfem_E %g: Young's modulus must be a finite positive number", prefix,
+             (double)E);
+  PetscCheck(!setnu || (nu > -1 && nu < 0.5), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-%sfem_nu %g: Poisson's ratio must lie in (-1, 0.5)", prefix, (double)nu);
   PetscCheck(impl.dirichlethold >= 0 && !PetscIsInfOrNanReal(impl.dirichlethold), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE,
-             "-fem_dirichlet_min_hold %g: must be a finite number >= 0 (0: keep every Dirichlet dof in the primal)", (double)impl.dirichlethold);
-  PetscCheck(!strcmp(mattype, "sbaij") || !strcmp(mattype, "aij"), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_matrix_type %s: use sbaij or aij", mattype);
+             "-%sfem_dirichlet_min_hold %g: must be a finite number >= 0 (0: keep every Dirichlet dof in the primal)", prefix, (double)impl.dirichlethold);
+  PetscCheck(!strcmp(mattype, "sbaij") || !strcmp(mattype, "aij"), PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-%sfem_matrix_type %s: use sbaij or aij", prefix, mattype);
   impl.sbaij = strcmp(mattype, "sbaij") ? PETSC_FALSE : PETSC_TRUE;
   if (setparts && type == FEM_DECOMPOSITION_STRUCTURED)
-    PetscCheck(nparts == 3, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_subdomains needs px,py,pz for the structured decomposition, got %" PetscInt_FMT " values", nparts);
+    PetscCheck(nparts == 3, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-%sfem_subdomains needs px,py,pz for the structured decomposition, got %" PetscInt_FMT " values", prefix, nparts);
   if (setparts && type == FEM_DECOMPOSITION_METIS)
-    PetscCheck(nparts == 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-fem_subdomains needs one count n for the METIS decomposition, got %" PetscInt_FMT " values", nparts);
+    PetscCheck(nparts == 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_WRONG, "-%sfem_subdomains needs one count n for the METIS decomposition, got %" PetscInt_FMT " values", prefix, nparts);
   for (FEMBody &b : impl.bodies) {
     if (!b.decompositionset && (settype || setparts)) {
       b.decomposition = type;
       b.parts         = {parts[0], type == FEM_DECOMPOSITION_METIS ? 1 : parts[1], type == FEM_DECOMPOSITION_METIS ? 1 : parts[2]};
               for (PetscInt d = 0; d < 3; d++)
-        PetscCheck(b.parts[d] >= 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-fem_subdomains: count %" PetscInt_FMT " must be positive", b.parts[d]);
+        PetscCheck(b.parts[d] >= 1, PetscObjectComm((PetscObject)fem), PETSC_ERR_ARG_OUTOFRANGE, "-%sfem_subdomains: count %" PetscInt_FMT " must be positive", prefix, b.parts[d]);
     }
     if (!b.materialset) {
       if (setE) b.E = E;

@@ -89,6 +89,13 @@ static PetscErrorCode RunCase(const char *name)
       PetscCall(FETISetSubdomainKernel(feti, 0, R));
     } else PetscCall(FETISetSubdomainCoordinates(feti, 0, coords));
     PetscCall(FETISetUp(feti));
+  } else if (!strcmp(name, "prefixed_fem")) { /* the same for the FEM's options */
+    PetscReal lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    PetscInt  c[3] = {2, 2, 2};
+    PetscCall(FEMCreate(PETSC_COMM_WORLD, &fem));
+    PetscCall(FEMSetOptionsPrefix(fem, "my_"));
+    PetscCall(FEMAddBox(fem, lo, hi, c, NULL));
+    PetscCall(FEMSetFromOptions(fem));
   } else if (!strcmp(name, "prefixed")) { /* a bad value of a prefixed option: the error names the option as given */
     PetscCall(CreateTestScene(PETSC_COMM_WORLD, &fem));
     PetscCall(FEMCreateFETI(fem, &feti));
