@@ -208,34 +208,42 @@ template <typename T> PetscErrorCode ComposeValue(PetscObject obj, const char *n
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* the value kept on obj under name, if any */
+template <typename T> PetscErrorCode QueryValue(PetscObject obj, const char *name, T *v, PetscBool *found)
+{
+  PetscObject composed;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectQuery(obj, name, &composed));
+  *found = composed ? PETSC_TRUE : PETSC_FALSE;
+  if (composed) {
+    void *p;
+    PetscCall(PetscContainerGetPointer((PetscContainer)composed, &p));
+    *v = *static_cast<T *>(p);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 /* Called at the end of each QP type's TaoCreate_XXX(): adopts the set, the linear term, the norm estimate and the
    expansion flags given while the Tao had another type (their setters keep them on the Tao). */
 PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
 {
-  PetscObject set, b, projcg, lagged;
+  PetscObject set, b;
   PetscReal   norm;
-  PetscBool   hasnorm;
+  PetscBool   hasnorm, projcg, hasprojcg, lagged, haslagged;
 
   PetscFunctionBegin;
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPConstraints", &set));
   PetscCall(QPQueryReal_Private((PetscObject)tao, "TaoQPNormEstimate", &norm, &hasnorm));
   PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPLinearTerm", &b));
-  PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPExpansionProjCG", &projcg));
-  PetscCall(PetscObjectQuery((PetscObject)tao, "TaoQPExpansionLagged", &lagged));
+  PetscCall(QueryValue((PetscObject)tao, "TaoQPExpansionProjCG", &projcg, &hasprojcg));
+  PetscCall(QueryValue((PetscObject)tao, "TaoQPExpansionLagged", &lagged, &haslagged));
   if (set) PetscTryMethod(tao, "TaoQPSetConstraints_C", (Tao, SeparableSet), (tao, (SeparableSet)set));
   if (b) PetscTryMethod(tao, "TaoQPSetLinearTerm_C", (Tao, Vec), (tao, (Vec)b));
-  if (projcg) {
-    void *flg;
-    PetscCall(PetscContainerGetPointer((PetscContainer)projcg, &flg));
-    PetscTryMethod(tao, "TaoQPSetExpansionProjCG_C", (Tao, PetscBool), (tao, *static_cast<PetscBool *>(flg)));
-  }
-  if (lagged) {
-    void *flg;
-    PetscCall(PetscContainerGetPointer((PetscContainer)lagged, &flg));
-    PetscTryMethod(tao, "TaoQPSetExpansionLagged_C", (Tao, PetscBool), (tao, *static_cast<PetscBool *>(flg)));
-  }
+  if (hasprojcg) PetscTryMethod(tao, "TaoQPSetExpansionProjCG_C", (Tao, PetscBool), (tao, projcg));
+  if (haslagged) PetscTryMethod(tao, "TaoQPSetExpansionLagged_C", (Tao, PetscBool), (tao, lagged));
   if (hasnorm) PetscTryMethod(tao, "TaoQPSetNormEstimate_C", (Tao, PetscReal), (tao, norm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -249,16 +257,8 @@ PetscErrorCode QPComposeReal_Private(PetscObject obj, const char name[], PetscRe
 
 PetscErrorCode QPQueryReal_Private(PetscObject obj, const char name[], PetscReal *v, PetscBool *found)
 {
-  PetscObject container;
-
   PetscFunctionBegin;
-  PetscCall(PetscObjectQuery(obj, name, &container));
-  *found = container ? PETSC_TRUE : PETSC_FALSE;
-  if (container) {
-    void *value;
-    PetscCall(PetscContainerGetPointer((PetscContainer)container, &value));
-    *v = *static_cast<PetscReal *>(value);
-  }
+  PetscCall(QueryValue(obj, name, v, found));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
