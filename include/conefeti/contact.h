@@ -100,7 +100,8 @@ PETSC_EXTERN const char *const ContactCoulombAlgorithms[];
 . acceptance       - the largest residual a converged solution may have (`ContactModelSolve()`: the acceptance factor times
                      the solver's relative tolerance; 0 when the solve was not judged by its residuals)
 . refinements      - tighter solves run after the first because the solver's own test passed but the residuals did not
-- failed_check     - why a solve did not converge: a `ContactChecks` name, "solver" (the solver's own test failed), or "" when it converged
+- failed_check     - why a solve did not converge: a `ContactChecks` name, "solver" (the solver's own test failed), "dual_kkt" or
+                     "dual_equality" (-contact_kkt_check: the KKT residual recomputed from the multipliers), or "" when it converged
 
   Level: beginner
 
