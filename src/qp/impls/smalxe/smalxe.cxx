@@ -1214,7 +1214,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsInt("-tao_smalxe_anderson", "Anderson acceleration of the multiplier update: depth (0: the plain update mu += rho (Cx - d); -1: 3, or 0 with Gauss-Seidel blocks)",
                             "TaoSMALXESetAnderson", s->anderson, &s->anderson, NULL));
   PetscCheck(s->anderson >= -1 && s->anderson <= 20, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_anderson: the depth must be in [0, 20] (or -1: automatic), got %" PetscInt_FMT, p, s->anderson);
-  PetscCall(PetscOptionsInt("-tao_smalxe_anderson_start", "First outer iteration (from 0) whose multiplier update is accelerated (the first inner solves are loose and make poor history)",
+  PetscCall(PetscOptionsInt("-tao_smalxe_anderson_start",
+                            "First outer iteration (counted from 0, at least 1) whose multiplier update is accelerated (the first inner solves are loose and make poor history)",
                             "TaoSMALXESetAnderson", s->anderson_start, &s->anderson_start, NULL));
   PetscCheck(s->anderson_start >= 1, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_anderson_start: must be >= 1, got %" PetscInt_FMT, p, s->anderson_start);
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
@@ -1653,7 +1654,7 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
 . -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
 . -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance, times rho/rho_default below 1 (0: only the adaptive precision)
 . -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
-. -tao_smalxe_anderson_start <3> - first outer iteration (from 0) whose update is accelerated
+. -tao_smalxe_anderson_start <3> - first outer iteration (counted from 0, at least 1) whose update is accelerated
 . -tao_smalxe_rho_balance <-1> - with blocks: residual balancing of rho by this factor (0: off; -1: 2 with blocks, 0 without)
 . -tao_smalxe_penalty_pc <true> - projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`)
 . -tao_smalxe_pc_q_scale <1>   - with a preconditioner of A (`TaoSMALXESetProjectedPreconditioner()`): the inner CG steps use P M P + (this/rho) Q
