@@ -41,6 +41,8 @@ Each run is classified:
                     exit 2 with "converged":true or without a reason; exit 2 on such a scene with a unique
                     solution whose reason says there is none ("no equilibrium", "not unique"): a false
                     statement about the mechanics, as wrong as a wrong answer
+  OK-refused        with --solver-options only: exit 1 with an error line ("conefeti: error: ...") that names
+                    one of the drawn solver options, a combination the program says it does not take
   FAIL-crash        any other exit status (PETSc error, segfault, MPI abort, a valid scene rejected as bad
                     input), or no JSON line on exit 0/2
   FAIL-nan          nan or inf printed
@@ -60,6 +62,8 @@ Usage (from the repository root):
   scripts/fuzz-scenes.py --seed 7 --count 20 --dry-run       # print the commands, run nothing
   scripts/fuzz-scenes.py --max-ranks 1 ...                   # serial runs only
   scripts/fuzz-scenes.py --family meshes --seed 1 --count 50 # random scenes on the Gmsh geometries
+  scripts/fuzz-scenes.py --solver-options --seed 1 ...       # each scene with 1-4 non-default solver options
+                                                             # (scripts/fuzz_solver.py), the same scenes
 """
 
 import argparse
@@ -75,6 +79,7 @@ import sys
 import time
 
 import fuzz_meshes
+import fuzz_solver
 import fuzzdraw
 from fuzzdraw import num
 
@@ -541,12 +546,17 @@ def describe(scene):
 NAN = re.compile(r"(?<![A-Za-z_])[-+]?(nan|inf|infinity)(?![A-Za-z_])", re.IGNORECASE)
 
 
-def classify(rc, out, data, scene, accept_factor):
-    """(class, detail) of one finished run."""
+def classify(rc, out, data, scene, accept_factor, drawn=()):
+    """(class, detail) of one finished run; drawn: the solver options of --solver-options (words)."""
     m = NAN.search(out)
     if m:
         line = out[out.rfind("\n", 0, m.start()) + 1 : out.find("\n", m.end())]
         return "FAIL-nan", line.strip()[:200]
+    if rc == 1 and drawn:
+        refusal = re.search(r"^conefeti: error: (.*)$", out, re.MULTILINE)
+        names = [w for w in drawn[::2]]
+        if refusal and any(re.search(re.escape(n) + r"(?![A-Za-z_])", refusal.group(1)) for n in names):
+            return "OK-refused", refusal.group(1)[:200]
     if rc not in (0, 2):
         return "FAIL-crash", f"exit {rc}: {first_error(out)}"
     if data is None:
@@ -555,8 +565,10 @@ def classify(rc, out, data, scene, accept_factor):
     res = data.get("residuals") if isinstance(data.get("residuals"), dict) else {}
     acc = data.get("acceptance", res.get("acceptance"))
     acceptance = acc if isinstance(acc, (int, float)) and not isinstance(acc, bool) else accept_factor * rtol
-    # the residuals: numbers (or null for a non-finite one); other entries (names, flags) are not residuals
-    res = {k: v for k, v in res.items() if k != "acceptance" and (v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)))}
+    # the residuals: numbers (or null for a non-finite one); other entries (names, flags) are not residuals, and
+    # "approximation" (how far a friction polygon's solution is from the disk law it stands for) is reported beside
+    # the verdict, not in it
+    res = {k: v for k, v in res.items() if k not in ("acceptance", "approximation") and (v is None or (isinstance(v, (int, float)) and not isinstance(v, bool)))}
     if rc == 0:
         if data.get("converged") is not True:
             return "FAIL-wrong", f"exit 0 but converged={data.get('converged')}"
@@ -656,6 +668,7 @@ def main():
     ap.add_argument("--mpiexec", default="mpiexec", help="MPI launcher for runs on 2 or 3 ranks")
     ap.add_argument("--dry-run", action="store_true", help="print the commands only")
     ap.add_argument("--verbose", action="store_true", help="print the whole output of failed runs")
+    ap.add_argument("--solver-options", action="store_true", help="add 1-4 random non-default solver options to each scene (scripts/fuzz_solver.py); the scenes stay the same")
     a = ap.parse_args()
     count = a.count if a.count is not None else (None if a.time_budget else 50)
     driver = os.path.abspath(a.driver)
@@ -665,7 +678,7 @@ def main():
     if not a.dry_run and not os.access(driver, os.X_OK):
         sys.exit(f"--driver {a.driver}: not an executable (build it with scripts/build.sh)")
 
-    rerun_extra = (f" --family {a.family}" if a.family != "boxes" else "") + (f" --max-ranks {a.max_ranks}" if a.max_ranks != 3 else "") + (f" --driver {shlex.quote(shown)}" if shown != os.path.join("build", "conefeti") else "")
+    rerun_extra = (f" --family {a.family}" if a.family != "boxes" else "") + (" --solver-options" if a.solver_options else "") + (f" --max-ranks {a.max_ranks}" if a.max_ranks != 3 else "") + (f" --driver {shlex.quote(shown)}" if shown != os.path.join("build", "conefeti") else "")
     t0 = time.time()
     passed = failed = 0
     classes = {}
@@ -678,10 +691,13 @@ def main():
             break
         scene = (fuzz_meshes.generate if a.family == "meshes" else generate)(a.seed, i, a.max_ranks)
         args = command(scene, f"fuzz{a.seed}_{i}" if a.family == "boxes" else f"fuzzmesh{a.seed}_{i}")
+        drawn = fuzz_solver.draw(a.seed, i, bool(re.search(r"\b(coulomb|tresca)", describe(scene)))) if a.solver_options else []
+        args += drawn
+        shown_scene = describe(scene) + (" solver: " + " ".join(drawn) if drawn else "")
         prefix = [a.mpiexec] + MPIEXEC_FLAGS + [str(scene["ranks"])] if scene["ranks"] > 1 else []
         repro = " ".join(shlex.quote(x) for x in prefix + [shown] + args)
         if a.dry_run:
-            print(f"# scene {i}: {describe(scene)}\n{repro}")
+            print(f"# scene {i}: {shown_scene}\n{repro}")
             i += 1
             continue
         trouble = fuzz_meshes.ensure_meshes(scene) if a.family == "meshes" else None
@@ -691,10 +707,10 @@ def main():
         if rc is None:
             cls, detail = "FAIL-hang", f"no exit within {a.timeout:g} s"
         else:
-            cls, detail = classify(rc, out, parse_json(out), scene, a.accept_factor)
+            cls, detail = classify(rc, out, parse_json(out), scene, a.accept_factor, drawn)
         classes[cls] = classes.get(cls, 0) + 1
         suspects += detail.startswith("SUSPECT")
-        print(f"[{i}] np{scene['ranks']} {describe(scene)}: {cls} ({dt:.1f} s) {detail}", flush=True)
+        print(f"[{i}] np{scene['ranks']} {shown_scene}: {cls} ({dt:.1f} s) {detail}", flush=True)
         if cls.startswith("FAIL"):
             failed += 1
             groups.setdefault(signature(cls, detail), []).append(i)
