@@ -88,10 +88,37 @@ PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Error ierr of setting up or applying pc, told with the option that chose it: a preconditioner that needs entries
+   (jacobi, icc, ...) of a Hessian that has none (a MATSHELL: the FETI dual operator) fails deep in PETSc, at its
+   setup or (jacobi) at its first application, without naming it. Called with PETSc's message not yet printed. */
+static PetscErrorCode PCFailure(PC pc, PetscErrorCode ierr)
+{
+  const char *why      = NULL, *pcprefix, *pctype, *mattype;
+  char       *specific = NULL;
+  Mat         P;
+
+  PetscFunctionBegin;
+  PetscCall(PetscErrorMessage(ierr, &why, &specific));
+  PetscCall(PCGetOptionsPrefix(pc, &pcprefix));
+  PetscCall(PCGetType(pc, &pctype));
+  PetscCall(PCGetOperators(pc, NULL, &P));
+  PetscCall(MatGetType(P, &mattype));
+  SETERRQ(PetscObjectComm((PetscObject)pc), ierr,
+          "-%spc_type %s: the preconditioner fails on the Hessian's preconditioning matrix, of type %s (%s); give the Hessian an assembled preconditioning matrix or choose a preconditioner that "
+          "needs none of its entries",
+          pcprefix ? pcprefix : "", pctype, mattype, specific && specific[0] ? specific : (why ? why : "no message"));
+}
+
 PetscErrorCode TaoQPPrecondition(void *ctx, Vec g, Vec z)
 {
+  PC             pc = static_cast<PC>(ctx);
+  PetscErrorCode ierr;
+
   PetscFunctionBegin;
-  PetscCall(PCApply(static_cast<PC>(ctx), g, z));
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = PCApply(pc, g, z);
+  PetscCall(PetscPopErrorHandler());
+  if (ierr) PetscCall(PCFailure(pc, ierr));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -336,8 +363,12 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
     qp->core.precondition     = none ? nullptr : TaoQPPrecondition;
     qp->core.precondition_ctx = qp->pc;
     if (!none) {
+      PetscErrorCode ierr;
       PetscCall(PCSetOperators(qp->pc, A, tao->hessian_pre ? tao->hessian_pre : A));
-      PetscCall(PCSetUp(qp->pc));
+      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+      ierr = PCSetUp(qp->pc);
+      PetscCall(PetscPopErrorHandler());
+      if (ierr) PetscCall(PCFailure(qp->pc, ierr));
       if (!qp->pc_given) PetscCall(TaoMPGPBlockICC(qp));
     }
   }
