@@ -111,7 +111,7 @@ typedef struct {
   ContactPipeline         pipeline;
   ContactCoulombAlgorithm algorithm;
   PetscBool               converged;
-  char                    reason[256];
+  char                    reason[512];
   PetscInt                outer_iterations;
   PetscInt                al_iterations;
   PetscInt                products_qpp;

@@ -140,7 +140,7 @@ typedef struct {
   ContactResiduals         residuals;
   char                     fingerprint[17];
   PetscBool                finite, converged;
-  char                     reason[256];
+  char                     reason[512];
 } ContactSceneSummary;
 
 PETSC_EXTERN PetscErrorCode ContactSceneCreate(MPI_Comm, ContactScene *);

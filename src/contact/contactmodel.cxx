@@ -697,8 +697,8 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   /* the contact problem reads it too (for its KKT residual): the same text, so that -help lists one meaning */
   PetscCall(PetscOptionsReal("-contact_acceptance_factor", "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol",
                              "ContactModelSolve", d->acceptance_factor, &d->acceptance_factor, NULL));
-  PetscCall(
-      PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual does not", "ContactModelSolve", d->refine_max, &d->refine_max, NULL));
+  PetscCall(PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual (or, with -contact_kkt_check, the KKT residual) does not",
+                            "ContactModelSolve", d->refine_max, &d->refine_max, NULL));
   PetscCall(PetscOptionsInt("-contact_friction_polygon",
                             "Replace each friction disk by a regular 2k-gon inscribed in it, k tangential multipliers with simple bounds (the seed paper's Table 3; 0: disks)", "ContactModelSetUp",
                             d->polygon, &d->polygon, NULL));
@@ -832,9 +832,6 @@ PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol)
     ContactProblemData &p = *d.cp->data;
     if (p.msa_rtol > 0) p.msa_rtol = PetscMin(p.msa_rtol * rtol / old, 0.5);
     if (p.fixed_point_rtol > 0) p.fixed_point_rtol = PetscMin(p.fixed_point_rtol * rtol / old, 0.5);
-    /* the KKT check (-contact_kkt_check) keeps the model's acceptance, acceptance factor times the first tolerance, as
-       the mechanical residuals do: a tighter solve aims lower, it does not lower what is accepted */
-    p.acceptance_factor *= old / rtol;
     p.rtol = rtol;
     PetscCall(TaoSetTolerances(p.tao, 0.0, 0.0, rtol));
   } else {
@@ -947,8 +944,9 @@ void Accumulate(ContactStatistics &total, const ContactStatistics &one)
   Options Database Keys:
 + -contact_acceptance_factor <10> - a solve converges only when every mechanical residual is at most this times the
                                     solver's relative tolerance (-contact_rtol, or -feti_ksp_rtol without contact)
-- -contact_refine_max <3>         - when the solver's own test passes but a residual does not, solve again from the
+. -contact_refine_max <3>         - when the solver's own test passes but a residual does not, solve again from the
                                     current multipliers at a tighter tolerance, at most this many times
+- -contact_kkt_check <false>      - also hold the KKT residual recomputed from the multipliers within the acceptance
 
   Notes:
   The solver stops on its own test (the projected gradient and |G l - e| relative to |P(h - F l~)|, which
@@ -976,7 +974,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
 {
   ContactModelData *d;
   PetscBool         noload = PETSC_FALSE, refine0;
-  PetscReal         rtol0, tol;
+  PetscReal         rtol0, tol, kkt_factor0;
   PetscInt          nsingle;
   ContactStatistics one = {};
   ContactResiduals  r;
@@ -1002,7 +1000,8 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     PetscCall(ConeFETIProgressEnd_Private(d->progress));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  tol = rtol0;
+  tol         = rtol0;
+  kkt_factor0 = d->cp ? d->cp->data->acceptance_factor : 0;
   PetscCall(FETIGetKplusRefine(d->feti, &refine0));
   PetscCall(FETIGetKplusPrecision(d->feti, NULL, &nsingle, NULL, NULL));
   for (PetscInt round = 0;; round++) {
@@ -1043,11 +1042,13 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
       char what[200];
       d->stats.converged = PETSC_FALSE;
       if (kkt_failed) { /* the check the user asked for failed: it is the verdict, with the mechanics' worst beside it */
-        char mechanics[96] = "";
+        char tail[160], mechanics[96] = "";
         if (r.max > d->stats.acceptance) PetscCall(PetscSNPrintf(mechanics, sizeof(mechanics), "; mechanics: %s %.1e", ContactChecks[r.worst], (double)r.max));
+        PetscCall(PetscSNPrintf(tail, sizeof(tail), "%s, after %" PetscInt_FMT " solve%s down to relative tolerance %.0e", mechanics, round + 1, round ? "s" : "", (double)tol));
+        /* the solver's reason shortened so that the tail is never cut */
+        std::string why = std::string(one.reason).substr(0, sizeof(d->stats.reason) - 1 - std::strlen(tail)) + tail;
         PetscCall(PetscStrncpy(d->stats.failed_check, one.failed_check, sizeof(d->stats.failed_check)));
-        PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "%s%s; %" PetscInt_FMT " solve%s down to relative tolerance %.0e", one.reason, mechanics, round + 1, round ? "s" : "",
-                                (double)tol));
+        PetscCall(PetscStrncpy(d->stats.reason, why.c_str(), sizeof(d->stats.reason)));
         break;
       }
       PetscCall(PetscStrncpy(d->stats.failed_check, ContactChecks[r.worst], sizeof(d->stats.failed_check)));
@@ -1057,10 +1058,23 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
       break;
     }
     d->stats.refinements++;
-    tol = PetscMax(tol * PetscMin(PetscMax(0.3 * d->stats.acceptance / PetscMax(r.max, d->stats.acceptance), 1e-4), 0.1), 1e-13);
+    {
+      PetscReal worst = r.max;
+      if (kkt_failed) { /* the KKT residual's excess sets the tightening too */
+        PetscReal natural, equality;
+        PetscCall(ContactProblemComputeKKTResidual(d->cp, d->lambda, &natural, &equality));
+        d->stats.products_other += 2;
+        worst = PetscMax(worst, PetscMax(natural, equality));
+      }
+      tol = PetscMax(tol * PetscMin(PetscMax(0.3 * d->stats.acceptance / PetscMax(worst, d->stats.acceptance), 1e-4), 0.1), 1e-13);
+    }
     PetscCall(SetSolverTolerance(cm, tol));
+    /* the KKT check (-contact_kkt_check) keeps the model's acceptance, as the mechanical residuals do: a tighter solve
+       aims lower, it does not lower what is accepted */
+    if (d->cp) d->cp->data->acceptance_factor = kkt_factor0 * rtol0 / tol;
   }
   if (tol != rtol0) PetscCall(SetSolverTolerance(cm, rtol0));
+  if (d->cp) d->cp->data->acceptance_factor = kkt_factor0;
   PetscCall(FETISetKplusRefine(d->feti, refine0));
   PetscCall(ConeFETIProgressEnd_Private(d->progress));
   PetscFunctionReturn(PETSC_SUCCESS);
