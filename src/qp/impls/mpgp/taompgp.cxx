@@ -45,6 +45,7 @@ struct TAO_MPGP {
   PetscBool           pc_given     = PETSC_FALSE; /* by -tao_mprgp_pc_type, or a type set through TaoQPGetPC() */
   PCType              pc_auto      = PCNONE;      /* the type the defaults last gave the PC: another type was set by someone else */
   PetscBool           from_options = PETSC_FALSE; /* TaoSetFromOptions() was called: a PC type chosen later reads its options too */
+  PetscBool           pc_applied   = PETSC_FALSE; /* the PC was applied since its last setup (TaoQPPreconditionChecked()) */
 };
 
 TAO_MPGP *GetMPGP(Tao tao) { return static_cast<TAO_MPGP *>(tao->data); }
@@ -88,37 +89,54 @@ PetscErrorCode TaoQPReport(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Error ierr of setting up or applying pc, told with the option that chose it: a preconditioner that needs entries
-   (jacobi, icc, ...) of a Hessian that has none (a MATSHELL: the FETI dual operator) fails deep in PETSc, at its
-   setup or (jacobi) at its first application, without naming it. Called with PETSc's message not yet printed. */
+PetscErrorCode TaoQPPrecondition(void *ctx, Vec g, Vec z)
+{
+  PetscFunctionBegin;
+  PetscCall(PCApply(static_cast<PC>(ctx), g, z));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Error ierr of setting up or applying the PC whose type an option gave, told with that option: a preconditioner that
+   needs entries (jacobi, icc, ...) of a Hessian that has none (a MATSHELL: the FETI dual operator) fails deep in PETSc,
+   at its setup or (jacobi) at its first application, without naming it. Called with PETSc's message not printed. */
 static PetscErrorCode PCFailure(PC pc, PetscErrorCode ierr)
 {
-  const char *why      = NULL, *pcprefix, *pctype, *mattype;
+  const char *text     = NULL, *pcprefix, *pctype, *mattype;
   char       *specific = NULL;
+  PetscBool   shell;
   Mat         P;
 
   PetscFunctionBegin;
-  PetscCall(PetscErrorMessage(ierr, &why, &specific));
+  PetscCall(PetscErrorMessage(ierr, &text, &specific));
+  std::string why = specific && specific[0] ? specific : (text ? text : "unknown error");
+  while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+  for (char &ch : why)
+    if (ch == '\n') ch = ' ';
   PetscCall(PCGetOptionsPrefix(pc, &pcprefix));
   PetscCall(PCGetType(pc, &pctype));
   PetscCall(PCGetOperators(pc, NULL, &P));
   PetscCall(MatGetType(P, &mattype));
-  SETERRQ(PetscObjectComm((PetscObject)pc), ierr,
-          "-%spc_type %s: the preconditioner fails on the Hessian's preconditioning matrix, of type %s (%s); give the Hessian an assembled preconditioning matrix or choose a preconditioner that "
-          "needs none of its entries",
-          pcprefix ? pcprefix : "", pctype, mattype, specific && specific[0] ? specific : (why ? why : "no message"));
+  PetscCall(PetscObjectTypeCompare((PetscObject)P, MATSHELL, &shell));
+  SETERRQ(PetscObjectComm((PetscObject)pc), ierr, "-%spc_type %s: the preconditioner fails on the Hessian's preconditioning matrix, of type %s (%s)%s", pcprefix ? pcprefix : "", pctype, mattype,
+          why.c_str(), shell ? "; a shell matrix has no entries: give the Hessian an assembled preconditioning matrix, or choose a preconditioner that needs none of them" : "");
 }
 
-PetscErrorCode TaoQPPrecondition(void *ctx, Vec g, Vec z)
+/* TaoQPPrecondition() for a PC type given by an option: its first application after a setup is checked (PCFailure()) */
+static PetscErrorCode TaoQPPreconditionChecked(void *ctx, Vec g, Vec z)
 {
-  PC             pc = static_cast<PC>(ctx);
+  TAO_MPGP      *qp = static_cast<TAO_MPGP *>(ctx);
   PetscErrorCode ierr;
 
   PetscFunctionBegin;
+  if (qp->pc_applied) {
+    PetscCall(PCApply(qp->pc, g, z));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-  ierr = PCApply(pc, g, z);
+  ierr = PCApply(qp->pc, g, z);
   PetscCall(PetscPopErrorHandler());
-  if (ierr) PetscCall(PCFailure(pc, ierr));
+  if (ierr) PetscCall(PCFailure(qp->pc, ierr));
+  qp->pc_applied = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -360,15 +378,25 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
   {
     PetscBool none = PETSC_TRUE;
     if (qp->pc) PetscCall(PetscObjectTypeCompare((PetscObject)qp->pc, PCNONE, &none));
-    qp->core.precondition     = none ? nullptr : TaoQPPrecondition;
-    qp->core.precondition_ctx = qp->pc;
+    PetscBool named = PETSC_FALSE; /* the type came from -..._pc_type (smalxe's shell, the FETI preconditioner, did not) */
     if (!none) {
-      PetscErrorCode ierr;
+      PetscBool shell;
+      PetscCall(TaoMPGPHasPCOption(qp, "-pc_type", &named));
+      PetscCall(PetscObjectTypeCompare((PetscObject)qp->pc, PCSHELL, &shell));
+      named = (PetscBool)(named && !shell);
+    }
+    qp->core.precondition     = none ? nullptr : (named ? TaoQPPreconditionChecked : TaoQPPrecondition);
+    qp->core.precondition_ctx = named ? static_cast<void *>(qp) : static_cast<void *>(qp->pc);
+    qp->pc_applied            = PETSC_FALSE;
+    if (!none) {
       PetscCall(PCSetOperators(qp->pc, A, tao->hessian_pre ? tao->hessian_pre : A));
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
-      ierr = PCSetUp(qp->pc);
-      PetscCall(PetscPopErrorHandler());
-      if (ierr) PetscCall(PCFailure(qp->pc, ierr));
+      if (named) {
+        PetscErrorCode ierr;
+        PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+        ierr = PCSetUp(qp->pc);
+        PetscCall(PetscPopErrorHandler());
+        if (ierr) PetscCall(PCFailure(qp->pc, ierr));
+      } else PetscCall(PCSetUp(qp->pc));
       if (!qp->pc_given) PetscCall(TaoMPGPBlockICC(qp));
     }
   }
