@@ -14,7 +14,11 @@ The options of scene i of seed S depend only on (S, i) and are drawn from their 
 
 import random
 
-# (option, values, needs friction): every value differs from the option's default
+# (option, values, needs friction): values that differ from the option's default, or from the default some scenes get
+# (-contact_pc_type's default follows the K+ blocks, the expansions' the preconditioner). The inner solver's options
+# are written for mpgp (disks) and renamed for mprgp where that is the inner solver (no friction, or polygons); the
+# merged Coulomb algorithm names its inner solvers by block and ignores them, as -fem_dirichlet_min_hold is ignored
+# with -fem_dirichlet multipliers
 OPTIONS = [
     ("-feti_kplus", ["implicit", "explicit"], False),
     ("-feti_kplus_precision", ["double"], False),
@@ -69,7 +73,9 @@ def draw(seed, index, friction):
     """1 to 4 options with their values for scene index of seed, as a list of command-line words."""
     rng = random.Random(f"conefeti-fuzz-solver:{seed}:{index}")
     candidates = [o for o in OPTIONS if friction or not o[2]]
+    chosen = rng.sample(candidates, rng.randint(1, 4))
+    inner = "mpgp" if friction and not any(name == "-contact_friction_polygon" for name, _, _ in chosen) else "mprgp"
     words = []
-    for name, values, _ in rng.sample(candidates, rng.randint(1, 4)):
-        words += [name, rng.choice(values)]
+    for name, values, _ in chosen:
+        words += [name.replace("_tao_mpgp_", f"_tao_{inner}_"), rng.choice(values)]
     return words
