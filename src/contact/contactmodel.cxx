@@ -820,19 +820,40 @@ PetscErrorCode GetSolverTolerance(ContactModel cm, PetscReal *rtol)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Set it (scaling the contact problem's fixed-point tolerances with it when the user gave them) */
-PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol)
+/* The tolerances a solve starts with: the tighter solves scale them from these, and the solve ends with these exactly */
+struct SolverTolerances {
+  PetscReal rtol = 0, msa_rtol = 0, fixed_point_rtol = 0, acceptance_factor = 0;
+};
+
+PetscErrorCode GetSolverTolerances(ContactModel cm, SolverTolerances &t)
 {
   ContactModelData &d = *cm->data;
-  PetscReal         old;
 
   PetscFunctionBegin;
-  PetscCall(GetSolverTolerance(cm, &old));
+  PetscCall(GetSolverTolerance(cm, &t.rtol));
   if (d.cp) {
-    ContactProblemData &p = *d.cp->data;
-    if (p.msa_rtol > 0) p.msa_rtol = PetscMin(p.msa_rtol * rtol / old, 0.5);
-    if (p.fixed_point_rtol > 0) p.fixed_point_rtol = PetscMin(p.fixed_point_rtol * rtol / old, 0.5);
-    p.rtol = rtol;
+    t.msa_rtol          = d.cp->data->msa_rtol;
+    t.fixed_point_rtol  = d.cp->data->fixed_point_rtol;
+    t.acceptance_factor = d.cp->data->acceptance_factor;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Set the solver's relative tolerance to rtol, the first ones t scaled with it: the contact problem's fixed-point
+   tolerances when the user gave them, and the KKT check's acceptance factor (-contact_kkt_check) so that it keeps the
+   model's acceptance, as the mechanical residuals do (a tighter solve aims lower, it does not lower what is accepted) */
+PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol, const SolverTolerances &t)
+{
+  ContactModelData &d = *cm->data;
+
+  PetscFunctionBegin;
+  if (d.cp) {
+    ContactProblemData &p     = *d.cp->data;
+    const PetscBool     first = (PetscBool)(rtol == t.rtol);
+    p.msa_rtol                = t.msa_rtol > 0 && !first ? PetscMin(t.msa_rtol * rtol / t.rtol, 0.5) : t.msa_rtol;
+    p.fixed_point_rtol        = t.fixed_point_rtol > 0 && !first ? PetscMin(t.fixed_point_rtol * rtol / t.rtol, 0.5) : t.fixed_point_rtol;
+    p.acceptance_factor       = first ? t.acceptance_factor : t.acceptance_factor * t.rtol / rtol;
+    p.rtol                    = rtol;
     PetscCall(TaoSetTolerances(p.tao, 0.0, 0.0, rtol));
   } else {
     KSP ksp;
@@ -952,9 +973,10 @@ void Accumulate(ContactStatistics &total, const ContactStatistics &one)
   The solver stops on its own test (the projected gradient and |G l - e| relative to |P(h - F l~)|, which
   contains the gaps and the loads of the whole scene); the acceptance is by the mechanics of each body and zone.
   When they disagree, the tolerance is tightened in proportion to the excess (each time by a factor
-  between 10 and 10^4, not below 1e-13 but for one last solve down to 1e-15 when a solve at 1e-13 missed) and the
-  solve continues warm, the equality's multiplier included. A tighter solve that stops before its own test is judged
-  by the mechanics too, and is the last.
+  between 10 and 10^4, less where 1e-13 clamps it; when a solve at 1e-13 missed and -contact_refine_max allows one
+  more, a last one goes below it, at most to 1e-15) and the solve continues warm, the equality's multiplier included.
+  A tighter solve that stops before its own test (its iteration limit, a stall) is judged by the mechanics too and is
+  the last, unless its residuals are not finite or -contact_kkt_check is on: then the solver's reason is the verdict.
   Such a solve below a relative tolerance of 1e-6 refines the F products where the subdomains' factors are
   stored in float (`FETISetKplusRefine()`): their perturbation of F, about 1e-7, would otherwise be its floor.
   If the residuals are still above the acceptance after -contact_refine_max such solves, the solve has not
@@ -976,7 +998,8 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
 {
   ContactModelData *d;
   PetscBool         noload = PETSC_FALSE, refine0;
-  PetscReal         rtol0, tol, kkt_factor0;
+  PetscReal         rtol0, tol;
+  SolverTolerances  first;
   const PetscReal   kTightest = 1e-13, kLast = 1e-15; /* the tightest tolerance of the tighter solves, and of a last one */
   PetscInt          nsingle;
   ContactStatistics one = {};
@@ -1003,8 +1026,8 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     PetscCall(ConeFETIProgressEnd_Private(d->progress));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  tol         = rtol0;
-  kkt_factor0 = d->cp ? d->cp->data->acceptance_factor : 0;
+  PetscCall(GetSolverTolerances(cm, first));
+  tol = rtol0;
   PetscCall(FETIGetKplusRefine(d->feti, &refine0));
   PetscCall(FETIGetKplusPrecision(d->feti, NULL, &nsingle, NULL, NULL));
   for (PetscInt round = 0;; round++) {
@@ -1028,7 +1051,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     const PetscBool kkt_failed = (PetscBool)(!one.converged && (!std::strcmp(one.failed_check, "dual_kkt") || !std::strcmp(one.failed_check, "dual_equality")));
     /* a tighter solve whose own test fails (its tolerance below what it can reach, or its iteration limit) is judged by
        the mechanics like any other: the first solve passed the test at -contact_rtol; it is the last one */
-    const PetscBool stopped = (PetscBool)(round > 0 && !one.converged && !kkt_failed);
+    const PetscBool stopped = (PetscBool)(round > 0 && !one.converged && !kkt_failed && !(d->cp && d->cp->data->kkt_check) && !PetscIsInfOrNanReal(r.max));
     if (!one.converged && !kkt_failed && !stopped) {
       d->stats.converged = PETSC_FALSE;
       PetscCall(PetscStrncpy(d->stats.failed_check, "solver", sizeof(d->stats.failed_check)));
@@ -1038,10 +1061,14 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     if (!kkt_failed && r.max <= d->stats.acceptance) {
       d->stats.converged = PETSC_TRUE;
       if (round == 0) PetscCall(PetscStrncpy(d->stats.reason, one.reason, sizeof(d->stats.reason)));
+      else if (stopped)
+        PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
+                                "every residual within the acceptance after %" PetscInt_FMT " tighter solve%s down to relative tolerance %.0e (the last stopped before its own test: %s)", round,
+                                round > 1 ? "s" : "", (double)tol, one.reason));
       else
         PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
-                                "%s, after %" PetscInt_FMT " tighter solve%s (down to relative tolerance %.0e%s) that brought the residuals within the acceptance", one.reason, round,
-                                round > 1 ? "s" : "", (double)tol, stopped ? ", the last stopped before its own test" : ""));
+                                "%s, after %" PetscInt_FMT " tighter solve%s (down to relative tolerance %.0e) that brought the residuals within the acceptance", one.reason, round,
+                                round > 1 ? "s" : "", (double)tol));
       break;
     }
     if (round >= d->refine_max || tol < kTightest || stopped) {
@@ -1059,8 +1086,14 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
       }
       PetscCall(PetscStrncpy(d->stats.failed_check, ContactChecks[r.worst], sizeof(d->stats.failed_check)));
       PetscCall(ContactResidualsDescribe_Private(&r, r.worst, what, sizeof(what)));
-      PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "%s, above the acceptance %.1e, after %" PetscInt_FMT " solve%s down to relative tolerance %.0e (%s)", what,
-                              (double)d->stats.acceptance, round + 1, round ? "s" : "", (double)tol, stopped ? "the last stopped before its own test" : "the solver's own test passed"));
+      if (stopped)
+        PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
+                                "%s, above the acceptance %.1e, after %" PetscInt_FMT " solves down to relative tolerance %.0e (the last stopped before its own test: %s)", what,
+                                (double)d->stats.acceptance, round + 1, (double)tol, one.reason));
+      else
+        PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
+                                "%s, above the acceptance %.1e, after %" PetscInt_FMT " solve%s down to relative tolerance %.0e (the solver's own test passed)", what, (double)d->stats.acceptance,
+                                round + 1, round ? "s" : "", (double)tol));
       break;
     }
     d->stats.refinements++;
@@ -1077,13 +1110,9 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
          a thousand times the body's size away) can leave kTightest of it above what the displacements need */
       tol = PetscMax(tol * PetscMin(PetscMax(0.3 * d->stats.acceptance / PetscMax(worst, d->stats.acceptance), 1e-4), 0.1), tol > kTightest ? kTightest : kLast);
     }
-    PetscCall(SetSolverTolerance(cm, tol));
-    /* the KKT check (-contact_kkt_check) keeps the model's acceptance, as the mechanical residuals do: a tighter solve
-       aims lower, it does not lower what is accepted */
-    if (d->cp) d->cp->data->acceptance_factor = kkt_factor0 * rtol0 / tol;
+    PetscCall(SetSolverTolerance(cm, tol, first));
   }
-  if (tol != rtol0) PetscCall(SetSolverTolerance(cm, rtol0));
-  if (d->cp) d->cp->data->acceptance_factor = kkt_factor0;
+  if (tol != rtol0) PetscCall(SetSolverTolerance(cm, rtol0, first));
   PetscCall(FETISetKplusRefine(d->feti, refine0));
   PetscCall(ConeFETIProgressEnd_Private(d->progress));
   PetscFunctionReturn(PETSC_SUCCESS);
