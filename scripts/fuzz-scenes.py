@@ -35,7 +35,7 @@ Each run is classified:
                     failure) when every body is clamped on an area and every law is convex (frictionless,
                     Tresca, Coulomb F = 0): such a scene has a unique solution, which the solver did not reach
                     within its limits (an iteration limit, a stalled loop); not when a drawn
-                    -contact_refine_max 0 turned off the tighter solves and the one solve missed
+                    -contact_refine_max k allowed fewer tighter solves than the default and all k + 1 missed
   FAIL-wrong        exit 0 with a residual above the acceptance, a null residual, "converged":false, or a
                     scene that certainly has no equilibrium (a floating body whose net load points away
                     from its support, or whose net tangential load exceeds 1.5 x what friction can carry);
@@ -592,10 +592,11 @@ def classify(rc, out, data, scene, accept_factor, drawn=()):
     reason = m.group(0)[len("NOT CONVERGED: ") :]
     if scene["solvable"] and FALSE_VERDICT.match(reason):
         return "FAIL-wrong", "a unique solution exists (every body clamped, convex laws), but: " + reason[:160]
-    # with the tighter solves turned off (a drawn -contact_refine_max 0) a residual above the acceptance after the one
-    # solve is what the user asked for, not a limit of the solver
-    refine_off = any(drawn[k] == "-contact_refine_max" and drawn[k + 1] == "0" for k in range(0, len(drawn) - 1, 2))
-    suspect = "SUSPECT (every body clamped, convex laws: a solution exists): " if scene["solvable"] and not (refine_off and "after 1 solve down to" in reason) else ""
+    # with fewer tighter solves than the default 3 (a drawn -contact_refine_max k), a residual above the acceptance after
+    # all k + 1 solves is what the user asked for, not a limit of the solver
+    limit = [int(drawn[k + 1]) for k in range(0, len(drawn) - 1, 2) if drawn[k] == "-contact_refine_max"]
+    limited = bool(limit) and re.search(rf"after {limit[0] + 1} solves? down to", reason) is not None
+    suspect = "SUSPECT (every body clamped, convex laws: a solution exists): " if scene["solvable"] and not limited else ""
     return "OK-not-converged", suspect + reason[:160]
 
 
