@@ -182,20 +182,30 @@ PetscErrorCode TaoQPResetCounters(Tao tao)
 
 namespace {
 
-/* a value kept on obj under name: the container made on the first call is reused (smalxe gives its inner solver a
-   norm estimate at every change of the penalty) */
-template <typename T> PetscErrorCode ComposeValue(PetscObject obj, const char *name, T v)
+/* the value kept on obj under name (in a container composed with it), or NULL */
+template <typename T> PetscErrorCode KeptValue(PetscObject obj, const char *name, T **value)
 {
-  PetscObject    composed;
-  PetscContainer container;
-  T             *value;
+  PetscObject composed;
+  void       *p = NULL;
 
   PetscFunctionBegin;
   PetscCall(PetscObjectQuery(obj, name, &composed));
-  if (composed) {
-    void *p;
-    PetscCall(PetscContainerGetPointer((PetscContainer)composed, &p));
-    *static_cast<T *>(p) = v;
+  if (composed) PetscCall(PetscContainerGetPointer((PetscContainer)composed, &p));
+  *value = static_cast<T *>(p);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* keep v on obj under name: the container made on the first call is reused (smalxe gives its inner solver a norm
+   estimate at every change of the penalty) */
+template <typename T> PetscErrorCode ComposeValue(PetscObject obj, const char *name, T v)
+{
+  PetscContainer container;
+  T             *value = NULL;
+
+  PetscFunctionBegin;
+  PetscCall(KeptValue(obj, name, &value));
+  if (value) {
+    *value = v;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscNew(&value));
@@ -211,15 +221,14 @@ template <typename T> PetscErrorCode ComposeValue(PetscObject obj, const char *n
 /* the value kept on obj under name, if any */
 template <typename T> PetscErrorCode QueryValue(PetscObject obj, const char *name, T *v, PetscBool *found)
 {
-  PetscObject composed;
+  T *value = NULL;
 
   PetscFunctionBegin;
-  PetscCall(PetscObjectQuery(obj, name, &composed));
-  *found = composed ? PETSC_TRUE : PETSC_FALSE;
-  if (composed) {
-    void *p;
-    PetscCall(PetscContainerGetPointer((PetscContainer)composed, &p));
-    *v = *static_cast<T *>(p);
+  *found = PETSC_FALSE;
+  PetscCall(KeptValue(obj, name, &value));
+  if (value) {
+    *found = PETSC_TRUE;
+    *v     = *value;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -231,7 +240,7 @@ template <typename T> PetscErrorCode QueryValue(PetscObject obj, const char *nam
 PetscErrorCode TaoQPAdoptComposed_Private(Tao tao)
 {
   PetscObject set, b;
-  PetscReal   norm;
+  PetscReal   norm = 0;
   PetscBool   hasnorm, projcg, hasprojcg, lagged, haslagged;
 
   PetscFunctionBegin;
