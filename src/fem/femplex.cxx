@@ -9,6 +9,7 @@
 #include <petscdmplex.h>
 #include <conefeti/compat.h>
 #include <conefeti/private/format.h>
+#include <conefeti/private/errortext.h>
 
 #include <algorithm>
 #include <cmath>
@@ -617,14 +618,7 @@ PetscErrorCode ReadOnRankZero(const char filename[], DM *dm, std::string &error)
   PetscCall(PetscPopErrorHandler());
   if (multiple) PetscCall(PetscOptionsClearValue(NULL, "-dm_plex_gmsh_multiple_tags"));
   if (ierr) {
-    const char *text     = NULL;
-    char       *specific = NULL;
-    (void)PetscErrorMessage(ierr, &text, &specific);
-    std::string why = specific && specific[0] ? specific : (text ? text : "unknown error");
-    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
-    for (char &ch : why)
-      if (ch == '\n') ch = ' ';
-    error = ConeFETIFormat("%s: the mesh could not be read (a truncated file, or not a format PETSc reads?): %s", filename, why.c_str());
+    error = ConeFETIFormat("%s: the mesh could not be read (a truncated file, or not a format PETSc reads?): %s", filename, ConeFETIErrorText(ierr).c_str());
     *dm   = NULL; /* left as the failed reader left it: a leak, not a crash */
     PetscFunctionReturn(PETSC_SUCCESS);
   }

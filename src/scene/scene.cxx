@@ -6,6 +6,7 @@
 #include <algorithm>
 #include "sceneimpl.h"
 #include <conefeti/private/format.h>
+#include <conefeti/private/errortext.h>
 
 #include <cerrno>
 #include <cmath>
@@ -778,13 +779,8 @@ static PetscErrorCode AddMeshBody(MPI_Comm comm, const char prefix[], FEM fem, c
   ierr = AddMeshBodyInner(comm, fem, body, id, names);
   PetscCall(PetscPopErrorHandler());
   if (ierr) {
-    const char *text  = NULL;
-    char       *inner = NULL;
-    std::string why;
-    (void)PetscErrorMessage(ierr, &text, &inner);
-    why = inner && inner[0] ? inner : (text ? text : "unknown error");
+    std::string why = ConeFETIErrorText(ierr);
     if (!why.compare(0, body.mesh.size() + 2, body.mesh + ": ")) why = why.substr(body.mesh.size() + 2);
-    while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
     SETERRQ(comm, ierr, "-%sscene_body%d_mesh %s: %s", prefix ? prefix : "", (int)b, body.mesh.c_str(), why.c_str());
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -3,6 +3,7 @@
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/private/reproduciblesum.h>
 #include <conefeti/private/qpadopt.h>
+#include <conefeti/private/errortext.h>
 #include <petsc/private/taoimpl.h>
 #include <cstring>
 #include <string>
@@ -101,17 +102,12 @@ PetscErrorCode TaoQPPrecondition(void *ctx, Vec g, Vec z)
    at its setup or (jacobi) at its first application, without naming it. Called with PETSc's message not printed. */
 static PetscErrorCode PCFailure(PC pc, PetscErrorCode ierr)
 {
-  const char *text     = NULL, *pcprefix, *pctype, *mattype;
-  char       *specific = NULL;
+  const char *pcprefix, *pctype, *mattype;
   PetscBool   shell;
   Mat         P;
 
   PetscFunctionBegin;
-  PetscCall(PetscErrorMessage(ierr, &text, &specific));
-  std::string why = specific && specific[0] ? specific : (text ? text : "unknown error");
-  while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
-  for (char &ch : why)
-    if (ch == '\n') ch = ' ';
+  const std::string why = ConeFETIErrorText(ierr);
   PetscCall(PCGetOptionsPrefix(pc, &pcprefix));
   PetscCall(PCGetType(pc, &pctype));
   PetscCall(PCGetOperators(pc, NULL, &P));
