@@ -11,8 +11,9 @@
        with friction polygons, each tangential multiplier in [-c g, c g] with r = 0 inside, r <= 0 at c g,
        r >= 0 at -c g (c = sin(pi/(2k)), contactpolygon.cxx).
    Each of the last three is the natural residual l - P(l - k r) (P: the projection onto the set) with k
-   the ratio of the multipliers' scale to the gradient's, so that all are in units of l and relative to
-   max |l|; the equality is relative to the larger of |e| and |G|_F |l| (projector form: |l~| and |l|). */
+   the ratio of the multipliers' scale s to the gradient's, so that all are in units of l and relative to s;
+   the equality is relative to the larger of |e| and |G|_F max(|l|, s) (projector form: |l~|, |l| and s).
+   s = max(max |l|, max |h_free| / ||PFP||), h_free the data of the rows without inequalities. */
 #include <conefeti/private/contactimpl.h>
 #include <cmath>
 #include <limits>
@@ -21,8 +22,10 @@
   ContactProblemComputeKKTResidual - The relative KKT residual of multipliers of the dual contact problem,
   computed from scratch: the natural residual of the gradient of the Lagrangian F l - h + G'mu on the set
   (free multipliers, normal multipliers >= 0, friction disks of radius g, with g = F l_n for Coulomb nodes)
-  relative to max |l|, and the equality residual |G l - e| relative to max(|e|, |G|_F |l|) (projector form:
-  |Q l - l~| relative to max(|l~|, |l|)).
+  relative to the multipliers' scale s, and the equality residual |G l - e| relative to max(|e|, |G|_F max(|l|, s))
+  (projector form: |Q l - l~| relative to max(|l~|, |l|, s)). s is max |l|, or, when larger, max |h_free| / ||PFP||:
+  the force the data of the rows without inequalities (gluing jumps, prescribed displacements) would need, so that
+  multipliers at the rounding level (nothing loaded) are measured against their data, not their own rounding.
 
   Collective
 
@@ -31,7 +34,7 @@
 - lambda - the multipliers
 
   Output Parameters:
-+ natural  - the natural residual max |l - P(l - k r)| / max |l| (k = max |l| / max(|h|, |F l|))
++ natural  - the natural residual max |l - P(l - k r)| / s (k = s / max(|h|, |F l|))
 - equality - the equality residual (0 without an equality)
 
   Notes:
@@ -48,7 +51,7 @@ PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, P
   ContactProblemData    *d;
   Vec                    r, w, Fl;
   const PetscScalar     *l, *ra;
-  PetscReal              lmax, hmax, flmax, k, nat = 0;
+  PetscReal              lmax, hmax, flmax, k, nat = 0, normest = 0, datascale = 0;
   std::vector<char>      role;
   std::vector<PetscReal> bounds;
   constexpr PetscReal    tiny = std::numeric_limits<PetscReal>::min();
@@ -87,6 +90,25 @@ PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, P
       role[d->t2[j] - d->rstart] = 3;
     }
   }
+  {
+    /* the multipliers' scale: max |l|, or, when larger, what the jumps the free rows prescribe (gluing, Dirichlet
+       displacements) would need, max |h_free| / ||PFP||. A solution at the rounding level (a body moved rigidly
+       toward a floor it does not reach: l = 0) is then measured against its data, not against its own rounding.
+       The contact rows' gaps stay out: a far gap needs no force (and would hide a wrong answer) */
+    const PetscScalar *h;
+    PetscReal          hfree = 0;
+    PetscCall(TaoQPGetNormEstimate(d->tao, &normest));
+    PetscCall(VecGetArrayRead(d->h, &h));
+    for (PetscInt i = 0; i < d->nlocal; i++)
+      if (!role[i]) hfree = PetscMax(hfree, PetscAbsScalar(h[i]));
+    PetscCall(VecRestoreArrayRead(d->h, &h));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hfree, 1, MPIU_REAL, MPIU_MAX, comm));
+    if (normest > 0) datascale = hfree / normest;
+    if (datascale > lmax) {
+      lmax = datascale;
+      k    = lmax / PetscMax(PetscMax(hmax, flmax), tiny);
+    }
+  }
   PetscCall(VecGetArrayRead(lambda, &l));
   PetscCall(VecGetArrayRead(r, &ra));
   for (PetscInt i = 0; i < d->nlocal; i++) {
@@ -120,6 +142,7 @@ PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, P
     PetscReal res = 0, scale = 0;
     PetscReal nl;
     PetscCall(VecNorm(lambda, NORM_2, &nl));
+    nl = PetscMax(nl, datascale); /* at least the scale s of the natural residual */
     if (d->G) {
       Vec       Gl;
       PetscReal ne, gn = 0;
