@@ -557,6 +557,8 @@ PetscErrorCode TaoDestroy_MPGP(Tao tao)
   PetscCall(SeparableSetDestroy(&qp->set));
   PetscCall(VecDestroy(&qp->b));
   PetscCall(PCDestroy(&qp->pc));
+  /* a later TaoSetType() keeps tao->ops->convergencetest: give the next type TAO's default, which it replaces by its own */
+  if (tao->ops->convergencetest == TaoQPConvergenceTest) tao->ops->convergencetest = TaoDefaultConvergenceTest;
   for (const char *fn : {"TaoQPSetConstraints_C", "TaoQPGetConstraints_C", "TaoQPSetLinearTerm_C", "TaoQPSetNormEstimate_C", "TaoQPGetNormEstimate_C", "TaoQPGetCounters_C", "TaoQPResetCounters_C",
                          "TaoQPGetPC_C", "TaoQPSetExpansionProjCG_C", "TaoQPSetExpansionLagged_C"})
     PetscCall(PetscObjectComposeFunction((PetscObject)tao, fn, NULL));

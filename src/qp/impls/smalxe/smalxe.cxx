@@ -1372,6 +1372,8 @@ PetscErrorCode TaoDestroy_SMALXE(Tao tao)
   PetscCall(MatDestroy(&s->Q));
   PetscCall(VecDestroy(&s->xt));
   PetscCall(PCDestroy(&s->projected_pc));
+  /* a later TaoSetType() keeps tao->ops->convergencetest: give the next type TAO's default, which it replaces by its own */
+  if (tao->ops->convergencetest == OuterConvergenceTest) tao->ops->convergencetest = TaoDefaultConvergenceTest;
   for (const char *fn : kComposed) PetscCall(PetscObjectComposeFunction((PetscObject)tao, fn, NULL));
   delete s;
   tao->data = NULL;
