@@ -4,6 +4,7 @@
    message a test checks (conefeti_error_test); a misuse that is not caught ends with status 0 and fails it. */
 #include <conefeti.h>
 #include <conefeti/compat.h>
+#include <limits>
 #include <string>
 
 static PetscErrorCode MakeVec(PetscInt n, PetscReal v, Vec *x)
@@ -28,6 +29,10 @@ static PetscErrorCode Misuse(const std::string &c)
   if (c == "negative_radius") {
     PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
     PetscCall(SeparableSetAddDisks(set, 1, idx, NULL, r));
+  } else if (c == "disk_center_nan") {
+    PetscReal rr[1] = {1.0}, center[2] = {std::numeric_limits<PetscReal>::quiet_NaN(), 0.0};
+    PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
+    PetscCall(SeparableSetAddDisks(set, 1, idx, center, rr));
   } else if (c == "negative_mu") {
     PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
     PetscCall(SeparableSetAddCones(set, 1, idx, mu));
@@ -47,15 +52,25 @@ static PetscErrorCode Misuse(const std::string &c)
     PetscReal rr[1]  = {1.0};
     PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
     PetscCall(SeparableSetAddDisks(set, 1, far, NULL, rr));
-  } else if (c == "hessian_not_square" || c == "disk_block_odd_length" || c == "mprgp_with_disks") {
+  } else if (c == "hessian_not_square" || c == "disk_block_odd_length" || c == "mprgp_with_disks" || c == "hessian_nan" || c == "hessian_zero") {
     PetscInt n = c == "disk_block_odd_length" ? 5 : 4;
     PetscCall(MakeVec(n, 0.0, &x));
     PetscCall(MatCreateDense(PETSC_COMM_WORLD, n, c == "hessian_not_square" ? n + 1 : n, PETSC_DETERMINE, PETSC_DETERMINE, NULL, &A));
     PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
     PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
-    PetscCall(MatShift(A, 1.0));
+    if (c != "hessian_zero") PetscCall(MatShift(A, 1.0));
+    if (c == "hessian_nan") {
+      PetscCall(MatSetValue(A, 0, 1, std::numeric_limits<PetscReal>::quiet_NaN(), INSERT_VALUES));
+      PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    }
+    if (c == "hessian_zero") { /* a linear program in the box [-1, 1]^n */
+      PetscCall(MakeVec(n, -1.0, &l));
+      PetscCall(MakeVec(n, 1.0, &u));
+    }
     PetscCall(TaoCreate(PETSC_COMM_WORLD, &tao));
-    PetscCall(TaoSetType(tao, c == "mprgp_with_disks" ? TAOMPRGP : TAOMPGP));
+    if (c == "hessian_zero") PetscCall(TaoSetVariableBounds(tao, l, u));
+    PetscCall(TaoSetType(tao, c == "mprgp_with_disks" || c == "hessian_zero" ? TAOMPRGP : TAOMPGP));
     PetscCall(TaoSetSolution(tao, x));
     PetscCall(TaoSetHessian(tao, A, A, NULL, NULL));
     PetscCall(TaoQPSetLinearTerm(tao, x));

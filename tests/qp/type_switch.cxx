@@ -6,13 +6,14 @@
 
    Problem: min 1/2 x'Ax - b'x, A = tridiag(-1, 3, -1) (n = 10), b = 1, x >= 0; the bound is inactive at the
    solution A^-1 b, so the check is |A x - b| / |b| <= 1e-6 with a converged reason.
-   -first_type: the type the program sets before TaoSetFromOptions(); -tao_type the one the user picks.
+   -first_type: the type the program sets before TaoSetFromOptions(); -tao_type the one the user picks; -n the
+   size (0: an empty problem, which converges at once; the norm estimate failed in SLEPc on it).
    Prints "reason R iterations k residual r" and "CORRECT". */
 #include <conefeti.h>
 
 int main(int argc, char **argv)
 {
-  const PetscInt     n          = 10;
+  PetscInt           n         = 10;
   char               first[64] = TAOSMALXE;
   Mat                A;
   Vec                x, b, lb, ub, r;
@@ -24,6 +25,7 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscOptionsGetString(NULL, NULL, "-first_type", first, sizeof(first), NULL));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-n", &n, NULL));
   PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 3, NULL, &A));
   for (PetscInt i = 0; i < n; i++) {
     PetscCall(MatSetValue(A, i, i, 3.0, INSERT_VALUES));

@@ -9,6 +9,7 @@
    - power iteration (no SLEPc): |A v| for the last normalized iterate v, times (1 + margin).
    The value is cached on the Mat (composed object) together with the Mat's state, so repeated
    solves with one operator pay once; a new value is computed when the Mat changes state. */
+#include <string>
 #include <conefeti/private/mpgpcore.h>
 #include <conefeti/sys.h>
 #include <slepceps.h>
@@ -206,6 +207,28 @@ PetscErrorCode MatQPEstimateNorm(Mat A, QPNormMethod method, PetscReal margin, c
       PetscFunctionReturn(PETSC_SUCCESS);
     }
   }
+  {
+    PetscInt N;
+    PetscCall(MatGetSize(A, &N, NULL));
+    if (N == 0) { /* an empty problem: any positive value; no step will use it */
+      *norm = 1;
+      if (products) *products = 0;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+  }
+  {
+    /* an assembled operator with a NaN or an infinity: SLEPc's failure would name neither (its entries cost less
+       to read than one product; a MATSHELL without a norm is left to the estimate's own check below) */
+    PetscBool hasnorm, assembled;
+    PetscReal fro;
+    PetscCall(MatHasOperation(A, MATOP_NORM, &hasnorm));
+    PetscCall(MatAssembled(A, &assembled));
+    if (hasnorm && assembled) {
+      PetscCall(MatNorm(A, NORM_FROBENIUS, &fro));
+      PetscCheck(!PetscIsInfOrNanReal(fro), PetscObjectComm((PetscObject)A), PETSC_ERR_FP, "MatQPEstimateNorm: the operator (the Hessian) has an entry that is not a finite number (Frobenius norm %g)",
+                 (double)fro);
+    }
+  }
   PetscCall(PetscLogEventBegin(QP_NormEstimate, A, 0, 0, 0));
   ctx.A     = A;
   ctx.count = &count;
@@ -214,6 +237,12 @@ PetscErrorCode MatQPEstimateNorm(Mat A, QPNormMethod method, PetscReal margin, c
   if (!ok) PetscCall(EstimatePower(M, 100, &theta));
   PetscCall(MatDestroy(&M));
   PetscCall(PetscLogEventEnd(QP_NormEstimate, A, 0, 0, 0));
+  if (theta == 0 && prefix) { /* a zero Hessian (a linear program in a box): its solver takes the norm as an option */
+    std::string option(prefix);
+    if (option.size() > 1 && option.back() == '_') option.pop_back();
+    SETERRQ(PetscObjectComm((PetscObject)A), PETSC_ERR_NOT_CONVERGED,
+            "MatQPEstimateNorm: the norm estimate is 0: a zero operator has no norm to estimate; give the step length's scale with -%s <positive value>", option.c_str());
+  }
   PetscCheck(theta > 0 && !PetscIsInfOrNanReal(theta), PetscObjectComm((PetscObject)A), PETSC_ERR_NOT_CONVERGED, "MatQPEstimateNorm: the norm estimate is %g; the operator must be nonzero and finite",
              (double)theta);
   /* rounded up to 4 significant digits: rounding noise of the reductions (which differs with the

@@ -205,6 +205,8 @@ PetscErrorCode SeparableSetAddDisks(SeparableSet set, PetscInt n, const PetscInt
     PetscCheck(radius[k] >= 0 && !PetscIsInfOrNanReal(radius[k]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
                "SeparableSetAddDisks: disk %" PetscInt_FMT " has invalid radius %g (must be finite and >= 0)", k, (double)radius[k]);
     PetscCheck(idx[2 * k] != idx[2 * k + 1], PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SeparableSetAddDisks: disk %" PetscInt_FMT " uses entry %" PetscInt_FMT " twice", k, idx[2 * k]);
+    PetscCheck(!center || (!PetscIsInfOrNanReal(center[2 * k]) && !PetscIsInfOrNanReal(center[2 * k + 1])), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "SeparableSetAddDisks: disk %" PetscInt_FMT " has a center (%g, %g) that is not finite", k, center ? (double)center[2 * k] : 0.0, center ? (double)center[2 * k + 1] : 0.0);
     PetscCall(SeparableSetCheckIndex(set, idx[2 * k], &i));
     PetscCall(SeparableSetCheckIndex(set, idx[2 * k + 1], &j));
     d->kind[i] = d->kind[j] = SEPARABLE_DISK;
