@@ -13,7 +13,8 @@ enum class MPGPStatus {
   INDEFINITE,     /* p'Ap < 0: the Hessian is not positive semidefinite on the search space */
   UNBOUNDED,      /* p'Ap = 0 along a descent direction that no constraint stops: q is unbounded below */
   NORM_TOO_SMALL, /* q rose in a step: the fixed step length 1/||A|| is too long, the norm estimate too small */
-  NOT_A_NUMBER
+  NOT_A_NUMBER,
+  ACCURACY_FLOOR /* verify: the exact projected gradient stayed above the tolerance that recurred ones met (rounding) */
 };
 
 /* Called at iteration 0 and after every iteration; sets *stop to end the solve. */
@@ -33,6 +34,7 @@ struct MPGPCore {
   PetscReal   arc         = 1.0;         /* MPGP: > 0 lets CG steps move disk blocks along their circle while alpha |g.nu|/r <= arc (arc steps, see MPGPCoreSolve); 0: off */
   PetscBool   provisional = PETSC_FALSE; /* set while report() is only asked whether the solve may stop (on an updated gradient) */
   PetscBool   resume      = PETSC_FALSE; /* continue an interrupted solve: iteration 0 is not reported (the owner's test keeps its reference) */
+  PetscBool   verify      = PETSC_FALSE; /* stop only on an exact gradient also after CG steps (their recurred g drifts on ill-conditioned A) */
 
   Mat          A   = nullptr; /* not owned */
   Vec          b   = nullptr; /* not owned */
@@ -48,8 +50,10 @@ struct MPGPCore {
   Vec       dx = nullptr;                                                                       /* the step of a projected CG expansion */
   Vec       Wp = nullptr, ApW = nullptr;                                                        /* arc steps: the curvature term W p, and Ap + Wp */
   Vec       xsave = nullptr, gsave = nullptr;                                                   /* arc steps: x and the updated g before a step, for its certificate */
-  PetscBool updated   = PETSC_FALSE;                                                            /* g was updated after steps along arcs, not recomputed */
-  PetscReal drift     = 0;                                                                      /* then a bound on its error: ||A|| times the sum of the retractions' lengths */
+  PetscBool updated  = PETSC_FALSE;                                                             /* g was updated after steps along arcs, not recomputed */
+  PetscReal drift    = 0;                                                                       /* then a bound on its error: ||A|| times the sum of the retractions' lengths */
+  PetscInt  recurred = 0;                                                                       /* updates g - a Ap since g was last computed as A x - b */
+  PetscInt  verified = 0, verify_failed = 0;                                                    /* verify: exact gradients computed to confirm a stop; stops they refused */
   PetscInt  arc_steps = 0, arc_rejected = 0, arc_refreshed = 0;                                 /* CG steps along arcs; steps not taken or taken again; gradients recomputed for them */
   Vec       xprev = nullptr, gprev = nullptr;                                                   /* the previous iterate and gradient (Barzilai-Borwein lengths) */
   PetscInt  bb_rejected     = 0;                                                                /* BB steps that did not decrease q and fell back to the fixed length */

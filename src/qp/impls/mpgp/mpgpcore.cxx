@@ -63,8 +63,9 @@ static PetscErrorCode MPGPCoreGradient(MPGPCore *c, Vec x)
   PetscFunctionBegin;
   PetscCall(MPGPCoreMult(c, x, c->g));
   PetscCall(VecAXPY(c->g, -1.0, c->b));
-  c->updated = PETSC_FALSE;
-  c->drift   = 0;
+  c->updated  = PETSC_FALSE;
+  c->drift    = 0;
+  c->recurred = 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -283,6 +284,7 @@ static PetscErrorCode MPGPCoreLookahead(MPGPCore *c, Vec x, PetscReal acg, Petsc
   }
   PetscCall(ReproducibleAXPY(x, -acg, c->p));
   PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
+  c->recurred++;
   if (arcs) {
     PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
     Aq = c->ApW;
@@ -313,6 +315,7 @@ static PetscErrorCode MPGPCoreLookahead(MPGPCore *c, Vec x, PetscReal acg, Petsc
     pHp = pAp + pWp;
     PetscCall(ReproducibleAXPY(x, -gp / pHp, c->p));
     PetscCall(ReproducibleAXPY(c->g, -gp / pHp, c->Ap));
+    c->recurred++;
     if (arcs) PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
   }
   PetscCall(SeparableSetProjectedStep_Private(c->set, x, gradient_step, c->projcg_gradient ? c->g : NULL, x));
@@ -324,8 +327,10 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
 {
   SeparableSplit s;
   PetscReal      alpha;
-  PetscInt       it   = 0;
-  PetscBool      stop = PETSC_FALSE;
+  PetscInt       it            = 0;
+  PetscBool      stop          = PETSC_FALSE;
+  PetscReal      verify_best   = PETSC_INFINITY; /* verify: the smallest exact |gP| of the refused stops */
+  PetscInt       verify_stalls = 0;              /* and the refusals in a row that did not halve it */
 
   PetscFunctionBegin;
   PetscCheck(c->normA > 0 && !PetscIsInfOrNanReal(c->normA), PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: the norm estimate of A must be positive and finite, got %g",
@@ -430,6 +435,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
           Vec       Aq = along_arcs ? c->ApW : c->Ap; /* conjugacy with respect to A + W */
           PetscCall(ReproducibleAXPY(x, -acg, c->p));
           PetscCall(ReproducibleAXPY(c->g, -acg, c->Ap));
+          c->recurred++;
           if (along_arcs) { /* back onto the circles: the gradient is now updated, not exact */
             PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
             PetscCall(VecWAXPY(c->ApW, 1.0, c->Ap, c->Wp));
@@ -507,6 +513,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
           } else {
             PetscCall(ReproducibleAXPY(x, -af, c->p));
             PetscCall(ReproducibleAXPY(c->g, -af, c->Ap));
+            c->recurred++;
             if (along_arcs) { /* the half step moved arc blocks along their tangent: back onto the circles (g is updated) */
               PetscCall(SeparableSetProjectedStep_Private(c->set, x, 0.0, NULL, x));
               arc_half = PETSC_TRUE;
@@ -541,6 +548,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
         step = bAb > 0 ? PetscMin(gb / bAb, af) : af;
         PetscCall(ReproducibleAXPY(x, -step, c->beta));
         PetscCall(ReproducibleAXPY(c->g, -step, c->Ap));
+        c->recurred++;
       } else {
         PetscReal abb = 0;
         if (c->bb && it > 0) { /* BB length from the last step s = x - x_prev: s's / s'y, y = g - g_prev = A s */
@@ -610,16 +618,34 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
         break;
       }
     }
-    c->f      = 0.5 * (s.xg - s.xb);
-    c->gpnorm = PetscSqrtReal(s.gp2);
-    if (c->updated) { /* the solve stops only on the exact gradient: ask whether it may, and if so recompute it */
+    c->f                = 0.5 * (s.xg - s.xb);
+    c->gpnorm           = PetscSqrtReal(s.gp2);
+    PetscBool verifying = PETSC_FALSE;
+    if (c->updated || (c->verify && c->recurred > 0)) { /* the solve stops only on the exact gradient: ask whether it may, and if so recompute it */
       PetscBool may_stop;
       c->provisional = PETSC_TRUE;
       PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, step, &may_stop));
       c->provisional = PETSC_FALSE;
-      if (may_stop) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+      if (may_stop) {
+        verifying = (PetscBool)!c->updated;
+        PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+        if (verifying) c->arc_refreshed--, c->verified++; /* counted as a verification, not for arcs */
+      }
     }
     PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, step, &stop));
+    if (verifying && !stop) {
+      /* the recurred gradient met the test, the exact one did not: go on from the exact one (a restarted direction).
+         Where rounding sets a floor (A ill conditioned), the exact |gP| stops falling: after three refusals without
+         halving it, say so rather than run to the iteration limit */
+      if (!(c->gpnorm < 0.5 * verify_best)) verify_stalls++;
+      else verify_stalls = 0;
+      verify_best = PetscMin(verify_best, c->gpnorm);
+      c->verify_failed++;
+      if (verify_stalls >= 3) {
+        c->status = MPGPStatus::ACCURACY_FLOOR;
+        break;
+      }
+    }
   }
   /* a stop other than the convergence test (a flat direction, a rise of q) may leave an updated gradient */
   if (c->updated && c->status != MPGPStatus::NOT_A_NUMBER) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));

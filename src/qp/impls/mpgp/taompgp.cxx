@@ -397,6 +397,10 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
     }
   }
   tao->reason = TAO_CONTINUE_ITERATING;
+  /* with TAO's QP test (a solve of the user's, not an inner solve of smalxe, whose own test follows) the solver stops
+     only on an exact gradient: CG's recurred one drifts from A x - b where A is ill conditioned, and met the test
+     while the exact |gP| was 5.6 times the tolerance (tests/qp/exact_stop.cxx) */
+  qp->core.verify = (PetscBool)(tao->ops->convergencetest == TaoQPConvergenceTest);
   PetscCall(MPGPCoreSolve(&qp->core, tao->solution));
   if (qp->core.status == MPGPStatus::NORM_TOO_SMALL && qp->norm.user <= 0) {
     /* the cached estimate belongs to an operator that has changed behind the same state: estimate
@@ -420,6 +424,10 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
   } else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {
     PetscCall(PetscInfo(tao, "TAO %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL Hessian whose action changed needs PetscObjectStateIncrease(), or give -%s%s\n", qp->name,
                         (double)qp->norm.used, prefix, qp->options->norm + 1));
+    PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+  } else if (qp->core.status == MPGPStatus::ACCURACY_FLOOR) {
+    PetscCall(PetscInfo(tao, "TAO %s: the exact projected gradient stays at %g, above the tolerance the recurred one met: rounding limits the accuracy (an ill-conditioned Hessian); ask for less\n",
+                        qp->name, (double)qp->core.gpnorm));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_NAN));
   if (qp->counters_view) {
@@ -542,6 +550,11 @@ PetscErrorCode TaoView_MPGP(Tao tao, PetscViewer viewer)
   if (qp->core.status == MPGPStatus::UNBOUNDED) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: q is unbounded below (p'Ap = 0 along a descent direction no constraint stops)\n"));
   if (qp->core.status == MPGPStatus::NORM_TOO_SMALL)
     PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: q rose, the estimate of ||A|| is too small (a MATSHELL whose action changed needs PetscObjectStateIncrease())\n"));
+  if (qp->core.status == MPGPStatus::ACCURACY_FLOOR)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the exact projected gradient stays at %g, above the tolerance the recurred one met (rounding: an ill-conditioned Hessian)\n",
+                                     (double)qp->core.gpnorm));
+  if (qp->core.verified)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "stops confirmed on the exact gradient: %" PetscInt_FMT " (one product each), %" PetscInt_FMT " refused\n", qp->core.verified, qp->core.verify_failed));
   if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
