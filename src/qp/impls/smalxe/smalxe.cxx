@@ -429,16 +429,19 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
    cleared: mult_history.back() is |multiplier| at the end of the previous solve (none: no solve yet). */
 bool RecycleMultiplier(Tao tao, TaoSMALXE *s) { return tao->recycle && !s->mult_history.empty() && !PetscIsInfOrNanReal(s->mult_history.back()); }
 
-/* |Cx - d| is measured against |b| over ||H|| at the default penalty (rho = ||A|| / ||C||^2, so ||H|| is
+/* |Cx - d| is measured against ||C|| |b| over ||H|| at the default penalty (rho = ||A|| / ||C||^2, so ||H|| is
    ||PAP|| in projector form and 2 ||A|| otherwise), not over the current ||H||: the accuracy a tolerance
-   asks for must not depend on rho, which -tao_smalxe_rho sets and SMALBE's rho updates raise */
+   asks for must not depend on rho, which -tao_smalxe_rho sets and SMALBE's rho updates raise, nor on the
+   scale of C and d (C x = d and 10 C x = 10 d are one constraint; without ||C|| the second was held 10 times
+   tighter, beyond what the inner solves' floor of 0.5 tol_g leaves, and stalled). Unless crtol is given, the
+   tolerance follows tol_g, so that a gradient tolerance relaxed by -tao_gatol relaxes the equality's too */
 PetscErrorCode Tolerances(Tao tao, TaoSMALXE *s, PetscReal *tol_g, PetscReal *tol_e)
 {
-  const PetscReal scale = s->projector ? s->normA : 2 * s->normA;
+  const PetscReal scale = s->projector ? s->normA : 2 * s->normA, normC = s->projector ? 1.0 : PetscSqrtReal(s->normC2);
 
   PetscFunctionBegin;
   *tol_g = PetscMax(tao->gatol, tao->gttol * s->beff);
-  *tol_e = PetscMax(tao->catol, (tao->crtol_changed ? tao->crtol : tao->gttol) * s->beff / scale);
+  *tol_e = PetscMax(tao->catol, (tao->crtol_changed ? tao->crtol * s->beff : *tol_g) * normC / scale);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -485,9 +488,8 @@ PetscErrorCode InnerConvergenceTest(Tao sub, void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Outer: |gP| <= max(gatol, gttol |b_eff|) and |Cx - d| <= max(catol, crtol |b_eff|/||H_0||) (crtol
-   defaults to gttol, H_0 the Hessian at the default penalty); both relative, so scaling A and b does not
-   change the iterations. */
+/* Outer: |gP| <= tol_g and |Cx - d| <= tol_e (Tolerances()); both relative, so scaling A and b, or C and d,
+   does not change the iterations. */
 PetscErrorCode OuterConvergenceTest(Tao tao, void *)
 {
   TaoSMALXE *s = Get(tao);
@@ -1669,9 +1671,10 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
   `TaoSMALXESetProjector()` (projector form with a given projector and particular solution), or
   from TAO's equality routines (`TaoSetEqualityConstraintsRoutine()` with c(x) = C x - d, and
   `TaoSetJacobianEqualityRoutine()` giving C). The solver stops when |gP| <= max(gatol, gttol |b|)
-  and |Cx - d| <= max(catol, crtol |b| / ||H_0||), crtol defaulting to gttol (|b| is |P(b - A x~)| in
-  projector form; H_0 is the inner Hessian at the default penalty, ||H_0|| = ||PAP|| in projector form and
-  2 ||A|| otherwise, so that the tolerance does not change with rho). `-tao_monitor` prints the augmented Lagrangian L(x, mu, rho) and |gP|
+  and |Cx - d| <= max(catol, t ||C|| / ||H_0||) with t = crtol |b| if crtol is given, else the gradient's
+  tolerance (|b| is |P(b - A x~)| in projector form; H_0 is the inner Hessian at the default penalty,
+  ||H_0|| = ||PAP|| in projector form and 2 ||A|| otherwise, so that the tolerance does not change with rho;
+  ||C|| = 1 in projector form, so that it does not change when C and d are scaled together). `-tao_monitor` prints the augmented Lagrangian L(x, mu, rho) and |gP|
   (`-tao_cmonitor` also |Cx - d|). Counters: outer iterations and own products, nested solvers' products separately.
   A solve starts from the solution vector (a warm start) and from the multiplier 0 of the equality;
   with `TaoSetRecycleHistory()` (`-tao_recycle_history`) it starts from the multiplier the previous
