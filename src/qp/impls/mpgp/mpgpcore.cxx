@@ -161,6 +161,22 @@ static PetscErrorCode MPGPCoreFlatDirection(MPGPCore *c, Vec d, PetscReal dAd, P
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Whether the curvature d'Ad of a direction is zero up to rounding (<= 1e-10 ||A|| |d|^2, the tolerance of
+   MPGPCoreFlatDirection()) or negative. A tiny positive d'Ad (b outside the range of a singular A) gave a step
+   of 1e30 and then "the norm estimate is too small" instead of "unbounded below". |d|^2 costs a reduction, so
+   it is computed only for a step longer than 1e8 / ||A|| (the ratio a condition number below 1e8 keeps under) */
+static PetscErrorCode MPGPCoreIsFlat(MPGPCore *c, Vec d, PetscReal dAd, PetscReal gd, PetscBool *flat)
+{
+  PetscReal dd;
+
+  PetscFunctionBegin;
+  *flat = (PetscBool) !(dAd > 0);
+  if (*flat || !(PetscAbsReal(gd) > 1e8 / c->normA * dAd)) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(ReproducibleDot(d, d, &dd));
+  *flat = (PetscBool)(dAd <= 1e-13 * c->normA * dd);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* Search direction after a restart: the free gradient, or its preconditioned version. The preconditioned one is
    left pending: a proportioning step or the stop may follow, which do not use it, and an application can cost
    as much as a product with A (a FETI Dirichlet preconditioner). The split (phi) does not change before the next
@@ -403,7 +419,9 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
         PetscCall(ReproducibleDot2(c->Ap, c->p, c->g, c->p, &pAp, &gp));
         PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->p, &af));
         const PetscReal pHp = pAp + pWp; /* the second derivative of q along the (retracted) step */
-        if (!(pHp > 0)) {
+        PetscBool       flat_p;
+        PetscCall(MPGPCoreIsFlat(c, c->p, pHp, gp, &flat_p));
+        if (flat_p) {
           MPGPStatus flat;
           PetscCall(MPGPCoreFlatDirection(c, c->p, pHp, af, &flat));
           if (flat != MPGPStatus::STOPPED) {
@@ -537,7 +555,9 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
            can cross the opposite one: stop there (q still decreases, the step is shorter) */
         PetscReal af;
         PetscCall(SeparableSetFeasibleStep_Private(c->set, x, c->beta, &af));
-        if (!(bAb > 0)) {
+        PetscBool flat_b;
+        PetscCall(MPGPCoreIsFlat(c, c->beta, bAb, gb, &flat_b));
+        if (flat_b) {
           MPGPStatus flat;
           PetscCall(MPGPCoreFlatDirection(c, c->beta, bAb, af, &flat));
           if (flat != MPGPStatus::STOPPED) {
@@ -545,7 +565,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
             break;
           }
         }
-        step = bAb > 0 ? PetscMin(gb / bAb, af) : af;
+        step = !flat_b ? PetscMin(gb / bAb, af) : af;
         PetscCall(ReproducibleAXPY(x, -step, c->beta));
         PetscCall(ReproducibleAXPY(c->g, -step, c->Ap));
         c->recurred++;
