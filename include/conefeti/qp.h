@@ -156,6 +156,7 @@ PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStalled(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetAnderson(Tao, PetscInt, PetscInt);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetPenaltyPreconditioner(Tao, PetscBool);
+PETSC_EXTERN PetscErrorCode TaoSMALXESetExactStop(Tao, PetscBool);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetProjectedPreconditioner(Tao, PC);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetProjectedPreconditioner(Tao, PC *);
 

@@ -78,6 +78,8 @@ struct MPGPCore {
 
 PETSC_INTERN PetscErrorCode MPGPCoreSetUp(MPGPCore *, Vec);
 PETSC_INTERN PetscErrorCode MPGPCoreSolve(MPGPCore *, Vec);
+PETSC_INTERN PetscErrorCode MPGPCoreConfirmGradient(MPGPCore *, Vec, PetscReal *);
+PETSC_INTERN PetscErrorCode TaoQPConfirmGradient_Private(Tao, PetscReal *, PetscBool *);
 PETSC_INTERN PetscErrorCode MPGPCoreReset(MPGPCore *);
 
 PETSC_INTERN PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate;

@@ -698,6 +698,20 @@ PetscErrorCode TaoCreate_MPGPCommon(Tao tao, MPGPVariant variant, const char *na
 
 } // namespace
 
+/* For an outer solver (smalxe) about to stop on this solver's last result: its projected gradient from the exact
+   gradient (*confirmed false, nothing done, for a TAO that is not mprgp/mpgp) */
+PetscErrorCode TaoQPConfirmGradient_Private(Tao tao, PetscReal *gpnorm, PetscBool *confirmed)
+{
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompareAny((PetscObject)tao, confirmed, TAOMPRGP, TAOMPGP, ""));
+  if (!*confirmed) PetscFunctionReturn(PETSC_SUCCESS);
+  TAO_MPGP *qp = GetMPGP(tao);
+  PetscCall(MPGPCoreConfirmGradient(&qp->core, tao->solution, gpnorm));
+  PetscCall(VecCopy(qp->core.g, tao->gradient));
+  tao->residual = *gpnorm;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*MC
   TAOMPRGP - "mprgp": Modified Proportioning with Reduced Gradient Projections (Dostal and Schoberl)
   for min 1/2 x'Ax - b'x subject to l <= x <= u.

@@ -89,11 +89,14 @@ struct TaoSMALXE {
   PetscReal    block_rtol   = 0.0; /* > 0: a block solve of a sweep also stops at this reduction of its projected gradient */
   PetscReal    inner_floor  = 0.5; /* inner solves stop at this fraction of the final |gP| tolerance (0: only the adaptive precision) */
   PetscReal    norm_user = 0, norm_margin = -1;
-  QPNormMethod norm_method   = QP_NORM_SLEPC;
-  PetscBool    counters_view = PETSC_FALSE;
-  PetscBool    penalty_pc    = PETSC_TRUE;   /* projector form: precondition the inner CG steps by I - theta Q */
-  PC           projected_pc  = nullptr;      /* projector form: a preconditioner M of A (TaoSMALXESetProjectedPreconditioner()), used as P M P + (q_scale/rho) Q instead */
-  PetscReal    pc_q_scale    = 1.0;          /* -tao_smalxe_pc_q_scale */
+  QPNormMethod norm_method     = QP_NORM_SLEPC;
+  PetscBool    counters_view   = PETSC_FALSE;
+  PetscBool    penalty_pc      = PETSC_TRUE; /* projector form: precondition the inner CG steps by I - theta Q */
+  PetscBool    exact_stop      = PETSC_TRUE; /* confirm a stop on the inner solver's exact gradient (TaoSMALXESetExactStop()) */
+  PetscInt     stops_confirmed = 0, stops_refused = 0;
+  PetscBool    accuracy_floor = PETSC_FALSE; /* the last solve stopped because the exact |gP| did not reach its tolerance */
+  PC           projected_pc   = nullptr;     /* projector form: a preconditioner M of A (TaoSMALXESetProjectedPreconditioner()), used as P M P + (q_scale/rho) Q instead */
+  PetscReal    pc_q_scale     = 1.0;         /* -tao_smalxe_pc_q_scale */
   Vec          pcq = nullptr, pcp = nullptr; /* its work vectors */
   PetscReal    rho_balance = -1;             /* > 1: residual balancing of rho (see BalancePenalty()); 0: off; -1: 2 with blocks, 0 without */
   PetscInt     rho_changes = 0;              /* by the balancing, over all solves, for TaoView */
@@ -1087,8 +1090,11 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
   s->feas_history.clear();
   s->mult_history.clear();
   s->gp_history.clear();
-  s->stagnated = PETSC_FALSE;
-  s->stalled   = PETSC_FALSE;
+  s->stagnated             = PETSC_FALSE;
+  s->stalled               = PETSC_FALSE;
+  PetscReal refused_best   = PETSC_INFINITY; /* exact stop: the smallest exact |gP| of the refused stops */
+  PetscInt  refused_stalls = 0;              /* and the refusals in a row that did not halve it */
+  s->accuracy_floor        = PETSC_FALSE;
   for (PetscInt k = 0;; k++) {
     PetscReal gp, e, L;
     PetscReal xg, xb, md;
@@ -1137,6 +1143,33 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     }
     PetscCall(PetscLogEventEnd(QP_MultiplierUpdate, 0, 0, 0, 0));
     PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
+    if (tao->reason > 0 && s->exact_stop && Monolithic(s)) {
+      /* the inner solver's |gP| may come from CG's recurred gradient, which drifts from the exact one where A is
+         ill conditioned (a QP of condition 1e12 was called converged at 280 times the tolerance): confirm it */
+      PetscReal exact, tol_g, tol_e;
+      PetscBool confirmed;
+      PetscCall(TaoQPConfirmGradient_Private(s->blocks[0].sub, &exact, &confirmed));
+      PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
+      if (confirmed) s->stops_confirmed++;
+      if (confirmed && exact > tol_g) {
+        PetscCall(
+            PetscInfo(tao, "TAO smalxe outer %" PetscInt_FMT ": the inner solver's exact |gP| = %g is above the tolerance %g that its recurred one met: going on\n", k, (double)exact, (double)tol_g));
+        s->stops_refused++;
+        s->gpnorm            = exact;
+        s->gp_history.back() = exact;
+        tao->residual        = exact;
+        tao->reason          = TAO_CONTINUE_ITERATING;
+        /* where rounding sets a floor the exact |gP| stops falling: after three refusals in a row that do not halve
+           it, say so (as mpgp does) rather than run to the iteration limit */
+        refused_stalls = exact < 0.5 * refused_best ? 0 : refused_stalls + 1;
+        refused_best   = PetscMin(refused_best, exact);
+        if (refused_stalls >= 3) {
+          s->accuracy_floor = PETSC_TRUE;
+          PetscCall(PetscInfo(tao, "TAO smalxe: the exact |gP| stays at %g above the tolerance %g: rounding limits the accuracy (an ill-conditioned Hessian)\n", (double)exact, (double)tol_g));
+          PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+        }
+      } else if (confirmed) refused_stalls = 0;
+    }
     if (tao->reason != TAO_CONTINUE_ITERATING) break;
     /* semi-monotonicity: if L did not grow enough, tighten the inner precision (M) or raise rho.
        M stops at a floor: when a pre-solve hook moves the set (the radii of a friction law), L may
@@ -1223,6 +1256,8 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
                             "Stop when |Cx - d| makes less than 1% progress in this many outer iterations: infeasible if the multiplier grew by a quarter meanwhile, stalled if it settled (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
+  PetscCall(PetscOptionsBool("-tao_smalxe_exact_stop", "Confirm a stop on the inner solver's exact gradient (one product; off in the contact solves, which check their answer from scratch)",
+                             "TaoSMALXESetExactStop", s->exact_stop, &s->exact_stop, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_penalty_pc", "Projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q in face (unless the inner solver has a PC of its own)",
                              "TaoSMALXESetPenaltyPreconditioner", s->penalty_pc, &s->penalty_pc, NULL));
   PetscCall(PetscOptionsReal("-tao_smalxe_pc_q_scale", "Projector form with TaoSMALXESetProjectedPreconditioner(): the inner CG steps use P M P + (this/rho) Q", "TaoSMALXESetProjectedPreconditioner",
@@ -1307,7 +1342,12 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "inner CG steps preconditioned in face by I - rho/(||PAP|| + rho) Q, unless the inner solver has a PC of its own\n"));
   if (BalanceFactor(s) > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "rho balanced between |gP| and |Cx - d| (factor %g): %" PetscInt_FMT " changes\n", (double)BalanceFactor(s), s->rho_changes));
   if (tao->recycle) PetscCall(PetscViewerASCIIPrintf(viewer, "recycles the multiplier: a solve starts from the previous solve's multiplier\n"));
+  if (s->stops_confirmed)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "stops confirmed on the inner solver's exact gradient: %" PetscInt_FMT " (one product each), %" PetscInt_FMT " refused\n", s->stops_confirmed,
+                                     s->stops_refused));
   if (s->stagnated) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stagnated: the equality cannot be met over the set (or rho is far too small)\n"));
+  if (s->accuracy_floor)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the inner solver's exact projected gradient stays above the tolerance its recurred one met (rounding: an ill-conditioned Hessian)\n"));
   if (s->stalled) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stalled: no progress in %" PetscInt_FMT " outer iterations, the multiplier settled\n", s->stagnation_its));
   PetscCall(QPCountersView(&s->counters, NULL, viewer));
   /* TaoView() prints tao->niter, the index of the last outer iteration counted from 0: one less than the
@@ -1357,6 +1397,7 @@ const char *const kComposed[] = {"TaoQPSetConstraints_C",
                                  "TaoSMALXEGetStalled_C",
                                  "TaoSMALXESetAnderson_C",
                                  "TaoSMALXESetPenaltyPreconditioner_C",
+                                 "TaoSMALXESetExactStop_C",
                                  "TaoSMALXESetProjectedPreconditioner_C",
                                  "TaoSMALXEGetProjectedPreconditioner_C"};
 
@@ -1583,6 +1624,13 @@ PetscErrorCode SetPenaltyPreconditioner_SMALXE(Tao tao, PetscBool flag)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode SetExactStop_SMALXE(Tao tao, PetscBool flag)
+{
+  PetscFunctionBegin;
+  Get(tao)->exact_stop = flag;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode SetProjectedPreconditioner_SMALXE(Tao tao, PC pc)
 {
   TaoSMALXE *s = Get(tao);
@@ -1660,6 +1708,7 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
 . -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
 . -tao_smalxe_anderson_start <3> - first outer iteration (counted from 0, at least 1) whose update is accelerated
 . -tao_smalxe_rho_balance <-1> - with blocks: residual balancing of rho by this factor (0: off; -1: 2 with blocks, 0 without)
+. -tao_smalxe_exact_stop <true> - confirm a stop on the inner solver's exact gradient (see `TaoSMALXESetExactStop()`)
 . -tao_smalxe_penalty_pc <true> - projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`)
 . -tao_smalxe_pc_q_scale <1>   - with a preconditioner of A (`TaoSMALXESetProjectedPreconditioner()`): the inner CG steps use P M P + (this/rho) Q
 . -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
@@ -1740,6 +1789,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStalled_C", GetStalled_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetAnderson_C", SetAnderson_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPenaltyPreconditioner_C", SetPenaltyPreconditioner_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetExactStop_C", SetExactStop_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetProjectedPreconditioner_C", SetProjectedPreconditioner_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetProjectedPreconditioner_C", GetProjectedPreconditioner_SMALXE));
   PetscCall(TaoQPAdoptComposed_Private(tao));

@@ -420,6 +420,40 @@ PetscErrorCode TaoSMALXESetPenaltyPreconditioner(Tao tao, PetscBool flag)
 }
 
 /*@
+  TaoSMALXESetExactStop - Whether a stop is confirmed on the inner solver's exact gradient.
+
+  Logically Collective
+
+  Input Parameters:
++ tao  - the solver
+- flag - `PETSC_TRUE` (the default) to confirm, `PETSC_FALSE` to stop on the inner solver's last |gP|
+
+  Options Database Key:
+. -tao_smalxe_exact_stop <true> - the same
+
+  Notes:
+  The inner solvers update their gradient by CG's recurrence g - a A p, which drifts from A x - b where A is
+  ill conditioned: a QP of condition 1e12 was called converged with an exact |gP| 280 times the tolerance. When
+  the outer test passes, the exact gradient of the last inner solve is computed (one product with A; the inner
+  solver must be `TAOMPRGP` or `TAOMPGP`, without Gauss-Seidel blocks) and must pass the gradient test too, or
+  the loop goes on. The contact layer turns it off (`ContactProblemSolve()`): its answers are checked from
+  scratch (the mechanical residuals of a `ContactModel`, the KKT residual of a `ContactProblem`), and the
+  confirmation would add a product to every solve.
+
+  Level: advanced
+
+.seealso: `TAOSMALXE`, `TAOMPRGP`
+@*/
+PetscErrorCode TaoSMALXESetExactStop(Tao tao, PetscBool flag)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidLogicalCollectiveBool(tao, flag, 2);
+  PetscTryMethod(tao, "TaoSMALXESetExactStop_C", (Tao, PetscBool), (tao, flag));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@
   TaoSMALXESetProjectedPreconditioner - Gives a preconditioner M of the Hessian A, which the inner solves of the
   projector form use in face as P M P + (s/rho) Q instead of the penalty preconditioner.
 
