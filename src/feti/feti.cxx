@@ -152,6 +152,54 @@ PetscErrorCode FETIDestroy(FETI *feti)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* FETISetUp() takes the subdomain data (copies the loads, consumes or copies K_s, factors it): a setter called
+   afterwards would change nothing the solver uses, and a second setup on the consumed data would crash */
+static PetscErrorCode CheckNotSetUp(FETI feti, MPI_Comm comm, const char fn[])
+{
+  PetscFunctionBegin;
+  PetscCheck(!feti->impl->setupcalled, comm, PETSC_ERR_ORDER,
+             "%s() after FETISetUp(): the subdomain data and constraints are taken at FETISetUp() and cannot be changed afterwards; give them before FETISetUp(), or start a new "
+             "problem with FETISetSubdomains() and give everything again",
+             fn);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* a vector handed over for one subdomain is read as a local array of n_s entries: one on a parallel communicator
+   holds only part of them on this rank, and the reads run past its end */
+static PetscErrorCode CheckSubdomainVec(Vec v, const char fn[], const char arg[], PetscInt s, PetscInt n)
+{
+  MPI_Comm    comm;
+  PetscMPIInt size, rank;
+  PetscInt    nv;
+
+  PetscFunctionBegin;
+  PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  PetscCall(PetscObjectGetComm((PetscObject)v, &comm));
+  PetscCallMPI(MPI_Comm_size(comm, &size));
+  PetscCheck(size == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "%s(): %s of local subdomain %" PetscInt_FMT " on rank %d is on a communicator of %d ranks; it must be sequential (PETSC_COMM_SELF)", fn,
+             arg, s, rank, size);
+  PetscCall(VecGetLocalSize(v, &nv));
+  PetscCheck(nv == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "%s(): %s of local subdomain %" PetscInt_FMT " on rank %d has %" PetscInt_FMT " entries but K_s has %" PetscInt_FMT " rows", fn, arg, s, rank,
+             nv, n);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* NaN or Inf in the input runs through every operator and comes out as a NaN solution or a diverged KSP: name the
+   first non-finite entry where it is given */
+static PetscErrorCode CheckFiniteArray(PetscInt n, const PetscScalar a[], const char fn[], const char arg[], PetscInt s)
+{
+  PetscMPIInt rank;
+
+  PetscFunctionBegin;
+  for (PetscInt i = 0; i < n; i++) {
+    if (!PetscIsInfOrNanScalar(a[i])) continue;
+    PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+    SETERRQ(PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "%s(): %s of local subdomain %" PetscInt_FMT " on rank %d has a non-finite entry %g at index %" PetscInt_FMT, fn, arg, s, rank,
+            (double)PetscRealPart(a[i]), i);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*@C
   FETISetSubdomains - Give the subdomains owned by this rank: stiffness matrices and loads.
 
@@ -168,7 +216,10 @@ PetscErrorCode FETIDestroy(FETI *feti)
   order, so this rank's subdomains occupy a contiguous range of it (the column layout of B).
   The FETI object keeps a reference to each K_s. If the caller destroys its own reference before
   `FETISetUp()`, K_s is regularized in place and no copy is made; otherwise a copy is regularized.
-  Do not change K_s after this call.
+  Do not change K_s after this call. The loads f_s are copied at `FETISetUp()`: changing them afterwards has no
+  effect. The subdomain setters and `FETISetConstraints()` are refused after `FETISetUp()`; to solve another problem
+  call `FETISetSubdomains()` again (it starts a new problem) and give everything again. Give the subdomains before
+  `FETISetConstraints()`.
 
   Level: beginner
 
@@ -176,15 +227,16 @@ PetscErrorCode FETIDestroy(FETI *feti)
 @*/
 PetscErrorCode FETISetSubdomains(FETI feti, PetscInt nlocal, const Mat K[], const Vec f[])
 {
-  FETI_Impl  &impl = *feti->impl;
   MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
   PetscMPIInt rank;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   PetscCheck(nlocal >= 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "FETISetSubdomains(): negative subdomain count %" PetscInt_FMT, nlocal);
   PetscCall(FETIReset(feti));
+  impl.subdomainsgiven = PETSC_TRUE;
   PetscCallCXX(impl.sub.resize(nlocal));
   for (PetscInt s = 0; s < nlocal; s++) {
     FETISubdomain &sd = impl.sub[s];
@@ -197,6 +249,7 @@ PetscErrorCode FETISetSubdomains(FETI feti, PetscInt nlocal, const Mat K[], cons
     PetscCheck(m == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "FETISetSubdomains(): K[%" PetscInt_FMT "] on rank %d must be sequential (PETSC_COMM_SELF)", s, rank);
     PetscCall(MatGetSize(K[s], &m, &n));
     PetscCheck(m == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomains(): K[%" PetscInt_FMT "] on rank %d is %" PetscInt_FMT " x %" PetscInt_FMT ", not square", s, rank, m, n);
+    PetscCheck(m > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomains(): K[%" PetscInt_FMT "] on rank %d has 0 rows; a subdomain needs at least one node (leave empty subdomains out)", s, rank);
     PetscCall(MatGetBlockSize(K[s], &bs));
     PetscCheck(bs == 3, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG,
                "FETISetSubdomains(): K[%" PetscInt_FMT "] on rank %d has block size %" PetscInt_FMT "; 3D elasticity needs block size 3 (MatSetBlockSize(K, 3), dofs x,y,z per node)", s, rank, bs);
@@ -207,8 +260,10 @@ PetscErrorCode FETISetSubdomains(FETI feti, PetscInt nlocal, const Mat K[], cons
     sd.n = m;
     if (f && f[s]) {
       PetscInt nf;
+      PetscValidHeaderSpecific(f[s], VEC_CLASSID, 4);
       PetscCall(VecGetSize(f[s], &nf));
       PetscCheck(nf == m, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomains(): f[%" PetscInt_FMT "] on rank %d has %" PetscInt_FMT " entries but K has %" PetscInt_FMT " rows", s, rank, nf, m);
+      PetscCall(CheckSubdomainVec(f[s], "FETISetSubdomains", "the load f[s]", s, m));
       PetscCall(PetscObjectReference((PetscObject)f[s]));
       sd.f = f[s];
     }
@@ -244,8 +299,17 @@ static PetscErrorCode CheckLocal(FETI feti, PetscInt s)
 PetscErrorCode FETISetSubdomainCoordinates(FETI feti, PetscInt s, Vec coords)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  PetscCall(CheckNotSetUp(feti, PETSC_COMM_SELF, "FETISetSubdomainCoordinates"));
   PetscCall(CheckLocal(feti, s));
+  if (coords) {
+    const PetscScalar *x;
+    PetscValidHeaderSpecific(coords, VEC_CLASSID, 3);
+    PetscCall(CheckSubdomainVec(coords, "FETISetSubdomainCoordinates", "coords", s, feti->impl->sub[s].n));
+    PetscCall(VecGetArrayRead(coords, &x));
+    PetscCall(CheckFiniteArray(feti->impl->sub[s].n, x, "FETISetSubdomainCoordinates", "coords", s));
+    PetscCall(VecRestoreArrayRead(coords, &x));
+  }
   PetscCall(PetscObjectReference((PetscObject)coords));
   PetscCall(VecDestroy(&feti->impl->sub[s].coords));
   feti->impl->sub[s].coords = coords;
@@ -274,7 +338,8 @@ PetscErrorCode FETISetSubdomainCoordinates(FETI feti, PetscInt s, Vec coords)
 PetscErrorCode FETISetSubdomainKernel(FETI feti, PetscInt s, Mat R)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  PetscCall(CheckNotSetUp(feti, PETSC_COMM_SELF, "FETISetSubdomainKernel"));
   PetscCall(CheckLocal(feti, s));
   PetscCall(PetscObjectReference((PetscObject)R));
   PetscCall(MatDestroy(&feti->impl->sub[s].Ruser));
@@ -306,7 +371,8 @@ PetscErrorCode FETISetSubdomainKernel(FETI feti, PetscInt s, Mat R)
 PetscErrorCode FETISetSubdomainDirichletDofs(FETI feti, PetscInt s, IS is)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  PetscCall(CheckNotSetUp(feti, PETSC_COMM_SELF, "FETISetSubdomainDirichletDofs"));
   PetscCall(CheckLocal(feti, s));
   PetscCall(PetscObjectReference((PetscObject)is));
   PetscCall(ISDestroy(&feti->impl->sub[s].dirichlet));
@@ -339,9 +405,11 @@ PetscErrorCode FETISetSubdomainDirichletDofs(FETI feti, PetscInt s, IS is)
 PetscErrorCode FETISetSubdomainDirichletValues(FETI feti, PetscInt s, Vec uD)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  PetscCall(CheckNotSetUp(feti, PETSC_COMM_SELF, "FETISetSubdomainDirichletValues"));
   PetscCall(CheckLocal(feti, s));
   if (uD) PetscValidHeaderSpecific(uD, VEC_CLASSID, 3);
+  if (uD) PetscCall(CheckSubdomainVec(uD, "FETISetSubdomainDirichletValues", "uD", s, feti->impl->sub[s].n));
   if (uD) PetscCall(PetscObjectReference((PetscObject)uD));
   PetscCall(VecDestroy(&feti->impl->sub[s].uD));
   feti->impl->sub[s].uD = uD;
@@ -362,7 +430,8 @@ PetscErrorCode FETISetSubdomainDirichletValues(FETI feti, PetscInt s, Vec uD)
 
   Notes:
   Rows of kind gluing and Dirichlet are equalities. Orthonormal rows (as `FEMCreateFETI()` makes)
-  give the best conditioned F.
+  give the best conditioned F. `FETISolveLinear()` takes gluing and Dirichlet rows only; contact rows need the
+  contact solver (`ContactProblem`). Call after `FETISetSubdomains()` and before `FETISetUp()`.
 
   Level: beginner
 
@@ -370,14 +439,47 @@ PetscErrorCode FETISetSubdomainDirichletValues(FETI feti, PetscInt s, Vec uD)
 @*/
 PetscErrorCode FETISetConstraints(FETI feti, Mat B, Vec c, const FETIRowKind kinds[])
 {
-  FETI_Impl &impl = *feti->impl;
-  PetscInt   m;
+  MPI_Comm comm = PetscObjectComm((PetscObject)feti);
+  PetscInt m;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   PetscValidHeaderSpecific(B, MAT_CLASSID, 2);
+  if (c) PetscValidHeaderSpecific(c, VEC_CLASSID, 3);
+  PetscCall(CheckNotSetUp(feti, comm, "FETISetConstraints"));
+  /* FETISetSubdomains() starts a new problem (FETIReset()), which drops B: constraints given before it were lost */
+  PetscCheck(impl.subdomainsgiven, comm, PETSC_ERR_ORDER,
+             "FETISetConstraints() before FETISetSubdomains(): give the subdomains first (FETISetSubdomains() starts a new problem and would drop B), then the constraints");
   PetscCall(MatGetLocalSize(B, &m, NULL));
   PetscCheck(m == 0 || kinds, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "FETISetConstraints(): give the kind of each of the %" PetscInt_FMT " local rows of B", m);
+  { /* NaN or Inf in B or c would come out as a NaN solution: name the first such row (collective, as is the call) */
+    PetscInt           lo, hi, bad[2] = {PETSC_MAX_INT, PETSC_MAX_INT};
+    const PetscScalar *ca;
+    PetscCall(MatGetOwnershipRange(B, &lo, &hi));
+    for (PetscInt r = lo; r < hi && bad[0] == PETSC_MAX_INT; r++) {
+      PetscInt           nc;
+      const PetscScalar *v;
+      PetscCall(MatGetRow(B, r, &nc, NULL, &v));
+      for (PetscInt j = 0; j < nc; j++)
+        if (PetscIsInfOrNanScalar(v[j])) bad[0] = r;
+      PetscCall(MatRestoreRow(B, r, &nc, NULL, &v));
+    }
+    if (c) {
+      PetscInt mc;
+      PetscCall(VecGetLocalSize(c, &mc));
+      PetscCall(VecGetArrayRead(c, &ca));
+      for (PetscInt r = 0; r < mc && r < hi - lo; r++)
+        if (PetscIsInfOrNanScalar(ca[r])) {
+          bad[1] = lo + r;
+          break;
+        }
+      PetscCall(VecRestoreArrayRead(c, &ca));
+    }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, bad, 2, MPIU_INT, MPI_MIN, comm));
+    PetscCheck(bad[0] == PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE, "FETISetConstraints(): row %" PetscInt_FMT " of B has a non-finite entry (NaN or Inf)", bad[0]);
+    PetscCheck(bad[1] == PETSC_MAX_INT, comm, PETSC_ERR_ARG_OUTOFRANGE, "FETISetConstraints(): entry %" PetscInt_FMT " of c (the right-hand side of B u = c) is not finite (NaN or Inf)", bad[1]);
+  }
   PetscCall(PetscObjectReference((PetscObject)B));
   PetscCall(MatDestroy(&impl.B));
   impl.B = B;
@@ -414,7 +516,7 @@ PetscErrorCode FETISetConstraints(FETI feti, Mat B, Vec c, const FETIRowKind kin
 PetscErrorCode FETISetOptionsPrefix(FETI feti, const char prefix[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)feti, prefix));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -435,7 +537,7 @@ PetscErrorCode FETISetOptionsPrefix(FETI feti, const char prefix[])
 PetscErrorCode FETIAppendOptionsPrefix(FETI feti, const char prefix[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(PetscObjectAppendOptionsPrefix((PetscObject)feti, prefix));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -508,13 +610,15 @@ factor does not fit one rank's memory and time; docs/scale.md)
 @*/
 PetscErrorCode FETISetFromOptions(FETI feti)
 {
-  FETI_Impl    &impl          = *feti->impl;
-  FETIKplusType kplustype     = impl.kplustype;
-  PetscBool     kplusexplicit = impl.kplustype == FETI_KPLUS_EXPLICIT ? PETSC_TRUE : PETSC_FALSE, typeset, explicitset;
+  FETIKplusType kplustype;
+  PetscBool     kplusexplicit, typeset, explicitset;
   const char   *prefix;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
+  kplustype       = impl.kplustype;
+  kplusexplicit   = impl.kplustype == FETI_KPLUS_EXPLICIT ? PETSC_TRUE : PETSC_FALSE;
   PetscObjectOptionsBegin((PetscObject)feti);
   PetscCall(PetscOptionsReal("-feti_kernel_tol", "Relative RMS below which a rigid mode vanishes on the Dirichlet dofs", "FETISetSubdomainDirichletDofs", impl.kerneltol, &impl.kerneltol, NULL));
   PetscCall(PetscOptionsBool("-feti_check", "Check K R = 0 and K K+ K = K at setup", "FETISetUp", impl.check, &impl.check, NULL));
@@ -645,7 +749,7 @@ PetscErrorCode FETISetFromOptions(FETI feti)
 PetscErrorCode FETISetProgress(FETI feti, ConeFETIProgressFn fn, void *ctx)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   feti->impl->progress.fn  = fn;
   feti->impl->progress.ctx = ctx;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -686,7 +790,7 @@ PetscErrorCode FETISetProgress(FETI feti, ConeFETIProgressFn fn, void *ctx)
 PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidLogicalCollectiveBool(feti, flg, 2);
   PetscCall(FETISetKplusType(feti, flg ? FETI_KPLUS_EXPLICIT : FETI_KPLUS_IMPLICIT));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -734,7 +838,7 @@ PetscErrorCode FETISetKplusExplicit(FETI feti, PetscBool flg)
 PetscErrorCode FETISetKplusType(FETI feti, FETIKplusType type)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidLogicalCollectiveEnum(feti, type, 2);
   PetscCheck(type >= FETI_KPLUS_AUTO && type <= FETI_KPLUS_IMPLICIT, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "Unknown FETIKplusType %d", (int)type);
   PetscCheck(!feti->impl->setupcalled || feti->impl->kplustype == type, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER,
@@ -766,7 +870,7 @@ PetscErrorCode FETISetKplusType(FETI feti, FETIKplusType type)
 PetscErrorCode FETIGetKplusType(FETI feti, FETIKplusType *type, PetscInt *blocks)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   if (type) *type = feti->impl->kplustype;
   if (blocks) *blocks = feti->impl->setupcalled && feti->impl->kplusexplicit ? feti->impl->nkplusblocks : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -798,7 +902,7 @@ PetscErrorCode FETIGetKplusType(FETI feti, FETIKplusType *type, PetscInt *blocks
 PetscErrorCode FETISetKplusMemoryRatio(FETI feti, PetscReal ratio)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidLogicalCollectiveReal(feti, ratio, 2);
   PetscCheck(ratio >= 0 && !PetscIsInfOrNanReal(ratio), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
              "FETISetKplusMemoryRatio() (-feti_kplus_memory_ratio) %g: the ratio is a finite number >= 0", (double)ratio);
@@ -838,7 +942,7 @@ PetscErrorCode FETISetKplusMemoryRatio(FETI feti, PetscReal ratio)
 PetscErrorCode FETISetKplusPrecision(FETI feti, FETIKplusPrecision precision)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidLogicalCollectiveEnum(feti, precision, 2);
   PetscCheck(precision == FETI_KPLUS_PRECISION_DOUBLE || precision == FETI_KPLUS_PRECISION_SINGLE, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
              "FETISetKplusPrecision() (-feti_kplus_precision): unknown FETIKplusPrecision %d (double or single)", (int)precision);
@@ -876,7 +980,7 @@ PetscErrorCode FETISetKplusPrecision(FETI feti, FETIKplusPrecision precision)
 PetscErrorCode FETISetKplusRefine(FETI feti, PetscBool refine)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidLogicalCollectiveBool(feti, refine, 2);
   feti->impl->kplusrefine = refine;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -900,7 +1004,7 @@ PetscErrorCode FETISetKplusRefine(FETI feti, PetscBool refine)
 PetscErrorCode FETIGetKplusRefine(FETI feti, PetscBool *refine)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscAssertPointer(refine, 2);
   *refine = feti->impl->kplusrefine;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -929,7 +1033,7 @@ PetscErrorCode FETIGetKplusRefine(FETI feti, PetscBool *refine)
 PetscErrorCode FETIGetKplusPrecision(FETI feti, FETIKplusPrecision *precision, PetscInt *nsingle, PetscReal *factorbytes, PetscReal *doublebytes)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   if (precision) *precision = feti->impl->kplusprecision;
   if (nsingle) *nsingle = feti->impl->setupcalled ? feti->impl->nkplussingle : 0;
   if (factorbytes) *factorbytes = feti->impl->setupcalled ? feti->impl->kplusfactorbytes : 0;
@@ -964,7 +1068,7 @@ PetscErrorCode FETIGetKplusPrecision(FETI feti, FETIKplusPrecision *precision, P
 PetscErrorCode FETISetKplusSpeedup(FETI feti, PetscReal speedup)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidLogicalCollectiveReal(feti, speedup, 2);
   PetscCheck(speedup >= 1 && !PetscIsInfOrNanReal(speedup), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
              "FETISetKplusSpeedup() (-feti_kplus_speedup) %g: the speedup is a finite number >= 1", (double)speedup);
@@ -1000,7 +1104,7 @@ PetscErrorCode FETISetKplusMemoryBudget(FETI feti, PetscReal mb)
   PetscReal bytes = mb == (PetscReal)PETSC_DETERMINE ? -1 : mb * 1048576.0;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidLogicalCollectiveReal(feti, mb, 2);
   PetscCheck(mb == (PetscReal)PETSC_DETERMINE || (mb > 0 && !PetscIsInfOrNanReal(mb)), PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
              "FETISetKplusMemoryBudget() (-feti_kplus_memory_budget) %g: megabytes, a finite number > 0 (or PETSC_DETERMINE: no bound)", (double)mb);
@@ -1033,7 +1137,7 @@ PetscErrorCode FETISetKplusMemoryBudget(FETI feti, PetscReal mb)
 PetscErrorCode FETIGetKplusExplicit(FETI feti, PetscBool *flg, PetscBool *fallback)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidBoolPointer(flg, 2);
   *flg = feti->impl->kplusexplicit;
   if (fallback) *fallback = feti->impl->kplusfallback;
@@ -1058,7 +1162,7 @@ PetscErrorCode FETIGetKplusExplicit(FETI feti, PetscBool *flg, PetscBool *fallba
 PetscErrorCode FETIGetKSP(FETI feti, KSP *ksp)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(FETICreateKSP(feti));
   *ksp = feti->impl->ksp;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -1082,12 +1186,12 @@ PetscErrorCode FETIGetKSP(FETI feti, KSP *ksp)
 @*/
 PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
 {
-  FETI_Impl &impl = *feti->impl;
-  PetscBool  ascii;
-  MPI_Comm   comm = PetscObjectComm((PetscObject)feti);
+  PetscBool ascii;
+  MPI_Comm  comm = PetscObjectComm((PetscObject)feti);
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   if (!viewer) PetscCall(PetscViewerASCIIGetStdout(comm, &viewer));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERASCII, &ascii));
   if (!ascii) PetscFunctionReturn(PETSC_SUCCESS);
@@ -1192,7 +1296,7 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
 PetscErrorCode FETIViewFromOptions(FETI feti, PetscObject obj, const char name[])
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(PetscObjectViewFromOptions((PetscObject)feti, obj, name));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -1217,7 +1321,7 @@ PetscErrorCode FETIViewFromOptions(FETI feti, PetscObject obj, const char name[]
 PetscErrorCode FETIGetNumSubdomains(FETI feti, PetscInt *nglobal, PetscInt *nlocal, PetscInt *first)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   if (nglobal) *nglobal = feti->impl->nglobalsub;
   if (nlocal) *nlocal = (PetscInt)feti->impl->sub.size();
@@ -1245,7 +1349,7 @@ PetscErrorCode FETIGetNumSubdomains(FETI feti, PetscInt *nglobal, PetscInt *nloc
 PetscErrorCode FETIGetSubdomainOffset(FETI feti, PetscInt s, PetscInt *primal, PetscInt *coarse)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   PetscCall(CheckLocal(feti, s));
   if (primal) *primal = feti->impl->sub[s].offset;
@@ -1273,7 +1377,7 @@ PetscErrorCode FETIGetSubdomainOffset(FETI feti, PetscInt s, PetscInt *primal, P
 PetscErrorCode FETIGetSizes(FETI feti, PetscInt *nprimal, PetscInt *ndual, PetscInt *ncoarse)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   if (nprimal) *nprimal = feti->impl->nprimal;
   if (ndual) PetscCall(MatGetSize(feti->impl->B, ndual, NULL));
@@ -1303,7 +1407,7 @@ PetscErrorCode FETIGetSubdomainKernel(FETI feti, PetscInt s, Mat *R)
   PetscInt cstart;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   PetscCall(CheckLocal(feti, s));
   const FETISubdomain &sd = feti->impl->sub[s];
@@ -1343,7 +1447,7 @@ PetscErrorCode FETIGetSubdomainKernel(FETI feti, PetscInt s, Mat *R)
 PetscErrorCode FETIGetSubdomainFixingDofs(FETI feti, PetscInt s, IS *is)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   PetscCall(CheckLocal(feti, s));
   PetscCall(ISCreateGeneral(PETSC_COMM_SELF, (PetscInt)feti->impl->sub[s].fixing.size(), feti->impl->sub[s].fixing.data(), PETSC_COPY_VALUES, is));
@@ -1390,13 +1494,14 @@ static PetscErrorCode SetUpCoarse(FETI feti)
 @*/
 PetscErrorCode FETISetUp(FETI feti)
 {
-  FETI_Impl  &impl = *feti->impl;
   MPI_Comm    comm = PetscObjectComm((PetscObject)feti);
   PetscMPIInt size, rank;
-  PetscInt    nlocal = (PetscInt)impl.sub.size(), minlocal, ncols, nlocalcols, nd, mlocal, offset, coarseoffset;
+  PetscInt    nlocal, minlocal, ncols, nlocalcols, nd, mlocal, offset, coarseoffset;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl; /* only after the check: FETISetUp(NULL) is an error, not a crash */
+  nlocal          = (PetscInt)impl.sub.size();
   if (impl.setupcalled) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCallMPI(MPI_Comm_size(comm, &size));
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
@@ -1469,6 +1574,7 @@ PetscErrorCode FETISetUp(FETI feti)
         for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = 0;
       } else {
         PetscCall(VecGetArrayRead(sd.f, &a));
+        PetscCall(CheckFiniteArray(sd.n, a, "FETISetUp", "the load f_s (f[s] of FETISetSubdomains())", (PetscInt)(&sd - impl.sub.data())));
         for (PetscInt i = 0; i < sd.n; i++) fa[sd.localoffset + i] = a[i];
         PetscCall(VecRestoreArrayRead(sd.f, &a));
         PetscCall(VecDestroy(&sd.f));
@@ -1487,7 +1593,12 @@ PetscErrorCode FETISetUp(FETI feti)
         PetscCall(VecGetArrayRead(sd.uD, &a));
         for (PetscInt i = 0; i < sd.n; i++) wa[i] = 0;
         PetscCallCXX(sd.dirichletvalues.resize(sd.dirichletdofs.size()));
-        for (size_t k = 0; k < sd.dirichletdofs.size(); k++) wa[sd.dirichletdofs[k]] = sd.dirichletvalues[k] = a[sd.dirichletdofs[k]];
+        for (size_t k = 0; k < sd.dirichletdofs.size(); k++) {
+          PetscCheck(!PetscIsInfOrNanScalar(a[sd.dirichletdofs[k]]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                     "FETISetSubdomainDirichletValues(): uD of local subdomain %" PetscInt_FMT " on rank %d has a non-finite value %g at Dirichlet dof %" PetscInt_FMT,
+                     (PetscInt)(&sd - impl.sub.data()), rank, (double)PetscRealPart(a[sd.dirichletdofs[k]]), sd.dirichletdofs[k]);
+          wa[sd.dirichletdofs[k]] = sd.dirichletvalues[k] = a[sd.dirichletdofs[k]];
+        }
         PetscCall(VecRestoreArrayRead(sd.uD, &a));
         PetscCall(VecRestoreArray(w, &wa));
         PetscCall(MatMult(sd.K, w, Kw));

@@ -121,20 +121,21 @@ static PetscErrorCode FileName(PetscViewer viewer, const char **name)
 
 PetscErrorCode FETIWriteWithPairing_Private(FETI feti, PetscViewer viewer, const FETIContactPairing *pairing)
 {
-  FETI_Impl            &impl = *feti->impl;
   MPI_Comm              comm = PetscObjectComm((PetscObject)feti);
   PetscMPIInt           rank;
   PetscInt              hascoords = 1, hasall, nrows, npairing = 0, hascontact = 0;
-  std::vector<PetscInt> header, sizes, kernels, dirichlet, pairs, kinds(impl.kinds.begin(), impl.kinds.end());
+  std::vector<PetscInt> header, sizes, kernels, dirichlet, pairs, kinds;
   Mat                   K;
   Vec                   c, coords, coef;
   PetscBool             isbinary;
   const char           *file;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   PetscCheck(impl.setupcalled, comm, PETSC_ERR_ORDER, "Call FETISetUp() before writing the FETI problem");
+  PetscCallCXX(kinds.assign(impl.kinds.begin(), impl.kinds.end()));
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERBINARY, &isbinary));
   PetscCheck(isbinary, comm, PETSC_ERR_ARG_WRONG, "Writing a FETI problem needs a binary viewer (PetscViewerBinaryOpen())");
   PetscCall(FileName(viewer, &file));
@@ -395,7 +396,7 @@ PetscErrorCode FETILoadWithPairing_Private(FETI feti, PetscViewer viewer, FETICo
   const char           *file;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidHeaderSpecific(viewer, PETSC_VIEWER_CLASSID, 2);
   PetscCall(PetscObjectTypeCompare((PetscObject)viewer, PETSCVIEWERBINARY, &isbinary));
   PetscCheck(isbinary, comm, PETSC_ERR_ARG_WRONG, "Reading a FETI problem needs a binary viewer (PetscViewerBinaryOpen())");

@@ -440,7 +440,7 @@ PetscErrorCode FETIChooseKplusBlocks(FETI feti, const std::vector<PetscInt> &gid
 PetscErrorCode FETIGetMemoryEstimate(FETI feti, PetscReal *factors, PetscReal *blocks, PetscReal *budget)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   if (factors) *factors = feti->impl->memfactors;
   if (blocks) *blocks = feti->impl->memblocks;
   if (budget) *budget = feti->impl->membudget;

@@ -85,12 +85,12 @@ PetscErrorCode FETIApplyKplus(FETI feti, Vec x, Vec y, PetscBool exact)
 @*/
 PetscErrorCode FETIApplyK(FETI feti, Vec x, Vec y)
 {
-  FETI_Impl         &impl = *feti->impl;
   const PetscScalar *xa;
   PetscScalar       *ya;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   PetscValidHeaderSpecific(x, VEC_CLASSID, 2);
   PetscValidHeaderSpecific(y, VEC_CLASSID, 3);
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
@@ -128,10 +128,9 @@ PetscErrorCode FETIApplyK(FETI feti, Vec x, Vec y)
 @*/
 PetscErrorCode FETIApplyCoarseInverse(FETI feti, Vec x, Vec y)
 {
-  FETI_Impl &impl = *feti->impl;
-
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   if (!impl.ncoarse) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(FETI_CoarseSolve, feti, 0, 0, 0));
@@ -799,7 +798,7 @@ static PetscErrorCode CheckSetUp(FETI feti)
 PetscErrorCode FETIGetOperators(FETI feti, Mat *F, Mat *G, Mat *P, Mat *Q)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(CheckSetUp(feti));
   if (F) *F = feti->impl->F;
   if (G) *G = feti->impl->G;
@@ -830,7 +829,7 @@ PetscErrorCode FETIGetOperators(FETI feti, Mat *F, Mat *G, Mat *P, Mat *Q)
 PetscErrorCode FETIGetCoarseSolveCount(FETI feti, PetscInt *count)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscAssertPointer(count, 2);
   *count = feti->impl->ncoarsesolves;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -854,7 +853,7 @@ PetscErrorCode FETIGetCoarseSolveCount(FETI feti, PetscInt *count)
 PetscErrorCode FETIGetGeneralizedInverse(FETI feti, Mat *Kplus)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(CheckSetUp(feti));
   *Kplus = feti->impl->Kplus;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -878,7 +877,7 @@ PetscErrorCode FETIGetGeneralizedInverse(FETI feti, Mat *Kplus)
 PetscErrorCode FETIGetKernel(FETI feti, Mat *R)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(CheckSetUp(feti));
   *R = feti->impl->R;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -906,7 +905,7 @@ PetscErrorCode FETIGetKernel(FETI feti, Mat *R)
 PetscErrorCode FETIGetGt(FETI feti, Mat *Gt)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(CheckSetUp(feti));
   if (!feti->impl->Gt) PetscCall(FETICreateGt(feti, &feti->impl->Gt));
   *Gt = feti->impl->Gt;
@@ -935,7 +934,7 @@ PetscErrorCode FETIGetGt(FETI feti, Mat *Gt)
 PetscErrorCode FETIGetRHS(FETI feti, Vec *h, Vec *e)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(CheckSetUp(feti));
   if (h) *h = feti->impl->h;
   if (e) *e = feti->impl->e;
@@ -963,7 +962,7 @@ PetscErrorCode FETIGetRHS(FETI feti, Vec *h, Vec *e)
 PetscErrorCode FETIGetParticularSolution(FETI feti, Vec *lambdatilde)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(CheckSetUp(feti));
   *lambdatilde = feti->impl->lambdatilde;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -989,7 +988,7 @@ PetscErrorCode FETIGetParticularSolution(FETI feti, Vec *lambdatilde)
 PetscErrorCode FETIGetConstraints(FETI feti, Mat *B, Vec *c, const FETIRowKind **kinds)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   if (B) *B = feti->impl->B;
   if (c) *c = feti->impl->c;
   if (kinds) *kinds = feti->impl->kinds.data();
@@ -1014,7 +1013,7 @@ PetscErrorCode FETIGetConstraints(FETI feti, Mat *B, Vec *c, const FETIRowKind *
 PetscErrorCode FETIGetLoad(FETI feti, Vec *f)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(CheckSetUp(feti));
   *f = feti->impl->f;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -1040,7 +1039,7 @@ PetscErrorCode FETIGetLoad(FETI feti, Vec *f)
 PetscErrorCode FETICreateVecs(FETI feti, Vec *primal, Vec *dual, Vec *coarse)
 {
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscCall(CheckSetUp(feti));
   if (primal) PetscCall(VecDuplicate(feti->impl->wp1, primal));
   if (dual) PetscCall(VecDuplicate(feti->impl->wd1, dual));

@@ -36,7 +36,7 @@ PetscErrorCode FETIComputeAlphaFromEquality(FETI feti, Vec w, Vec alpha)
   PetscInt ncoarse;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
   PetscValidHeaderSpecific(w, VEC_CLASSID, 2);
   PetscValidHeaderSpecific(alpha, VEC_CLASSID, 3);
   PetscCheck(feti->impl->setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
@@ -78,10 +78,9 @@ PetscErrorCode FETIComputeAlphaFromEquality(FETI feti, Vec w, Vec alpha)
 @*/
 PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
 {
-  FETI_Impl &impl = *feti->impl;
-
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
   PetscValidHeaderSpecific(alpha, VEC_CLASSID, 4);
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
@@ -138,10 +137,9 @@ PetscErrorCode FETIComputeAlpha(FETI feti, Vec lambda, Vec mask, Vec alpha)
 @*/
 PetscErrorCode FETIRecoverPrimal(FETI feti, Vec lambda, Vec alpha, Vec u)
 {
-  FETI_Impl &impl = *feti->impl;
-
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
   PetscValidHeaderSpecific(u, VEC_CLASSID, 4);
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
@@ -208,12 +206,27 @@ static PetscErrorCode ProgressMonitor(KSP ksp, PetscInt k, PetscReal rnorm, void
 @*/
 PetscErrorCode FETISolveLinear(FETI feti, Vec lambda, Vec u)
 {
-  FETI_Impl &impl = *feti->impl;
-  KSP        ksp;
+  KSP ksp;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(feti, FETI_CLASSID, 1);
+  FETIValidHeader(feti, 1);
+  FETI_Impl &impl = *feti->impl;
   PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
+  if (impl.B) { /* projected CG solves equalities: a contact row would be treated as one, and the answer called converged */
+    PetscInt lo, first = PETSC_MAX_INT, kind = -1;
+    PetscCall(MatGetOwnershipRange(impl.B, &lo, NULL));
+    for (size_t r = 0; r < impl.kinds.size(); r++)
+      if (impl.kinds[r] == FETI_ROW_CONTACT_NORMAL || impl.kinds[r] == FETI_ROW_CONTACT_TANGENTIAL) {
+        first = lo + (PetscInt)r;
+        break;
+      }
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &first, 1, MPIU_INT, MPI_MIN, PetscObjectComm((PetscObject)feti)));
+    if (first != PETSC_MAX_INT && first >= lo && first - lo < (PetscInt)impl.kinds.size()) kind = (PetscInt)impl.kinds[first - lo];
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &kind, 1, MPIU_INT, MPI_MAX, PetscObjectComm((PetscObject)feti)));
+    PetscCheck(first == PETSC_MAX_INT, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_WRONG,
+               "FETISolveLinear(): row %" PetscInt_FMT " of B has kind %s; the linear solve takes gluing and Dirichlet rows (equalities) only, contact rows need the contact solver (ContactProblem)",
+               first, FETIRowKinds[kind]);
+  }
   PetscCall(FETISetUp(feti));
   PetscCall(FETICheckVec_Private(feti, lambda, FETI_VEC_DUAL, "FETISolveLinear", "lambda"));
   if (u) PetscCall(FETICheckVec_Private(feti, u, FETI_VEC_PRIMAL, "FETISolveLinear", "u"));

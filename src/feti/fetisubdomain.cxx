@@ -241,7 +241,8 @@ static PetscErrorCode KernelResidual(FETISubdomain &sd, const std::vector<char> 
       if (isD[i]) a[i] = 0;
     PetscCall(VecRestoreArray(kr, &a));
     PetscCall(VecNorm(kr, NORM_2, &norm));
-    *res = std::max(*res, knorm > 0 ? norm / knorm : norm);
+    const PetscReal rel = knorm > 0 ? norm / knorm : norm;
+    if (!(rel <= *res)) *res = rel; /* a NaN residual is kept (std::max would drop it) and fails the check */
     PetscCall(VecDestroy(&r));
   }
   PetscCall(VecDestroy(&kr));
@@ -336,6 +337,15 @@ PetscErrorCode FETISubdomainSetUpKernel(FETI feti, FETISubdomain &sd, PetscInt s
   }
   for (PetscInt d : sd.dirichletdofs) isD[d] = 1;
 
+  { /* NaN or Inf in K_s would pass the kernel check (a NaN residual) or blame the coordinates; the Frobenius norm
+       sums the squares of all entries, so it is finite when they are (unless an entry beyond ~1e154 overflows it) */
+    PetscReal knorm;
+    PetscCall(MatNorm(sd.K, NORM_FROBENIUS, &knorm));
+    PetscCheck(!PetscIsInfOrNanReal(knorm), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "FETISetUp(): K_s of subdomain %" PetscInt_FMT " (K[%" PetscInt_FMT
+               "] of FETISetSubdomains() on its rank) has a non-finite entry (NaN or Inf, or entries so large that ||K_s||_F overflows)",
+               s, (PetscInt)(&sd - impl.sub.data()));
+  }
   PetscCall(KernelFromInput(feti, sd, s));
   if (impl.check) {
     PetscReal res;

@@ -1,6 +1,7 @@
 /* Rows appended in body-node terms (FEMCreateFETIWithRows(), as the contact layer hands them over) reach B
    with their kind and right-hand side, and act on the right dofs: a clamped bar whose bottom face z0
-   gets one row u_z = 0 per node (kind contact-normal, gap 0, solved here as equalities) must give the
+   gets one row u_z = 0 per node (kinds Dirichlet and gluing in turn: FETISolveLinear() takes equalities only and
+   refuses contact rows; FEMCreateFETIWithRows() passes every kind through unchanged) must give the
    same displacements as the undecomposed direct solve with u_z = 0 imposed on z0 as a Dirichlet
    condition. Also checks FETIComputeAlpha(): with a mask of all rows, and with a mask that leaves the
    appended rows out (gluing and Dirichlet rows still fix every subdomain), alpha is the same. */
@@ -45,7 +46,7 @@ int main(int argc, char **argv)
   PetscCall(Bar(PETSC_FALSE, &fem));
   PetscCall(FEMGetTaggedNodes(fem, 0, "z0", &n, &nodes, NULL, NULL));
   {
-    /* one row per bottom node not on the clamped face x0 (there u = 0 already): -u_z <= 0, normal (0,0,-1) */
+    /* one row per bottom node not on the clamped face x0 (there u = 0 already): -u_z = 0 */
     const PetscReal *x;
     PetscInt         m = 0;
     PetscCall(FEMGetBodyNodes(fem, 0, NULL, &x));
@@ -57,7 +58,7 @@ int main(int argc, char **argv)
     for (PetscInt i = 0; i < n; i++) {
       x0 = x[3 * nodes[i]] == 0.0 ? PETSC_TRUE : PETSC_FALSE;
       if (x0) continue;
-      k[m]       = FETI_ROW_CONTACT_NORMAL;
+      k[m]       = m % 2 ? FETI_ROW_GLUING : FETI_ROW_DIRICHLET; /* two kinds: each row must keep its own */
       body[m]    = 0;
       node[m]    = nodes[i];
       comp[m]    = 2;
@@ -78,7 +79,8 @@ int main(int argc, char **argv)
   PetscCall(VecGetOwnershipRange(c, &rstart, &rend));
   for (PetscInt i = 0; i < nappended; i++)
     if (rows[i] >= rstart && rows[i] < rend)
-      PetscCheck(kinds[rows[i] - rstart] == FETI_ROW_CONTACT_NORMAL, PETSC_COMM_SELF, PETSC_ERR_PLIB, "appended row %d has kind %s", (int)i, FETIRowKinds[kinds[rows[i] - rstart]]);
+      PetscCheck(kinds[rows[i] - rstart] == (i % 2 ? FETI_ROW_GLUING : FETI_ROW_DIRICHLET), PETSC_COMM_SELF, PETSC_ERR_PLIB, "appended row %d has kind %s", (int)i,
+                 FETIRowKinds[kinds[rows[i] - rstart]]);
   PetscCall(PetscPrintf(PETSC_COMM_WORLD, "%d appended rows in B\n", (int)nappended));
 
   PetscCall(FETICreateVecs(feti, &u, &lambda, &alpha1));

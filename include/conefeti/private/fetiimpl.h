@@ -150,7 +150,8 @@ struct FETI_Impl {
   Vec                        c = nullptr;
   std::vector<FETIRowKind>   kinds; /* local rows of B */
 
-  PetscBool setupcalled = PETSC_FALSE;
+  PetscBool setupcalled     = PETSC_FALSE;
+  PetscBool subdomainsgiven = PETSC_FALSE; /* FETISetSubdomains() was called: FETISetConstraints() may follow */
   PetscInt  nglobalsub = 0, firstsub = 0;
   PetscInt  nprimal = 0, nlocalprimal = 0, ncoarse = 0, nlocalcoarse = 0;
 
@@ -291,6 +292,16 @@ PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &)
 /* The largest subdomain (dofs) whose factor for F is PETSc's block Cholesky by default (fetisubdomain.cxx chooses
    it; fetimemory.cxx estimates its size) */
 #define FETI_BLOCK_CHOLESKY_MAX_DOFS 3000
+
+/* PetscValidHeaderSpecific() checks nothing in a PETSc built without debugging (as the packaged one is): a NULL
+   FETI (FETICreate() forgotten) must still be an error naming the function, not a read through NULL */
+#define FETIValidHeader(feti, arg)                                                                                                                                           \
+  do {                                                                                                                                                                       \
+    PetscValidHeaderSpecific(feti, FETI_CLASSID, arg);                                                                                                                       \
+    PetscCheck(feti, PETSC_COMM_SELF, PETSC_ERR_ARG_NULL, "%s(): the FETI object (parameter # %d) is NULL: call FETICreate() first", PETSC_FUNCTION_NAME, arg);              \
+    PetscCheck(((PetscObject)(feti))->classid == FETI_CLASSID, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "%s(): parameter # %d is not a FETI object", PETSC_FUNCTION_NAME, arg); \
+  } while (0)
+
 PETSC_INTERN PetscErrorCode FETICheckMemory(FETI);
 PETSC_INTERN PetscErrorCode FETISubdomainKplusCosts(FETI, FETISubdomain &, PetscReal *, PetscReal *, PetscBool *);
 PETSC_INTERN PetscErrorCode FETIChooseKplusBlocks(FETI, const std::vector<PetscInt> &, const std::vector<PetscReal> &, const std::vector<PetscReal> &, const std::vector<PetscReal> &,
