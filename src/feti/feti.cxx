@@ -166,7 +166,7 @@ static PetscErrorCode CheckNotSetUp(FETI feti, MPI_Comm comm, const char fn[])
 
 /* a vector handed over for one subdomain is read as a local array of n_s entries: one on a parallel communicator
    holds only part of them on this rank, and the reads run past its end */
-static PetscErrorCode CheckSubdomainVec(Vec v, const char fn[], const char arg[], PetscInt s, PetscInt n)
+static PetscErrorCode CheckSubdomainVec(Vec v, const char fn[], const char arg[], PetscInt s, PetscInt n, const char hint[])
 {
   MPI_Comm    comm;
   PetscMPIInt size, rank;
@@ -179,8 +179,8 @@ static PetscErrorCode CheckSubdomainVec(Vec v, const char fn[], const char arg[]
   PetscCheck(size == 1, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "%s(): %s of local subdomain %" PetscInt_FMT " on rank %d is on a communicator of %d ranks; it must be sequential (PETSC_COMM_SELF)", fn,
              arg, s, rank, size);
   PetscCall(VecGetLocalSize(v, &nv));
-  PetscCheck(nv == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "%s(): %s of local subdomain %" PetscInt_FMT " on rank %d has %" PetscInt_FMT " entries but K_s has %" PetscInt_FMT " rows", fn, arg, s, rank,
-             nv, n);
+  PetscCheck(nv == n, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "%s(): %s of local subdomain %" PetscInt_FMT " on rank %d has %" PetscInt_FMT " entries but K_s has %" PetscInt_FMT " rows%s", fn, arg, s,
+             rank, nv, n, hint);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -263,7 +263,7 @@ PetscErrorCode FETISetSubdomains(FETI feti, PetscInt nlocal, const Mat K[], cons
       PetscValidHeaderSpecific(f[s], VEC_CLASSID, 4);
       PetscCall(VecGetSize(f[s], &nf));
       PetscCheck(nf == m, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ, "FETISetSubdomains(): f[%" PetscInt_FMT "] on rank %d has %" PetscInt_FMT " entries but K has %" PetscInt_FMT " rows", s, rank, nf, m);
-      PetscCall(CheckSubdomainVec(f[s], "FETISetSubdomains", "the load f[s]", s, m));
+      PetscCall(CheckSubdomainVec(f[s], "FETISetSubdomains", "the load f[s]", s, m, ""));
       PetscCall(PetscObjectReference((PetscObject)f[s]));
       sd.f = f[s];
     }
@@ -305,7 +305,7 @@ PetscErrorCode FETISetSubdomainCoordinates(FETI feti, PetscInt s, Vec coords)
   if (coords) {
     const PetscScalar *x;
     PetscValidHeaderSpecific(coords, VEC_CLASSID, 3);
-    PetscCall(CheckSubdomainVec(coords, "FETISetSubdomainCoordinates", "coords", s, feti->impl->sub[s].n));
+    PetscCall(CheckSubdomainVec(coords, "FETISetSubdomainCoordinates", "coords", s, feti->impl->sub[s].n, " (need 3 per node, interleaved like the dofs)"));
     PetscCall(VecGetArrayRead(coords, &x));
     PetscCall(CheckFiniteArray(feti->impl->sub[s].n, x, "FETISetSubdomainCoordinates", "coords", s));
     PetscCall(VecRestoreArrayRead(coords, &x));
@@ -409,7 +409,7 @@ PetscErrorCode FETISetSubdomainDirichletValues(FETI feti, PetscInt s, Vec uD)
   PetscCall(CheckNotSetUp(feti, PETSC_COMM_SELF, "FETISetSubdomainDirichletValues"));
   PetscCall(CheckLocal(feti, s));
   if (uD) PetscValidHeaderSpecific(uD, VEC_CLASSID, 3);
-  if (uD) PetscCall(CheckSubdomainVec(uD, "FETISetSubdomainDirichletValues", "uD", s, feti->impl->sub[s].n));
+  if (uD) PetscCall(CheckSubdomainVec(uD, "FETISetSubdomainDirichletValues", "uD", s, feti->impl->sub[s].n, ""));
   if (uD) PetscCall(PetscObjectReference((PetscObject)uD));
   PetscCall(VecDestroy(&feti->impl->sub[s].uD));
   feti->impl->sub[s].uD = uD;
