@@ -52,7 +52,7 @@ static PetscErrorCode Misuse(const std::string &c)
     PetscReal rr[1]  = {1.0};
     PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
     PetscCall(SeparableSetAddDisks(set, 1, far, NULL, rr));
-  } else if (c == "hessian_not_square" || c == "disk_block_odd_length" || c == "mprgp_with_disks" || c == "hessian_nan" || c == "hessian_zero") {
+  } else if (c == "hessian_not_square" || c == "disk_block_odd_length" || c == "mprgp_with_disks" || c == "hessian_nan" || c == "hessian_zero" || c == "initial_guess_nan") {
     PetscInt n = c == "disk_block_odd_length" ? 5 : 4;
     PetscCall(MakeVec(n, 0.0, &x));
     PetscCall(MatCreateDense(PETSC_COMM_WORLD, n, c == "hessian_not_square" ? n + 1 : n, PETSC_DETERMINE, PETSC_DETERMINE, NULL, &A));
@@ -63,6 +63,11 @@ static PetscErrorCode Misuse(const std::string &c)
       PetscCall(MatSetValue(A, 0, 1, std::numeric_limits<PetscReal>::quiet_NaN(), INSERT_VALUES));
       PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
       PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    }
+    if (c == "initial_guess_nan") {
+      PetscCall(VecSetValue(x, 0, std::numeric_limits<PetscReal>::quiet_NaN(), INSERT_VALUES));
+      PetscCall(VecAssemblyBegin(x));
+      PetscCall(VecAssemblyEnd(x));
     }
     if (c == "hessian_zero") { /* a linear program in the box [-1, 1]^n */
       PetscCall(MakeVec(n, -1.0, &l));

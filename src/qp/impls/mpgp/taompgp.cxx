@@ -347,6 +347,14 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
   PetscCall(VecGetSize(tao->solution, &N));
   PetscCheck(m == n && n == N, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_SIZ,
              "TAO %s: the Hessian must be square with the solution's size %" PetscInt_FMT ", it is %" PetscInt_FMT " x %" PetscInt_FMT, qp->name, N, m, n);
+  {
+    /* the projection of a NaN or an infinity onto the set is a huge finite number, and the solve ended DIVERGED_NAN
+       with the user's x overwritten by it: name the start instead */
+    PetscReal xmax;
+    PetscCall(VecNorm(tao->solution, NORM_INFINITY, &xmax));
+    PetscCheck(!PetscIsInfOrNanReal(xmax), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
+               "TAO %s: the initial guess (the solution vector, TaoSetSolution()) has an entry that is not a finite number", qp->name);
+  }
 
   /* the linear term: given, or minus the gradient at 0 (one call) */
   if (!qp->b_user) {
