@@ -347,9 +347,10 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
   PetscCall(VecGetSize(tao->solution, &N));
   PetscCheck(m == n && n == N, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_SIZ,
              "TAO %s: the Hessian must be square with the solution's size %" PetscInt_FMT ", it is %" PetscInt_FMT " x %" PetscInt_FMT, qp->name, N, m, n);
-  {
-    /* the projection of a NaN or an infinity onto the set is a huge finite number, and the solve ended DIVERGED_NAN
-       with the user's x overwritten by it: name the start instead */
+  if (tao->ops->convergencetest == TaoQPConvergenceTest) {
+    /* a user's start: the projection of a NaN or an infinity onto the set is a huge finite number, and the solve
+       ended DIVERGED_NAN with the user's x overwritten by it; name it instead (an inner solve of smalxe starts from
+       smalxe's iterate, whose NaN smalxe reports as DIVERGED_NAN itself) */
     PetscReal xmax;
     PetscCall(VecNorm(tao->solution, NORM_INFINITY, &xmax));
     PetscCheck(!PetscIsInfOrNanReal(xmax), PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE,
