@@ -87,6 +87,24 @@ PetscErrorCode FETISubdomainSetSchurDofs(FETI feti, FETISubdomain &sd)
 }
 
 /* Symmetrize (K+)_bb exactly (so that F is) and zero the rows and columns of removed dofs (K+ is zero there) */
+/* S^-1 in place. A zero pivot there means the regularized K_s is not positive definite on its interface: an
+   indefinite K_s (an element of negative stiffness), which the sparse factorizations let through, or one singular
+   beyond its kernel. PETSc's own message names a dense Cholesky deep in the call stack: name the subdomain */
+static PetscErrorCode InvertSchur(Mat factor, PetscInt s)
+{
+  PetscErrorCode ierr;
+
+  PetscFunctionBegin;
+  PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+  ierr = MatFactorInvertSchurComplement(factor);
+  PetscCall(PetscPopErrorHandler());
+  PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_MAT_CH_ZRPVT,
+             "Subdomain %" PetscInt_FMT ": its explicit (K+)_bb failed: the Schur complement of the regularized K_s on the subdomain's interface is not positive definite (PETSc error %d): K_s is "
+             "indefinite (a negative stiffness?) or singular beyond its kernel; -feti_kplus implicit skips the block but FETI needs a positive semidefinite K_s",
+             s, (int)ierr);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode FinishBlock(FETISubdomain &sd)
 {
   const PetscInt    nb = (PetscInt)sd.kb.size();
@@ -116,7 +134,7 @@ static PetscErrorCode FinishBlock(FETISubdomain &sd)
    with the factor rather than copied (a copy of a block this size costs setup time in page faults alone).
    The factor's own solves use it too; FinishBlock() changes nothing they see: symmetrizing moves entries
    by rounding, and K+ zeroes the removed dofs of its input and output anyway. */
-PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &sd)
+PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &sd, PetscInt s)
 {
   PC                   pc;
   Mat                  factor, S;
@@ -127,7 +145,7 @@ PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &sd)
   if (!sd.schurfactor) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(KSPGetPC(sd.ksp, &pc));
   PetscCall(PCFactorGetMatrix(pc, &factor));
-  PetscCall(MatFactorInvertSchurComplement(factor));
+  PetscCall(InvertSchur(factor, s));
   PetscCall(MatDestroy(&sd.Kplusbb));
   PetscCall(MatFactorGetSchurComplement(factor, &S, &status));
   PetscCall(PetscObjectTypeCompare((PetscObject)S, MATSEQDENSE, &dense));
@@ -272,7 +290,7 @@ static PetscErrorCode SubdomainExplicitKplusBySchur(FETI feti, FETISubdomain &sd
              "mechanism?)",
              s);
   PetscCall(PCFactorGetMatrix(pc, &factor));
-  PetscCall(MatFactorInvertSchurComplement(factor));
+  PetscCall(InvertSchur(factor, s));
   PetscCall(MatFactorCreateSchurComplement(factor, &S, NULL));
   PetscCall(MatConvert(S, MATSEQDENSE, MAT_INITIAL_MATRIX, &sd.Kplusbb));
   PetscCall(MatDestroy(&S));

@@ -626,7 +626,7 @@ PetscErrorCode FETISubdomainSetUpFactorization(FETI feti, FETISubdomain &sd, Pet
     PetscCall(PCFactorGetMatrix(pc, &sd.factor));
     PetscCall(KSPViewFromOptions(sd.ksp, NULL, "-ksp_view"));
   }
-  PetscCall(FETISubdomainExplicitKplusFromSchur(sd));
+  PetscCall(FETISubdomainExplicitKplusFromSchur(sd, s));
   PetscCall(VecCreateSeq(PETSC_COMM_SELF, sd.n, &sd.x));
   PetscCall(VecDuplicate(sd.x, &sd.y));
   PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, sd.n, NULL, &sd.xa));

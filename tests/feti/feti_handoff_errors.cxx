@@ -113,6 +113,13 @@ static PetscErrorCode RunCase(const char *name, Problem &p)
     PetscCall(HandOver(p, &feti));
     PetscCall(FETISetUp(feti));
     PetscCall(SolveAndReport(p, feti, name));
+  } else if (is("negated_K_explicit")) { /* K_s assembled with the wrong sign, explicit K+ blocks: a raw dense-Cholesky error */
+    PetscCall(BuildBar(p));
+    PetscCall(MatScale(p.K[p.nlocal - 1], -1.0));
+    PetscCall(PetscOptionsSetValue(NULL, "-feti_kplus", "explicit"));
+    PetscCall(HandOver(p, &feti));
+    PetscCall(FETISetUp(feti));
+    PetscCall(SolveAndReport(p, feti, name));
   } else if (is("coords_nan")) { /* an internal "inconsistent data" error came from the choice of fixing nodes */
     PetscCall(BuildBar(p));
     PetscCall(SetVecEntry(p.coords[0], 4, NaN));

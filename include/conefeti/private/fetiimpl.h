@@ -286,7 +286,7 @@ PETSC_INTERN PetscErrorCode FETICoarseSolverDestroy(FETICoarseSolver &);
 PETSC_INTERN PetscErrorCode FETISetUpExplicitKplus(FETI);
 PETSC_INTERN PetscErrorCode FETIApplyKplusOnBoundary(FETI, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETISubdomainSetSchurDofs(FETI, FETISubdomain &);
-PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &);
+PETSC_INTERN PetscErrorCode FETISubdomainExplicitKplusFromSchur(FETISubdomain &, PetscInt);
 
 /* fetimemory.cxx */
 /* The largest subdomain (dofs) whose factor for F is PETSc's block Cholesky by default (fetisubdomain.cxx chooses
