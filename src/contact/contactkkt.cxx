@@ -12,8 +12,9 @@
        r >= 0 at -c g (c = sin(pi/(2k)), contactpolygon.cxx).
    Each of the last three is the natural residual l - P(l - k r) (P: the projection onto the set) with k
    the ratio of the multipliers' scale s to the gradient's, so that all are in units of l and relative to s;
-   the equality is relative to the larger of |e| and |G|_F max(|l|, s) (projector form: |l~|, |l| and s).
-   s = max(max |l|, max |h_free| / ||PFP||), h_free the data of the rows without inequalities. */
+   the equality is relative to the larger of |e| and |G|_F max(|l|, s) (projector form: |Q l - Q l~| relative to
+   |Q l~|, |l| and s). s = max(max |l|, max |h_free| / ||PFP||), h_free the data of the rows without inequalities;
+   the gradient's scale is max(|F l|, |h|) with |h| over every row but the normal ones that carry no force. */
 #include <conefeti/private/contactimpl.h>
 #include <cmath>
 #include <limits>
@@ -23,7 +24,7 @@
   computed from scratch: the natural residual of the gradient of the Lagrangian F l - h + G'mu on the set
   (free multipliers, normal multipliers >= 0, friction disks of radius g, with g = F l_n for Coulomb nodes)
   relative to the multipliers' scale s, and the equality residual |G l - e| relative to max(|e|, |G|_F max(|l|, s))
-  (projector form: |Q l - l~| relative to max(|l~|, |l|, s)). s is max |l|, or, when larger, max |h_free| / ||PFP||:
+  (projector form: |Q l - Q l~| relative to max(|Q l~|, |l|, s)). s is max |l|, or, when larger, max |h_free| / ||PFP||:
   the force the data of the rows without inequalities (gluing jumps, prescribed displacements) would need, so that
   multipliers at the rounding level (nothing loaded) are measured against their data, not their own rounding.
 
@@ -71,10 +72,8 @@ PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, P
   PetscCall(VecWAXPY(r, -1.0, d->h, Fl));
   PetscCall(VecAXPY(r, 1.0, w));
   PetscCall(VecNorm(lambda, NORM_INFINITY, &lmax));
-  PetscCall(VecNorm(d->h, NORM_INFINITY, &hmax));
   PetscCall(VecNorm(Fl, NORM_INFINITY, &flmax));
   lmax = PetscMax(lmax, tiny);
-  k    = lmax / PetscMax(PetscMax(hmax, flmax), tiny);
 
   /* the role of each local multiplier: 0 free, 1 normal, 2 first of a tangential pair, 3 second, 4 of a friction polygon */
   PetscCallCXX(role.assign(d->nlocal, 0));
@@ -94,20 +93,25 @@ PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, P
     /* the multipliers' scale: max |l|, or, when larger, what the jumps the free rows prescribe (gluing, Dirichlet
        displacements) would need, max |h_free| / ||PFP||. A solution at the rounding level (a body moved rigidly
        toward a floor it does not reach: l = 0) is then measured against its data, not against its own rounding.
-       The contact rows' gaps stay out: a far gap needs no force (and would hide a wrong answer) */
-    const PetscScalar *h;
-    PetscReal          hfree = 0;
+       The gradient's scale: max |F l|, and |h| over the rows but the normal ones that carry no force. The contact
+       rows' gaps stay out of both: a far gap needs no force, and its size (1e9) scaled every residual down until
+       l = 0 passed for the solution of a problem whose multipliers reach 2600 */
+    const PetscScalar *h, *la;
+    PetscReal          hm[2] = {0, 0}; /* free rows; every row but the normal ones without force */
     PetscCall(TaoQPGetNormEstimate(d->tao, &normest));
     PetscCall(VecGetArrayRead(d->h, &h));
-    for (PetscInt i = 0; i < d->nlocal; i++)
-      if (!role[i]) hfree = PetscMax(hfree, PetscAbsScalar(h[i]));
-    PetscCall(VecRestoreArrayRead(d->h, &h));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &hfree, 1, MPIU_REAL, MPIU_MAX, comm));
-    if (normest > 0) datascale = hfree / normest;
-    if (datascale > lmax) {
-      lmax = datascale;
-      k    = lmax / PetscMax(PetscMax(hmax, flmax), tiny);
+    PetscCall(VecGetArrayRead(lambda, &la));
+    for (PetscInt i = 0; i < d->nlocal; i++) {
+      if (!role[i]) hm[0] = PetscMax(hm[0], PetscAbsScalar(h[i]));
+      if (role[i] != 1 || PetscRealPart(la[i]) > 0) hm[1] = PetscMax(hm[1], PetscAbsScalar(h[i]));
     }
+    PetscCall(VecRestoreArrayRead(lambda, &la));
+    PetscCall(VecRestoreArrayRead(d->h, &h));
+    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, hm, 2, MPIU_REAL, MPIU_MAX, comm));
+    hmax = hm[1];
+    if (normest > 0) datascale = hm[0] / normest;
+    lmax = PetscMax(lmax, datascale);
+    k    = lmax / PetscMax(PetscMax(hmax, flmax), tiny);
   }
   PetscCall(VecGetArrayRead(lambda, &l));
   PetscCall(VecGetArrayRead(r, &ra));
@@ -156,12 +160,16 @@ PetscErrorCode ContactProblemComputeKKTResidual(ContactProblem cp, Vec lambda, P
       if (hasnorm) PetscCall(MatNorm(d->G, NORM_FROBENIUS, &gn));
       scale = PetscMax(ne, gn * nl); /* |G l| cannot exceed |G|_F |l|: a residual of rounding relative to that */
       PetscCall(VecDestroy(&Gl));
-    } else if (d->Q) { /* Q l = l~ (l~ = Q l~; |Q| = 1) */
+    } else if (d->Q) { /* Q l = Q l~ (|Q| = 1); l~ is any particular solution, not necessarily in range(Q) */
       PetscReal nt;
+      Vec       qt;
+      PetscCall(VecDuplicate(lambda, &qt));
+      PetscCall(MatMult(d->Q, d->lt, qt));
       PetscCall(MatMult(d->Q, lambda, w));
-      PetscCall(VecAXPY(w, -1.0, d->lt));
+      PetscCall(VecAXPY(w, -1.0, qt));
       PetscCall(VecNorm(w, NORM_2, &res));
-      PetscCall(VecNorm(d->lt, NORM_2, &nt));
+      PetscCall(VecNorm(qt, NORM_2, &nt));
+      PetscCall(VecDestroy(&qt));
       scale = PetscMax(nt, nl);
     }
     *equality = res / PetscMax(scale, tiny);

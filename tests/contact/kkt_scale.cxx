@@ -1,0 +1,106 @@
+/* The KKT check of a ContactProblem used alone judges the answer on the scale of the data that acts.
+
+   -case far_gap: F = tridiag(-1, 4, -1) (n = 8), frictionless normal rows 0-4, free rows 5-7, h = 1 but for
+   normal row 4, a separated node 1e9 from contact (h = -1e9). The gap entered the gradient's scale, which made
+   every residual 1e9 times smaller: the multipliers 0 passed for the solution. Whatever the solver does, a
+   converged answer must pass an independent KKT check here (r = F l - h: r = 0 on free rows, l >= 0, r >= 0 and
+   l r = 0 on normal rows, to 1e-6 of the data), and the solve may also say it did not converge.
+   -case particular_off_range: the same F and rows, all h = 1 but row 4's (-1), the equality s'l = 1 (s the
+   normalized ones vector) in projector form with Q = s s' and a particular solution lt = s + v, v orthogonal to s
+   (s'lt = 1, lt not in range(Q)). The check measured |Q l - lt| instead of |Q l - Q lt| and called the solution
+   not converged (0.71). Here the solve must converge and pass the independent check (with the equality's
+   multiplier w = mu s, fitted).
+   Prints the verdict, the independent residual, and "CORRECT". */
+#include <conefeti.h>
+#include <cmath>
+#include <cstring>
+
+int main(int argc, char **argv)
+{
+  const PetscInt     n = 8;
+  char               c[64] = "far_gap";
+  Mat                F, Q = NULL;
+  Vec                h, l, r, lt = NULL, s = NULL;
+  ContactProblem     cp;
+  ContactStatistics  st;
+  const PetscInt     normal[5] = {0, 1, 2, 3, 4};
+  PetscReal          worst = 0, mu = 0;
+  const PetscScalar *la, *ra, *sa = NULL;
+
+  PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
+  PetscCall(ConeFETIInitializePackage());
+  PetscCall(PetscOptionsGetString(NULL, NULL, "-case", c, sizeof(c), NULL));
+  const bool far = !strcmp(c, "far_gap");
+  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 3, NULL, &F));
+  for (PetscInt i = 0; i < n; i++) {
+    PetscCall(MatSetValue(F, i, i, 4.0, INSERT_VALUES));
+    if (i > 0) PetscCall(MatSetValue(F, i, i - 1, -1.0, INSERT_VALUES));
+    if (i < n - 1) PetscCall(MatSetValue(F, i, i + 1, -1.0, INSERT_VALUES));
+  }
+  PetscCall(MatAssemblyBegin(F, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(F, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateVecs(F, &l, &h));
+  PetscCall(VecDuplicate(h, &r));
+  PetscCall(VecSet(h, 1.0));
+  PetscCall(VecSetValue(h, 4, far ? -1e9 : -1.0, INSERT_VALUES));
+  PetscCall(VecAssemblyBegin(h));
+  PetscCall(VecAssemblyEnd(h));
+  PetscCall(ContactProblemCreate(PETSC_COMM_SELF, &cp));
+  PetscCall(ContactProblemSetOperator(cp, F, h));
+  PetscCall(ContactProblemAddNodes(cp, CONTACT_FRICTIONLESS, 5, normal, NULL, NULL, NULL));
+  if (!far) { /* Q = s s', lt = s + v with v = e_0 - e_1 orthogonal to s */
+    PetscCall(VecDuplicate(h, &s));
+    PetscCall(VecSet(s, 1.0 / std::sqrt((PetscReal)n)));
+    PetscCall(MatCreateSeqDense(PETSC_COMM_SELF, n, n, NULL, &Q));
+    for (PetscInt i = 0; i < n; i++)
+      for (PetscInt j = 0; j < n; j++) PetscCall(MatSetValue(Q, i, j, 1.0 / n, INSERT_VALUES));
+    PetscCall(MatAssemblyBegin(Q, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(Q, MAT_FINAL_ASSEMBLY));
+    PetscCall(VecDuplicate(s, &lt));
+    PetscCall(VecCopy(s, lt));
+    PetscCall(VecSetValue(lt, 0, 1.0, ADD_VALUES));
+    PetscCall(VecSetValue(lt, 1, -1.0, ADD_VALUES));
+    PetscCall(VecAssemblyBegin(lt));
+    PetscCall(VecAssemblyEnd(lt));
+    PetscCall(ContactProblemSetProjector(cp, Q, lt));
+  }
+  PetscCall(ContactProblemSetFromOptions(cp));
+  PetscCall(VecSet(l, 0.0));
+  PetscCall(ContactProblemSolve(cp, l));
+  PetscCall(ContactProblemGetStatistics(cp, &st));
+
+  /* the independent check: r = F l - h (+ mu s with the equality's multiplier fitted on the free rows) */
+  PetscCall(MatMult(F, l, r));
+  PetscCall(VecAXPY(r, -1.0, h));
+  PetscCall(VecGetArrayRead(l, &la));
+  PetscCall(VecGetArrayRead(r, &ra));
+  if (s) {
+    PetscCall(VecGetArrayRead(s, &sa));
+    for (PetscInt i = 5; i < n; i++) mu -= PetscRealPart(ra[i]) / (3 * PetscRealPart(sa[i])); /* r_i + mu s_i = 0 on the free rows */
+  }
+  for (PetscInt i = 0; i < n; i++) {
+    const PetscReal li = PetscRealPart(la[i]), ri = PetscRealPart(ra[i]) + (sa ? mu * PetscRealPart(sa[i]) : 0.0);
+    if (i >= 5) worst = PetscMax(worst, PetscAbsReal(ri));
+    else worst = PetscMax(worst, PetscMax(PetscMax(-li, -ri), PetscAbsReal(li * ri)));
+  }
+  if (s) {
+    PetscReal sl;
+    PetscCall(VecDot(s, l, &sl));
+    worst = PetscMax(worst, PetscAbsReal(sl - 1.0));
+    PetscCall(VecRestoreArrayRead(s, &sa));
+  }
+  PetscCall(VecRestoreArrayRead(l, &la));
+  PetscCall(VecRestoreArrayRead(r, &ra));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "%s: %s (%s); independent KKT residual %.1e\n", c, st.converged ? "converged" : "not converged", st.reason, (double)worst));
+  if (far ? (!st.converged || worst <= 1e-6) : (st.converged && worst <= 1e-6)) PetscCall(PetscPrintf(PETSC_COMM_SELF, "CORRECT\n"));
+  PetscCall(ContactProblemDestroy(&cp));
+  PetscCall(MatDestroy(&F));
+  PetscCall(MatDestroy(&Q));
+  PetscCall(VecDestroy(&h));
+  PetscCall(VecDestroy(&l));
+  PetscCall(VecDestroy(&r));
+  PetscCall(VecDestroy(&lt));
+  PetscCall(VecDestroy(&s));
+  PetscCall(PetscFinalize());
+  return 0;
+}
