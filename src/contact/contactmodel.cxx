@@ -619,6 +619,10 @@ PetscErrorCode ContactModelAddZone(ContactModel cm, const ContactZone *zone)
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
   PetscCheck(!cm->data->setup, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_WRONGSTATE, "ContactModelAddZone: add zones before ContactModelSetUp()");
   PetscCall(FEMGetNumBodies(cm->data->fem, &nbodies));
+  PetscCheck(zone->type == CONTACT_ZONE_FOUNDATION || zone->type == CONTACT_ZONE_BODIES, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
+             "contact zone: type %d is no ContactZoneType (CONTACT_ZONE_FOUNDATION or CONTACT_ZONE_BODIES)", (int)zone->type);
+  PetscCheck(zone->law == CONTACT_FRICTIONLESS || zone->law == CONTACT_TRESCA || zone->law == CONTACT_COULOMB, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE,
+             "contact zone: law %d is no ContactLaw (CONTACT_FRICTIONLESS, CONTACT_TRESCA or CONTACT_COULOMB)", (int)zone->law);
   PetscCheck(zone->body >= 0 && zone->body < nbodies, PetscObjectComm((PetscObject)cm), PETSC_ERR_ARG_OUTOFRANGE, "contact zone: body %" PetscInt_FMT " does not exist (%" PetscInt_FMT " bodies)",
              zone->body, nbodies);
   if (zone->type == CONTACT_ZONE_BODIES)

@@ -50,6 +50,18 @@ PetscErrorCode ContactZoneCheckObstacle(const ContactZone *zone)
   PetscFunctionBegin;
   PetscAssertPointer(zone, 1);
   if (zone->type != CONTACT_ZONE_FOUNDATION) PetscFunctionReturn(PETSC_SUCCESS);
+  /* a plane through z = -inf gave infinite gaps, which the rounding guard of the gap turned into 0: the body
+     "touched" it and the solve converged. Only the vectors of the zone's shape count */
+  {
+    const bool       plane = zone->shape == CONTACT_OBSTACLE_PLANE, cylinder = zone->shape == CONTACT_OBSTACLE_CYLINDER;
+    const PetscReal *v[2]    = {plane ? zone->point : zone->center, plane ? zone->normal : (cylinder ? zone->axis : NULL)};
+    const char      *name[2] = {plane ? "point" : "center", plane ? "normal" : "axis"};
+    for (int q = 0; q < 2; q++)
+      if (v[q])
+        for (int c = 0; c < 3; c++)
+          PetscCheck(!PetscIsInfOrNanReal(v[q][c]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "contact zone: the %s obstacle's %s (%g, %g, %g) is not finite", ContactObstacleShapes[zone->shape],
+                     name[q], (double)v[q][0], (double)v[q][1], (double)v[q][2]);
+  }
   switch (zone->shape) {
   case CONTACT_OBSTACLE_PLANE: PetscCheck(Length(zone->normal) > 0, PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "contact zone: the foundation plane needs a nonzero normal"); break;
   case CONTACT_OBSTACLE_SPHERE:

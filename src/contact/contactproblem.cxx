@@ -114,6 +114,8 @@ PetscErrorCode ContactProblemSetOperator(ContactProblem cp, Mat F, Vec h)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  /* PetscValidHeaderSpecific() checks nothing in a PETSc built without debugging (the packaged one) */
+  PetscCheck(F && h, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_NULL, "ContactProblemSetOperator: give both F and h (%s is NULL)", F ? "h" : "F");
   PetscValidHeaderSpecific(F, MAT_CLASSID, 2);
   PetscValidHeaderSpecific(h, VEC_CLASSID, 3);
   PetscCall(CheckNotSetUp(cp, "the operator"));
@@ -179,6 +181,10 @@ PetscErrorCode ContactProblemSetProjector(ContactProblem cp, Mat Q, Vec lt)
 {
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  /* a NULL Q dropped the equality without a word and the solve reported converged; a NULL lt crashed */
+  PetscCheck(Q && lt, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_NULL, "ContactProblemSetProjector: give both Q and lt (%s is NULL; for e = 0 give a zero vector)", Q ? "lt" : "Q");
+  PetscValidHeaderSpecific(Q, MAT_CLASSID, 2);
+  PetscValidHeaderSpecific(lt, VEC_CLASSID, 3);
   PetscCall(CheckNotSetUp(cp, "the projector"));
   PetscCall(Replace((PetscObject)Q, (PetscObject *)&cp->data->Q));
   PetscCall(Replace((PetscObject)lt, (PetscObject *)&cp->data->lt));
@@ -503,7 +509,7 @@ PetscErrorCode ContactProblemGetSlipBounds(ContactProblem cp, Vec lambda, PetscR
 {
   ContactProblemData *d;
   const PetscScalar  *l;
-  PetscInt            rstart;
+  PetscInt            rstart, rend;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
@@ -520,9 +526,13 @@ PetscErrorCode ContactProblemGetSlipBounds(ContactProblem cp, Vec lambda, PetscR
     PetscCheck(n == hn && N == hN, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
                "ContactProblemGetSlipBounds: lambda has %" PetscInt_FMT " entries (%" PetscInt_FMT " on this rank), the multipliers %" PetscInt_FMT " (%" PetscInt_FMT ")", N, n, hN, hn);
   }
-  PetscCall(VecGetOwnershipRange(lambda, &rstart, NULL));
+  PetscCall(VecGetOwnershipRange(lambda, &rstart, &rend));
   PetscCall(VecGetArrayRead(lambda, &l));
   for (size_t k = 0; k < d->normal.size(); k++) {
+    /* before the setup has validated the nodes, an index off this rank would read past the array */
+    PetscCheck(d->law[k] != CONTACT_COULOMB || (d->normal[k] >= rstart && d->normal[k] < rend), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "ContactProblemGetSlipBounds: node %zu's normal multiplier %" PetscInt_FMT " is not owned by this rank (rows %" PetscInt_FMT " to %" PetscInt_FMT ")", k, d->normal[k], rstart,
+               rend - 1);
     switch (d->law[k]) {
     case CONTACT_FRICTIONLESS: bounds[k] = 0; break;
     case CONTACT_TRESCA: bounds[k] = d->coef[k]; break;

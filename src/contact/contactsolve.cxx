@@ -691,7 +691,14 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCheck(lambda, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_NULL, "ContactProblemSolve: lambda is NULL (give the initial multipliers, e.g. a zero vector from MatCreateVecs(F))");
   PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
+  {
+    /* a NaN start came back as 4.5e307 or NaN with a reason that blamed the data near the largest real */
+    PetscReal lmax;
+    PetscCall(VecNorm(lambda, NORM_INFINITY, &lmax));
+    PetscCheck(!PetscIsInfOrNanReal(lmax), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemSolve: the initial multipliers lambda have an entry that is not a finite number");
+  }
   PetscCall(ContactProblemSetUp(cp));
   d = cp->data;
   PetscCall(PetscLogEventBegin(CONTACT_Solve, cp, 0, 0, 0));

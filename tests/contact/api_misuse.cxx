@@ -47,8 +47,28 @@ static PetscErrorCode RunCase(const char *name, PetscBool *mistake)
   else if (!strcmp(name, "nodes_of_no_law")) {
     const PetscInt normal[1] = {0};
     PetscCall(ContactProblemAddNodes(cp, (ContactLaw)7, 1, normal, NULL, NULL, NULL));
-  } else if (!strcmp(name, "equality_without_matrix")) PetscCall(ContactProblemSetEquality(cp, NULL, h)); /* was accepted: no equality */
-  else if (!strcmp(name, "tao_before_setup")) {
+  } else if (!strcmp(name, "equality_without_matrix")) PetscCall(ContactProblemSetEquality(cp, NULL, h));              /* was accepted: no equality */
+  else if (!strcmp(name, "operator_without_h")) PetscCall(ContactProblemSetOperator(cp, F, NULL));                     /* was a SEGV */
+  else if (!strcmp(name, "projector_without_matrix")) PetscCall(ContactProblemSetProjector(cp, NULL, h));              /* dropped the equality, "converged" */
+  else if (!strcmp(name, "projector_without_particular_solution")) PetscCall(ContactProblemSetProjector(cp, F, NULL)); /* was a SEGV at the solve */
+  else if (!strcmp(name, "slip_bounds_of_a_node_off_the_rank")) {
+    const PetscInt  normal[1] = {100}, t1[1] = {101}, t2[1] = {102};
+    const PetscReal coef[1] = {0.3};
+    Vec             l;
+    PetscReal       bounds[1];
+    PetscCall(ContactProblemAddNodes(cp, CONTACT_COULOMB, 1, normal, t1, t2, coef));
+    PetscCall(VecDuplicate(h, &l));
+    PetscCall(ContactProblemGetSlipBounds(cp, l, bounds)); /* before the setup validates the nodes: read past l (SEGV) */
+  } else if (!strcmp(name, "solve_from_nan")) {
+    Vec l;
+    PetscCall(AddCoulombNodes(cp));
+    PetscCall(VecDuplicate(h, &l));
+    PetscCall(VecSet(l, 0.0));
+    PetscCall(VecSetValue(l, 1, PETSC_MAX_REAL * 10, INSERT_VALUES)); /* an infinity: came back as 4.5e307 or NaN */
+    PetscCall(VecAssemblyBegin(l));
+    PetscCall(VecAssemblyEnd(l));
+    PetscCall(ContactProblemSolve(cp, l));
+  } else if (!strcmp(name, "tao_before_setup")) {
     Tao tao;
     PetscCall(ContactProblemGetTao(cp, &tao)); /* was NULL without a word */
   } else if (!strcmp(name, "slip_bounds_of_a_short_vector")) {

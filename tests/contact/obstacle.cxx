@@ -11,10 +11,12 @@
                   (distance - R) and the normal +z; -overlap d moves the obstacle down by d, and the nodes
                   inside get negative gaps (accepted)
    on_centre      a node on the sphere's centre: the setup fails with a message naming the zone and the node
-   bad_zone       ContactModelAddZone() rejects a sphere of radius 0 and a cylinder with a zero axis */
+   bad_zone       ContactModelAddZone() rejects a sphere of radius 0, a cylinder with a zero axis, a plane through an
+                  infinite point and a law that is no ContactLaw (-what radius|axis|point_inf|law) */
 #include <conefeti.h>
 #include <conefeti/compat.h>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -105,7 +107,7 @@ static PetscErrorCode BoxModel(const ContactZone &zone, FEM *fem, ContactModel *
   z.type = CONTACT_ZONE_FOUNDATION;
   z.body = body;
   PetscCall(PetscStrcpy(z.face, "z1"));
-  z.law = CONTACT_FRICTIONLESS;
+  /* z.law as the caller left it: frictionless from ContactZone z = {} */
   PetscCall(ContactModelAddZone(*cm, &z));
   PetscCall(ContactModelSetUp(*cm));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -181,9 +183,15 @@ static PetscErrorCode CaseBadZone(const char *what)
   ContactModel cm;
 
   PetscFunctionBeginUser;
-  z.shape     = std::string(what) == "radius" ? CONTACT_OBSTACLE_SPHERE : CONTACT_OBSTACLE_CYLINDER;
-  z.radius    = std::string(what) == "radius" ? 0 : 1;
+  const std::string w(what);
+  z.shape     = w == "radius" || w == "law" ? CONTACT_OBSTACLE_SPHERE : (w == "point_inf" ? CONTACT_OBSTACLE_PLANE : CONTACT_OBSTACLE_CYLINDER);
+  z.radius    = w == "radius" ? 0 : 1; /* with -what law a valid sphere */
   z.center[2] = 3;
+  if (w == "point_inf") { /* a plane at z = -inf: the gaps were infinite, rounded to 0, and the body "touched" it */
+    z.point[2]  = -std::numeric_limits<PetscReal>::infinity();
+    z.normal[2] = 1;
+  }
+  if (w == "law") z.law = (ContactLaw)7; /* was accepted, and the run ended with a misleading friction-cone failure */
   PetscCall(BoxModel(z, &fem, &cm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
