@@ -10,14 +10,74 @@
    (s'lt = 1, lt not in range(Q)). The check measured |Q l - lt| instead of |Q l - Q lt| and called the solution
    not converged (0.71). Here the solve must converge and pass the independent check (with the equality's
    multiplier w = mu s, fitted).
+   -case zero_reduced_rhs: F = I (n = 11), Coulomb nodes (0,1,2), (3,4,5), (6,7,8) with F = 0.3, h = 1 on the normal
+   rows, and the total normal force l_0 + l_3 + l_6 = 1.5 in projector form: P(h - F lt) = 0, which made every
+   tolerance of the solver 0 and ended the solve with "is the Hessian positive semidefinite?". The solution is
+   l_n = 0.5 on each node, nothing else: it must converge to it.
    Prints the verdict, the independent residual, and "CORRECT". */
 #include <conefeti.h>
 #include <cmath>
 #include <cstring>
 
+static PetscErrorCode ZeroReducedRhs(void)
+{
+  const PetscInt     n = 11, normal[3] = {0, 3, 6}, t1[3] = {1, 4, 7}, t2[3] = {2, 5, 8};
+  const PetscReal    coef[3] = {0.3, 0.3, 0.3};
+  Mat                F, Q;
+  Vec                h, l, lt;
+  ContactProblem     cp;
+  ContactStatistics  st;
+  PetscReal          err = 0;
+  const PetscScalar *la;
+
+  PetscFunctionBeginUser;
+  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 1, NULL, &F)); /* assembled, as a user's F */
+  for (PetscInt i = 0; i < n; i++) PetscCall(MatSetValue(F, i, i, 1.0, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(F, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(F, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 3, NULL, &Q)); /* Q = g g' / 3, g = e_0 + e_3 + e_6; AIJ: its products round to 1e-17 */
+  for (PetscInt a = 0; a < 3; a++)
+    for (PetscInt b = 0; b < 3; b++) PetscCall(MatSetValue(Q, normal[a], normal[b], 1.0 / 3, INSERT_VALUES));
+  PetscCall(MatAssemblyBegin(Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(MatAssemblyEnd(Q, MAT_FINAL_ASSEMBLY));
+  PetscCall(VecCreateSeq(PETSC_COMM_SELF, n, &h));
+  PetscCall(VecDuplicate(h, &l));
+  PetscCall(VecDuplicate(h, &lt));
+  PetscCall(VecSet(h, 0.0));
+  PetscCall(VecSet(lt, 0.0));
+  for (PetscInt a = 0; a < 3; a++) {
+    PetscCall(VecSetValue(h, normal[a], 1.0, INSERT_VALUES));
+    PetscCall(VecSetValue(lt, normal[a], 0.5, INSERT_VALUES)); /* g'lt = 1.5 */
+  }
+  PetscCall(VecAssemblyBegin(h));
+  PetscCall(VecAssemblyEnd(h));
+  PetscCall(VecAssemblyBegin(lt));
+  PetscCall(VecAssemblyEnd(lt));
+  PetscCall(ContactProblemCreate(PETSC_COMM_SELF, &cp));
+  PetscCall(ContactProblemSetOperator(cp, F, h));
+  PetscCall(ContactProblemSetProjector(cp, Q, lt));
+  PetscCall(ContactProblemAddNodes(cp, CONTACT_COULOMB, 3, normal, t1, t2, coef));
+  PetscCall(ContactProblemSetFromOptions(cp));
+  PetscCall(VecSet(l, 0.0));
+  PetscCall(ContactProblemSolve(cp, l));
+  PetscCall(ContactProblemGetStatistics(cp, &st));
+  PetscCall(VecGetArrayRead(l, &la));
+  for (PetscInt i = 0; i < n; i++) err = PetscMax(err, PetscAbsReal(PetscRealPart(la[i]) - (i % 3 == 0 && i < 9 ? 0.5 : 0.0)));
+  PetscCall(VecRestoreArrayRead(l, &la));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "zero_reduced_rhs: %s (%s); largest error %.1e\n", st.converged ? "converged" : "not converged", st.reason, (double)err));
+  if (st.converged && err <= 1e-8) PetscCall(PetscPrintf(PETSC_COMM_SELF, "CORRECT\n"));
+  PetscCall(ContactProblemDestroy(&cp));
+  PetscCall(MatDestroy(&F));
+  PetscCall(MatDestroy(&Q));
+  PetscCall(VecDestroy(&h));
+  PetscCall(VecDestroy(&l));
+  PetscCall(VecDestroy(&lt));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
-  const PetscInt     n = 8;
+  const PetscInt     n     = 8;
   char               c[64] = "far_gap";
   Mat                F, Q = NULL;
   Vec                h, l, r, lt = NULL, s = NULL;
@@ -31,6 +91,11 @@ int main(int argc, char **argv)
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscOptionsGetString(NULL, NULL, "-case", c, sizeof(c), NULL));
   const bool far = !strcmp(c, "far_gap");
+  if (!strcmp(c, "zero_reduced_rhs")) {
+    PetscCall(ZeroReducedRhs());
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 3, NULL, &F));
   for (PetscInt i = 0; i < n; i++) {
     PetscCall(MatSetValue(F, i, i, 4.0, INSERT_VALUES));

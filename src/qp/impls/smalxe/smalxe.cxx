@@ -1073,9 +1073,24 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     s->hq_id = s->wf_id = -1; /* a new solve: x~ may have changed, and hq is not Q of an iterate */
     PetscCall(VecWAXPY(s->bconst, -1.0, s->hq, s->w));
     PetscCall(Norm(s->bconst, &s->beff));
+    {
+      /* |P(b - A x~)| = 0 (uniform gaps under a total-force equality: x~ already balances b in range(P)) made every
+         tolerance 0, and the inner solve chased rounding until a direction of zero curvature ended it with "is the
+         Hessian positive semidefinite?". The unprojected |b - A x~| is the scale then */
+      PetscReal unprojected;
+      PetscCall(Norm(s->w, &unprojected));
+      s->beff = PetscMax(s->beff, 1e-8 * unprojected);
+    }
     if (!RecycleMultiplier(tao, s)) PetscCall(VecSet(s->nu, 0.0));
   } else {
     PetscCall(Norm(s->b, &s->beff));
+    {
+      /* b = 0 with d != 0 (no load, a prescribed resultant): the gradient's scale is that of the multipliers C x = d
+         needs, ||A|| |d| / ||C||, as 0 tolerances make the inner solves chase rounding */
+      PetscReal dn;
+      PetscCall(Norm(s->d, &dn));
+      s->beff = PetscMax(s->beff, 1e-8 * s->normA * dn / PetscSqrtReal(PetscMax(s->normC2, PETSC_SMALL)));
+    }
     PetscCall(ReproducibleDot(s->d, s->d, &s->dnorm2));
     s->qxt = 0;
     if (!RecycleMultiplier(tao, s)) PetscCall(VecSet(s->mu, 0.0));
