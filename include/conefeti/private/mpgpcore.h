@@ -17,6 +17,21 @@ enum class MPGPStatus {
   ACCURACY_FLOOR /* verify: the exact projected gradient stayed above the tolerance that recurred ones met (rounding) */
 };
 
+/* Stops that the exact gradient refused (mpgp's verify, smalxe's exact stop): where rounding sets a floor
+   (an ill-conditioned A) the exact |gP| stops falling, and three refusals in a row that do not halve it say so */
+struct QPRefusedStops {
+  PetscReal best   = PETSC_INFINITY; /* the smallest exact |gP| refused */
+  PetscInt  stalls = 0;              /* refusals in a row that did not halve it */
+  /* one more refusal at |gP| = gp: whether the floor is reached */
+  bool AtFloor(PetscReal gp)
+  {
+    stalls = gp < 0.5 * best ? 0 : stalls + 1;
+    best   = PetscMin(best, gp);
+    return stalls >= 3;
+  }
+  void Accepted() { stalls = 0; }
+};
+
 /* Called at iteration 0 and after every iteration; sets *stop to end the solve. */
 typedef PetscErrorCode (*MPGPReportFn)(void *ctx, PetscInt it, PetscReal f, PetscReal gpnorm, PetscReal step, PetscBool *stop);
 /* z = M^{-1} g. The core restricts z to the free entries (preconditioning in face: [M^-1]_FF, a

@@ -161,8 +161,8 @@ static PetscErrorCode MPGPCoreFlatDirection(MPGPCore *c, Vec d, PetscReal dAd, P
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* Whether the curvature d'Ad of a direction is zero up to rounding (<= 1e-10 ||A|| |d|^2, the tolerance of
-   MPGPCoreFlatDirection()) or negative. A tiny positive d'Ad (b outside the range of a singular A) gave a step
+/* Whether the curvature d'Ad of a direction is zero up to rounding (<= 1e-13 ||A|| |d|^2: rounding leaves about
+   1e-16 on a kernel vector, a condition number of 1e12 leaves 1e-12) or negative. A tiny positive d'Ad (b outside the range of a singular A) gave a step
    of 1e30 and then "the norm estimate is too small" instead of "unbounded below". |d|^2 costs a reduction, so
    it is computed only for a step longer than 1e8 / ||A|| (the ratio a condition number below 1e8 keeps under) */
 static PetscErrorCode MPGPCoreIsFlat(MPGPCore *c, Vec d, PetscReal dAd, PetscReal gd, PetscBool *flat)
@@ -202,7 +202,7 @@ static PetscErrorCode MPGPCoreDirection(MPGPCore *c)
 }
 
 /* The exact gradient after steps along arcs (MPGPCoreSolve()), with the split, q and a new CG direction. */
-static PetscErrorCode MPGPCoreRefreshGradient(MPGPCore *c, Vec x, PetscReal alpha, SeparableSplit *s)
+static PetscErrorCode MPGPCoreRefreshGradient(MPGPCore *c, Vec x, PetscReal alpha, SeparableSplit *s, PetscInt *count)
 {
   PetscFunctionBegin;
   PetscCall(MPGPCoreGradient(c, x));
@@ -210,7 +210,7 @@ static PetscErrorCode MPGPCoreRefreshGradient(MPGPCore *c, Vec x, PetscReal alph
   PetscCall(MPGPCoreRestartDirection(c));
   c->f      = 0.5 * (s->xg - s->xb);
   c->gpnorm = PetscSqrtReal(s->gp2);
-  c->arc_refreshed++;
+  (*count)++; /* arc_refreshed, or verified: a stop confirmed */
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -346,9 +346,7 @@ PetscErrorCode MPGPCoreConfirmGradient(MPGPCore *c, Vec x, PetscReal *gpnorm)
   PetscFunctionBegin;
   if (c->recurred > 0 || c->updated) {
     SeparableSplit s;
-    PetscCall(MPGPCoreRefreshGradient(c, x, c->alpha_scale / c->normA, &s));
-    c->arc_refreshed--; /* counted as a confirmation, not for arcs */
-    c->verified++;
+    PetscCall(MPGPCoreRefreshGradient(c, x, c->alpha_scale / c->normA, &s, &c->verified));
   }
   *gpnorm = c->gpnorm;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -358,10 +356,9 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
 {
   SeparableSplit s;
   PetscReal      alpha;
-  PetscInt       it            = 0;
-  PetscBool      stop          = PETSC_FALSE;
-  PetscReal      verify_best   = PETSC_INFINITY; /* verify: the smallest exact |gP| of the refused stops */
-  PetscInt       verify_stalls = 0;              /* and the refusals in a row that did not halve it */
+  PetscInt       it   = 0;
+  PetscBool      stop = PETSC_FALSE;
+  QPRefusedStops refused; /* verify: the stops the exact gradient refused */
 
   PetscFunctionBegin;
   PetscCheck(c->normA > 0 && !PetscIsInfOrNanReal(c->normA), PetscObjectComm((PetscObject)x), PETSC_ERR_ARG_OUTOFRANGE, "MPGP: the norm estimate of A must be positive and finite, got %g",
@@ -496,7 +493,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
           c->lag  = 0; /* a CG run: the face holds, no lagged expansion until the next expansion */
           c->counters->cg_steps++;
         } else if (rejected) { /* Kucera's projected gradient step, from the exact gradient */
-          if (c->updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+          if (c->updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s, &c->arc_refreshed));
           PetscCall(MPGPCoreProjectedGradientStep(c, x, alpha, &s));
           step  = alpha;
           exact = PETSC_TRUE;
@@ -627,7 +624,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
       if (!(dq <= qnoise)) {
         PetscCall(PetscInfo(NULL, "MPGP: a step from an updated gradient or along arcs may have raised q (bound %g): a projected gradient step instead\n", (double)dq));
         PetscCall(VecAXPY(x, -1.0, c->xsave));
-        if (updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+        if (updated) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s, &c->arc_refreshed));
         else {
           PetscCall(VecCopy(c->gsave, c->g));
           PetscCall(MPGPCoreSplit(c, x, alpha, NULL, &s));
@@ -663,8 +660,7 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
       c->provisional = PETSC_FALSE;
       if (may_stop) {
         verifying = (PetscBool)!c->updated;
-        PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
-        if (verifying) c->arc_refreshed--, c->verified++; /* counted as a verification, not for arcs */
+        PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s, verifying ? &c->verified : &c->arc_refreshed));
       }
     }
     PetscCall(c->report(c->report_ctx, it, c->f, c->gpnorm, step, &stop));
@@ -672,18 +668,15 @@ PetscErrorCode MPGPCoreSolve(MPGPCore *c, Vec x)
       /* the recurred gradient met the test, the exact one did not: go on from the exact one (a restarted direction).
          Where rounding sets a floor (A ill conditioned), the exact |gP| stops falling: after three refusals without
          halving it, say so rather than run to the iteration limit */
-      if (!(c->gpnorm < 0.5 * verify_best)) verify_stalls++;
-      else verify_stalls = 0;
-      verify_best = PetscMin(verify_best, c->gpnorm);
       c->verify_failed++;
-      if (verify_stalls >= 3) {
+      if (refused.AtFloor(c->gpnorm)) {
         c->status = MPGPStatus::ACCURACY_FLOOR;
         break;
       }
     }
   }
   /* a stop other than the convergence test (a flat direction, a rise of q) may leave an updated gradient */
-  if (c->updated && c->status != MPGPStatus::NOT_A_NUMBER) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s));
+  if (c->updated && c->status != MPGPStatus::NOT_A_NUMBER) PetscCall(MPGPCoreRefreshGradient(c, x, alpha, &s, &c->arc_refreshed));
   c->its = it;
   PetscCall(PetscLogEventEnd(QP_Solve, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

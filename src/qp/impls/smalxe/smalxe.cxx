@@ -1105,11 +1105,10 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
   s->feas_history.clear();
   s->mult_history.clear();
   s->gp_history.clear();
-  s->stagnated             = PETSC_FALSE;
-  s->stalled               = PETSC_FALSE;
-  PetscReal refused_best   = PETSC_INFINITY; /* exact stop: the smallest exact |gP| of the refused stops */
-  PetscInt  refused_stalls = 0;              /* and the refusals in a row that did not halve it */
-  s->accuracy_floor        = PETSC_FALSE;
+  s->stagnated = PETSC_FALSE;
+  s->stalled   = PETSC_FALSE;
+  QPRefusedStops refused; /* exact stop: the stops the inner solver's exact gradient refused */
+  s->accuracy_floor = PETSC_FALSE;
   for (PetscInt k = 0;; k++) {
     PetscReal gp, e, L;
     PetscReal xg, xb, md;
@@ -1174,16 +1173,13 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
         s->gp_history.back() = exact;
         tao->residual        = exact;
         tao->reason          = TAO_CONTINUE_ITERATING;
-        /* where rounding sets a floor the exact |gP| stops falling: after three refusals in a row that do not halve
-           it, say so (as mpgp does) rather than run to the iteration limit */
-        refused_stalls = exact < 0.5 * refused_best ? 0 : refused_stalls + 1;
-        refused_best   = PetscMin(refused_best, exact);
-        if (refused_stalls >= 3) {
+        /* where rounding sets a floor, say so (as mpgp does) rather than run to the iteration limit */
+        if (refused.AtFloor(exact)) {
           s->accuracy_floor = PETSC_TRUE;
           PetscCall(PetscInfo(tao, "TAO smalxe: the exact |gP| stays at %g above the tolerance %g: rounding limits the accuracy (an ill-conditioned Hessian)\n", (double)exact, (double)tol_g));
           PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
         }
-      } else if (confirmed) refused_stalls = 0;
+      } else if (confirmed) refused.Accepted();
     }
     if (tao->reason != TAO_CONTINUE_ITERATING) break;
     /* semi-monotonicity: if L did not grow enough, tighten the inner precision (M) or raise rho.
