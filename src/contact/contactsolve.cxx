@@ -38,7 +38,16 @@ PetscErrorCode FrictionSet(ContactProblem cp, SeparableSet *set)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* radii of the disks for the multipliers l: Tresca bounds, Coulomb F l_n */
+/* The largest disk radius: a slip bound beyond it acts as an infinite one (the pair sticks). The solvers square
+   radii (the disks' feasible steps, the radii's norms), so bounds near the largest real ended DIVERGED_NAN
+   (F = 1e200, or a Tresca bound of 1e300); held below 1e150 they solve as the sticking friction they are. Forces
+   as large as the cap overflow the solve's own norms anyway (a load of 1e150 converges, 1e200 does not) */
+constexpr PetscReal CONTACT_RADIUS_MAX = 1e150;
+
+/* the disk radius of contact node j under the normal multiplier l_n: its Tresca bound, or F l_n */
+PetscReal DiskRadius(const ContactProblemData *d, PetscInt j, PetscReal ln) { return PetscMin(d->law[j] == CONTACT_COULOMB ? d->coef[j] * PetscMax(ln, 0.0) : d->coef[j], CONTACT_RADIUS_MAX); }
+
+/* radii of the disks for the multipliers l */
 PetscErrorCode TargetRadii(ContactProblem cp, Vec lambda, std::vector<PetscReal> &r)
 {
   ContactProblemData *d = Data(cp);
@@ -49,7 +58,7 @@ PetscErrorCode TargetRadii(ContactProblem cp, Vec lambda, std::vector<PetscReal>
   PetscCall(VecGetArrayRead(lambda, &l));
   for (size_t k = 0; k < d->disk_node.size(); k++) {
     const PetscInt j = d->disk_node[k];
-    r[k]             = d->law[j] == CONTACT_COULOMB ? d->coef[j] * PetscMax(PetscRealPart(l[d->normal[j] - d->rstart]), 0.0) : d->coef[j];
+    r[k]             = DiskRadius(d, j, PetscRealPart(l[d->normal[j] - d->rstart]));
   }
   PetscCall(VecRestoreArrayRead(lambda, &l));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -252,8 +261,7 @@ PetscErrorCode BuildSet(ContactProblem cp)
     PetscCallCXX(d->disk_node.push_back((PetscInt)j));
   }
   PetscCallCXX(d->radius.assign(d->disk_node.size(), 0.0));
-  for (size_t k = 0; k < d->disk_node.size(); k++)
-    if (d->law[d->disk_node[k]] == CONTACT_TRESCA) d->radius[k] = d->coef[d->disk_node[k]];
+  for (size_t k = 0; k < d->disk_node.size(); k++) d->radius[k] = DiskRadius(d, d->disk_node[k], 0.0); /* Coulomb's F l_n come with the first multipliers */
   if (d->polygon) PetscCall(SetPolygonBounds(cp, d->set));
   else PetscCall(SeparableSetAddDisks(d->set, (PetscInt)d->radius.size(), idx.data(), NULL, d->radius.data()));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -596,10 +604,9 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
   } else if (reason == TAO_DIVERGED_MAXITS)
     PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
   else if (reason == TAO_DIVERGED_NAN)
-    PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
-                            "not converged: a quantity of the solve is not a finite number (DIVERGED_NAN) after %" PetscInt_FMT
-                            " outer iterations: an overflow from loads, gaps or friction coefficients near the largest real?",
-                            its));
+    PetscCall(PetscSNPrintf(
+        d->stats.reason, sizeof(d->stats.reason),
+        "not converged: a quantity of the solve is not a finite number (DIVERGED_NAN) after %" PetscInt_FMT " outer iterations: an overflow from loads or gaps near the largest real?", its));
   else PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %s", TaoConvergedReasons[reason]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
