@@ -208,6 +208,8 @@ PetscErrorCode ContactProblemSetProjector(ContactProblem cp, Mat Q, Vec lt)
   Notes:
   The three multipliers of a node must be owned by this rank (a block never straddles ranks).
   Frictionless nodes have no tangential multipliers at all: a frictionless scene creates none.
+  The solvers hold a slip bound (g_k, or F_k l_n) below 1e150, where it acts as an infinite one: they square the
+  bounds, and a bound near the largest real would overflow to NaN instead of sticking.
 
   Level: beginner
 
