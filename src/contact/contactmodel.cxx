@@ -1004,7 +1004,6 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
   PetscBool         noload = PETSC_FALSE, refine0;
   PetscReal         rtol0, tol;
   SolverTolerances  first;
-  const PetscReal   kTightest = 1e-13, kLast = 1e-15; /* the tightest tolerance of the tighter solves, and of a last one */
   PetscInt          nsingle;
   ContactStatistics one = {};
   ContactResiduals  r;
@@ -1075,7 +1074,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
                                 round > 1 ? "s" : "", (double)tol));
       break;
     }
-    if (round >= d->refine_max || tol < kTightest || stopped) {
+    if (round >= d->refine_max || tol < CONTACT_REFINE_TIGHTEST || stopped) {
       char what[200];
       d->stats.converged = PETSC_FALSE;
       if (kkt_failed) { /* the check the user asked for failed: it is the verdict, with the mechanics' worst beside it */
@@ -1109,10 +1108,10 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
         d->stats.products_other += 2;
         worst = PetscMax(worst, PetscMax(natural, equality));
       }
-      /* not below kTightest, but for one last solve when a solve at kTightest missed: the solver's tolerance is relative
-         to |P(h - F l~)|, which holds every gap of the scene, and a gap far larger than the displacements (an obstacle
-         a thousand times the body's size away) can leave kTightest of it above what the displacements need */
-      tol = PetscMax(tol * PetscMin(PetscMax(0.3 * d->stats.acceptance / PetscMax(worst, d->stats.acceptance), 1e-4), 0.1), tol > kTightest ? kTightest : kLast);
+      /* not below 1e-13, but for one last solve when a solve at 1e-13 missed: the solver's tolerance is relative to
+         |P(h - F l~)|, which holds every gap of the scene, and a gap far larger than the displacements (an obstacle a
+         thousand times the body's size away) can leave 1e-13 of it above what the displacements need (contactimpl.h) */
+      tol = ContactTighterTolerance_Private(tol, d->stats.acceptance, worst);
     }
     PetscCall(SetSolverTolerance(cm, tol, first));
   }

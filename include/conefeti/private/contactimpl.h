@@ -13,6 +13,19 @@ struct _ContactProblemOps {
 
 /* the contact solve's default relative tolerance (-contact_rtol) */
 #define CONTACT_DEFAULT_RTOL 1e-6
+/* The tighter solves after a solve whose own test passed but whose answer did not (ContactModelSolve(): the mechanical
+   residuals; ContactProblemSolve() alone: the KKT residual). The next relative tolerance scales the last one by the
+   excess of the worst residual over the acceptance, by a factor between 1e-4 and 0.1, and not below
+   CONTACT_REFINE_TIGHTEST, but for one last solve, at most to CONTACT_REFINE_LAST, after a solve at the floor missed:
+   the solver's tolerance is relative to |P(h - F l~)|, which holds every gap, and a gap far larger than what the
+   forces need (a node 1e9 from contact) leaves the floor above it */
+#define CONTACT_REFINE_TIGHTEST 1e-13
+#define CONTACT_REFINE_LAST     1e-15
+static inline PetscReal ContactTighterTolerance_Private(PetscReal tol, PetscReal acceptance, PetscReal worst)
+{
+  return PetscMax(tol * PetscMin(PetscMax(0.3 * acceptance / PetscMax(worst, acceptance), 1e-4), 0.1), tol > CONTACT_REFINE_TIGHTEST ? CONTACT_REFINE_TIGHTEST : CONTACT_REFINE_LAST);
+}
+
 /* the smallest -contact_rtol at which a ContactModel stores the subdomains' factors in float (they perturb F by
    about 1e-7 relative, the floor of the mechanical residuals they reach) */
 #define CONTACT_SINGLE_PRECISION_MIN_RTOL 1e-6
