@@ -780,7 +780,8 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
     PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_CONTACT_PROBLEM, 0));
     PetscCall(BuildContactProblem(cm));
     PetscCall(ContactProblemSetProgress(d->cp, d->progress.fn, d->progress.ctx));
-    d->cp->data->kkt_check = PETSC_FALSE; /* the model judges by the mechanical residuals of u and lambda (ContactModelSolve()) */
+    d->cp->data->kkt_check      = PETSC_FALSE; /* the model judges by the mechanical residuals of u and lambda (ContactModelSolve()) */
+    d->cp->data->refine_outside = PETSC_TRUE;  /* and runs the tighter solves itself, also for the KKT check when it is turned on */
     {
       /* contact solves need hundreds of F products whose count grows with the contact zone: FETI's Dirichlet
          preconditioner in face halves them at 10^6 unknowns and flattens their growth, for about one
@@ -987,7 +988,8 @@ void Accumulate(ContactStatistics &total, const ContactStatistics &one)
   converged, and `ContactModelGetStatistics()` says which check failed, where, and by how much.
   With -contact_kkt_check turned on (off in a model by default), the KKT residual recomputed from the multipliers
   must be within the same acceptance too: its failure also gets the tighter solves, and is the verdict (failed_check
-  "dual_kkt" or "dual_equality") when it persists.
+  "dual_kkt" or "dual_equality") when it persists. These are the model's tighter solves: the ones `ContactProblemSolve()`
+  runs for a problem used alone are off inside a model.
   A scene without load (no force, no prescribed displacement, no initial penetration) has the exact solution
   u = 0, l = 0, returned without a solve.
 

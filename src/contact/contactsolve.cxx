@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <string>
 
 PetscLogEvent CONTACT_Solve;
 
@@ -370,13 +371,13 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_fixed_point_rtol <rtol>      - monolithic: radii must agree with F l_n to this relative tolerance
 . -contact_kkt_check <true>             - recompute the KKT residual before saying converged (a `ContactModel` turns it off: it judges by the mechanics)
 . -contact_acceptance_factor <10>       - converged only when the KKT residual recomputed from the multipliers (`ContactProblemComputeKKTResidual()`) is at most this times -contact_rtol
-. -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
-. -contact_start_rtol <0.1>            - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`)
-. -contact_start_max_it <100>           - most CG steps of that start
-. -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum |l_n| presses
-. -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; a `ContactModel` takes dirichlet when at most half its subdomains use dense K+ blocks in F;
-                                          with one, the inner solvers default to the projected CG expansion; see `ContactProblemGetPC()`)
-. -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
+. -contact_refine_max <3>              - when the solver's own test passes but the KKT check does not, solve again warm at a tighter tolerance, at most this many times (0: never; see
+`ContactProblemSolve()`) . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still
+slip) . -contact_start_rtol <0.1>            - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`) .
+-contact_start_max_it <100>           - most CG steps of that start . -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum
+|l_n| presses . -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; a `ContactModel` takes dirichlet when at most half its subdomains use dense K+
+blocks in F; with one, the inner solvers default to the projected CG expansion; see `ContactProblemGetPC()`) . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0:
+Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
 
   Notes:
@@ -417,6 +418,9 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
                              "ContactProblemComputeKKTResidual", d->kkt_check, &d->kkt_check, NULL));
   PetscCall(PetscOptionsReal("-contact_acceptance_factor", "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol",
                              "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, NULL));
+  /* the model reads it too (for its mechanical residuals): the same text, so that -help lists one meaning */
+  PetscCall(PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual (or, with -contact_kkt_check, the KKT residual) does not",
+                            "ContactProblemSolve", d->refine_max, &d->refine_max, NULL));
   PetscCall(PetscOptionsReal("-contact_fixed_point_rtol", "Monolithic: radii must agree with F l_n to this relative tolerance (-1: -contact_rtol)", "ContactProblemSolve", d->fixed_point_rtol,
                              &d->fixed_point_rtol, NULL));
   PetscCall(ContactProblemPCOptions_Private(cp, PetscOptionsObject));    /* -contact_pc_contact_scale ... (contactpc.cxx) */
@@ -425,6 +429,7 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscCall(ContactProblemSetFromOptionsPC_Private(cp)); /* -contact_pc_type ... (contactpc.cxx) */
   PetscCheck(d->acceptance_factor >= 1 && d->acceptance_factor < PETSC_MAX_REAL, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
              "-%scontact_acceptance_factor must be finite and >= 1 (the residuals cannot be held below the solver's tolerance), got %g", prefix, (double)d->acceptance_factor);
+  PetscCheck(d->refine_max >= 0, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_refine_max must be >= 0, got %" PetscInt_FMT " (0: no tighter solves)", prefix, d->refine_max);
   PetscCheck(d->rtol > 0 && d->rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_rtol must be in (0, 1), got %g", prefix, (double)d->rtol);
   PetscCheck((d->msa_rtol > 0 && d->msa_rtol < 1) || d->msa_rtol == -1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE,
              "-%scontact_msa_rtol must be in (0, 1) (or -1: -%scontact_rtol), got %g", prefix, prefix, (double)d->msa_rtol);
@@ -611,15 +616,17 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* The solver's own test passed: converged only if the KKT residual, computed from scratch, agrees */
-static PetscErrorCode CheckKKT(ContactProblem cp, Vec lambda)
+/* The solver's own test passed: converged only if the KKT residual, computed from scratch, is within the acceptance.
+   worst: the larger of its two residuals (0 when it was not computed), which sets how much tighter a next solve aims */
+static PetscErrorCode CheckKKT(ContactProblem cp, Vec lambda, PetscReal acceptance, PetscReal *worst)
 {
   ContactProblemData *d = cp->data;
   PetscReal           natural, equality;
   char                why[256];
 
   PetscFunctionBegin;
-  d->stats.acceptance = d->acceptance_factor * d->rtol;
+  *worst              = 0;
+  d->stats.acceptance = acceptance;
   if (!d->stats.converged) {
     PetscCall(PetscStrncpy(d->stats.failed_check, "solver", sizeof(d->stats.failed_check)));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -627,6 +634,7 @@ static PetscErrorCode CheckKKT(ContactProblem cp, Vec lambda)
   if (!d->kkt_check) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(ContactProblemComputeKKTResidual(cp, lambda, &natural, &equality));
   d->stats.products_other += 2;
+  *worst = PetscMax(natural, equality);
   PetscCall(PetscInfo(cp, "KKT residual from scratch: natural %g, equality %g (acceptance %g)\n", (double)natural, (double)equality, (double)d->stats.acceptance));
   if (natural <= d->stats.acceptance && equality <= d->stats.acceptance) PetscFunctionReturn(PETSC_SUCCESS);
   d->stats.converged = PETSC_FALSE;
@@ -655,74 +663,19 @@ static PetscErrorCode ProgressMonitor(Tao tao, void *ctx)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/*@C
-  ContactProblemSolve - Solve the contact problem: the pipeline its content calls for.
-
-  Collective
-
-  Input Parameters:
-+ cp     - the problem
-- lambda - initial guess on input (projected onto the set), the multipliers on output
-
-  Notes:
-  The solve never ends with NaN: it stops with a stated reason (see `ContactProblemGetStatistics()`):
-  converged; not converged after the iteration limit; or no equilibrium, when the equality cannot be
-  met with admissible contact forces (e.g. a free body under a shear beyond the friction bound).
-  Counters: Iter (outer iterations), n_A^QPP (mprgp products), n_A^QPQ (mpgp products), and products
-  outside the inner solvers, each separately.
-
-  A cold solve (one that does not recycle the previous solve's multiplier, `TaoSetRecycleHistory()`) with
-  -contact_start_rtol r > 0 (default 0.1) first runs projected CG on the problem without the contact inequalities (every
-  contact node bonded, projector form only) to the relative residual r, at most -contact_start_max_it steps,
-  and starts from its multipliers: a contact pressure where the bodies press (docs/scale.md, "Lever: a bonded
-  start"). When less than -contact_start_compressive of its sum |l_n| is compressive (checked from its second
-  step on: curved bodies, whose bonded zone reaches far beyond the contact, are mostly in tension), the start is
-  abandoned and the given multipliers kept. Its products with F are counted in products_other.
-
-  Before it says converged, the solve recomputes the KKT residual from the multipliers
-  (`ContactProblemComputeKKTResidual()`, two products with F, counted in products_other): above
-  -contact_acceptance_factor times -contact_rtol the solve has not converged (failed_check "dual_kkt" or
-  "dual_equality"), whatever the solver's own test said. A `ContactModel` judges its solutions by the
-  mechanical residuals of u and lambda instead (`ContactModelSolve()`).
-
-  Level: beginner
-
-.seealso: `ContactProblemGetStatistics()`, `ContactProblemSetFromOptions()`
-@*/
-PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
+/* One run of the pipeline from lambda at the tolerances set: d->stats holds its counts and how it ended */
+static PetscErrorCode SolveOnce(ContactProblem cp, Vec lambda)
 {
-  ContactProblemData *d;
+  ContactProblemData *d = cp->data;
   TaoConvergedReason  reason;
-  PetscInt            its = 0, outer = 0, al = 0, start_products = 0;
-  PetscBool           warm;
+  PetscInt            its = 0, outer = 0, al = 0;
 
   PetscFunctionBegin;
-  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
-  PetscCheck(lambda, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_NULL, "ContactProblemSolve: lambda is NULL (give the initial multipliers, e.g. a zero vector from MatCreateVecs(F))");
-  PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
-  {
-    /* a NaN start came back as 4.5e307 or NaN with a reason that blamed the data near the largest real */
-    PetscReal lmax;
-    PetscCall(VecNorm(lambda, NORM_INFINITY, &lmax));
-    PetscCheck(!PetscIsInfOrNanReal(lmax), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemSolve: the initial multipliers lambda have an entry that is not a finite number");
-  }
-  PetscCall(ContactProblemSetUp(cp));
-  d = cp->data;
-  PetscCall(PetscLogEventBegin(CONTACT_Solve, cp, 0, 0, 0));
-  /* a warm solve (the previous solve's multiplier recycled) starts where it is; a cold one may first solve the
-     bonded problem loosely (-contact_start_rtol, contactstart.cxx) */
-  PetscCall(TaoGetRecycleHistory(d->tao, &warm));
-  if (!warm) PetscCall(ContactProblemStart_Private(cp, lambda, &start_products));
   PetscCall(TaoSetSolution(d->tao, lambda));
   PetscCall(TaoQPResetCounters(d->tao));
   d->stats             = ContactStatistics{};
   d->stats.fixed_point = 0;
-  if (d->progress.fn && !d->progressmonitor) {
-    PetscCall(TaoMonitorSet(d->tao, ProgressMonitor, cp, NULL));
-    d->progressmonitor = PETSC_TRUE;
-  }
-  PetscCall(ConeFETIProgressEnter_Private(d->progress, CONEFETI_PHASE_SOLVE));
-  d->progressstep = 0;
+  d->progressstep      = 0;
 
   if (d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MSA) {
     PetscReal       change = 1, largest = 1;
@@ -787,8 +740,197 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
     }
     PetscCall(DescribeReason(cp, reason, its + 1));
   }
-  d->stats.products_other += start_products;
-  PetscCall(CheckKKT(cp, lambda));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The tolerances the user gave: the tighter solves scale them, and the solve ends with them exactly */
+struct UserTolerances {
+  PetscReal rtol = 0, msa_rtol = 0, fixed_point_rtol = 0, gatol = 0, grtol = 0, gttol = 0;
+};
+
+/* A tighter solve's tolerances, as a ContactModel sets them (ContactModelSolve()): the solver's test at rtol, and the
+   fixed-point tolerances the user gave scaled with it (those not given follow rtol). The acceptance is not scaled: it
+   stays the user's, -contact_acceptance_factor times the first -contact_rtol (a tighter solve aims lower, it does not
+   lower what is accepted) */
+static PetscErrorCode SetTighterTolerances(ContactProblem cp, PetscReal rtol, const UserTolerances &t)
+{
+  ContactProblemData *d = cp->data;
+
+  PetscFunctionBegin;
+  d->rtol             = rtol;
+  d->msa_rtol         = t.msa_rtol > 0 ? PetscMin(t.msa_rtol * rtol / t.rtol, 0.5) : t.msa_rtol;
+  d->fixed_point_rtol = t.fixed_point_rtol > 0 ? PetscMin(t.fixed_point_rtol * rtol / t.rtol, 0.5) : t.fixed_point_rtol;
+  PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, rtol));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode RestoreTolerances(ContactProblem cp, const UserTolerances &t)
+{
+  ContactProblemData *d = cp->data;
+
+  PetscFunctionBegin;
+  d->rtol             = t.rtol;
+  d->msa_rtol         = t.msa_rtol;
+  d->fixed_point_rtol = t.fixed_point_rtol;
+  PetscCall(TaoSetTolerances(d->tao, t.gatol, t.grtol, t.gttol));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* st.reason = head + st.reason + tail, the middle shortened so that neither end is cut */
+static PetscErrorCode WrapReason(ContactStatistics &st, const char *head, const char *tail)
+{
+  std::string why;
+
+  PetscFunctionBegin;
+  PetscCallCXX(why = head + std::string(st.reason).substr(0, sizeof(st.reason) - 1 - std::min(sizeof(st.reason) - 1, std::strlen(head) + std::strlen(tail))) + tail);
+  PetscCall(PetscStrncpy(st.reason, why.c_str(), sizeof(st.reason)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* the counts of one more solve added to those of the solves before it */
+static void Accumulate(ContactStatistics &total, const ContactStatistics &one)
+{
+  total.outer_iterations += one.outer_iterations;
+  total.al_iterations += one.al_iterations;
+  total.products_qpp += one.products_qpp;
+  total.products_qpq += one.products_qpq;
+  total.products_other += one.products_other;
+  total.products_estimate += one.products_estimate;
+}
+
+/*@C
+  ContactProblemSolve - Solve the contact problem: the pipeline its content calls for.
+
+  Collective
+
+  Input Parameters:
++ cp     - the problem
+- lambda - initial guess on input (projected onto the set), the multipliers on output
+
+  Options Database Keys:
++ -contact_kkt_check <true>       - recompute the KKT residual from the multipliers before saying converged (off in a `ContactModel`)
+. -contact_acceptance_factor <10> - the KKT residual must be at most this times -contact_rtol
+- -contact_refine_max <3>         - when the solver's own test passes but the KKT residual does not, solve again warm at a tighter
+                                    tolerance, at most this many times (0: the first verdict stands)
+
+  Notes:
+  The solve never ends with NaN: it stops with a stated reason (see `ContactProblemGetStatistics()`):
+  converged; not converged after the iteration limit; or no equilibrium, when the equality cannot be
+  met with admissible contact forces (e.g. a free body under a shear beyond the friction bound).
+  Counters: Iter (outer iterations), n_A^QPP (mprgp products), n_A^QPQ (mpgp products), and products
+  outside the inner solvers, each separately.
+
+  A cold solve (one that does not recycle the previous solve's multiplier, `TaoSetRecycleHistory()`) with
+  -contact_start_rtol r > 0 (default 0.1) first runs projected CG on the problem without the contact inequalities (every
+  contact node bonded, projector form only) to the relative residual r, at most -contact_start_max_it steps,
+  and starts from its multipliers: a contact pressure where the bodies press (docs/scale.md, "Lever: a bonded
+  start"). When less than -contact_start_compressive of its sum |l_n| is compressive (checked from its second
+  step on: curved bodies, whose bonded zone reaches far beyond the contact, are mostly in tension), the start is
+  abandoned and the given multipliers kept. Its products with F are counted in products_other.
+
+  Before it says converged, the solve recomputes the KKT residual from the multipliers
+  (`ContactProblemComputeKKTResidual()`, two products with F, counted in products_other): above
+  -contact_acceptance_factor times -contact_rtol the solve has not converged (failed_check "dual_kkt" or
+  "dual_equality"), whatever the solver's own test said. That test is relative to |P(h - F l~)|, which holds
+  every gap: a gap far larger than the forces need (a separated node 1e9 from contact) leaves it passed by
+  multipliers far from the solution. So when the solver's test passes and the KKT check does not, the solve
+  continues warm (from lambda and from the equality's multiplier, `TaoSetRecycleHistory()`) at a tighter relative
+  tolerance, as `ContactModelSolve()` does: the last one times 0.3 acceptance / residual, by a factor between 10 and
+  10^4, not below 1e-13 (after a solve at 1e-13 missed, one last solve goes below it, at most to 1e-15), at most
+  -contact_refine_max times. The statistics add up the solves (iterations, products) and `ContactStatistics`
+  refinements says how many tighter solves ran; the reason says down to which tolerance. The acceptance stays
+  the one of the first tolerances, and the tolerances (-contact_rtol, the solver's, and -contact_msa_rtol and
+  -contact_fixed_point_rtol, which a tighter solve scales when they are given) are the user's again at the end.
+  If the KKT residual is still above the acceptance after them, the solve has not converged (failed_check
+  "dual_kkt" or "dual_equality"); if a tighter solve's own test fails (its iteration limit, a stall), the
+  solver's reason is the verdict.
+
+  A `ContactModel` judges its solutions by the mechanical residuals of u and lambda instead, and runs the
+  tighter solves itself (`ContactModelSolve()`): inside a model this solve is one solve.
+
+  Level: beginner
+
+.seealso: `ContactProblemGetStatistics()`, `ContactProblemSetFromOptions()`, `ContactProblemComputeKKTResidual()`
+@*/
+PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
+{
+  ContactProblemData *d;
+  PetscInt            start_products = 0, round, refine_max;
+  PetscBool           warm;
+  PetscReal           acceptance, worst = 0, tol;
+  UserTolerances      first;
+  ContactStatistics   total = {};
+
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
+  PetscCheck(lambda, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_NULL, "ContactProblemSolve: lambda is NULL (give the initial multipliers, e.g. a zero vector from MatCreateVecs(F))");
+  PetscValidHeaderSpecific(lambda, VEC_CLASSID, 2);
+  {
+    /* a NaN start came back as 4.5e307 or NaN with a reason that blamed the data near the largest real */
+    PetscReal lmax;
+    PetscCall(VecNorm(lambda, NORM_INFINITY, &lmax));
+    PetscCheck(!PetscIsInfOrNanReal(lmax), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "ContactProblemSolve: the initial multipliers lambda have an entry that is not a finite number");
+  }
+  PetscCall(ContactProblemSetUp(cp));
+  d = cp->data;
+  PetscCall(PetscLogEventBegin(CONTACT_Solve, cp, 0, 0, 0));
+  /* a warm solve (the previous solve's multiplier recycled) starts where it is; a cold one may first solve the
+     bonded problem loosely (-contact_start_rtol, contactstart.cxx) */
+  PetscCall(TaoGetRecycleHistory(d->tao, &warm));
+  if (!warm) PetscCall(ContactProblemStart_Private(cp, lambda, &start_products));
+  if (d->progress.fn && !d->progressmonitor) {
+    PetscCall(TaoMonitorSet(d->tao, ProgressMonitor, cp, NULL));
+    d->progressmonitor = PETSC_TRUE;
+  }
+  PetscCall(ConeFETIProgressEnter_Private(d->progress, CONEFETI_PHASE_SOLVE));
+
+  /* every solve is judged against the first tolerances' acceptance (inside a model: the model's, whose factor it
+     scales as it tightens -contact_rtol) */
+  acceptance             = d->acceptance_factor * d->rtol;
+  first.rtol             = d->rtol;
+  first.msa_rtol         = d->msa_rtol;
+  first.fixed_point_rtol = d->fixed_point_rtol;
+  PetscCall(TaoGetTolerances(d->tao, &first.gatol, &first.grtol, &first.gttol));
+  tol = first.rtol;
+  /* only a failed KKT check gets tighter solves here: without the check nothing judges the answer but the solver's
+     test, and a ContactModel runs them itself (refine_outside) */
+  refine_max = d->kkt_check && !d->refine_outside ? d->refine_max : 0;
+  for (round = 0;; round++) {
+    PetscCall(SolveOnce(cp, lambda));
+    if (round == 0) d->stats.products_other += start_products;
+    PetscCall(CheckKKT(cp, lambda, acceptance, &worst));
+    Accumulate(total, d->stats);
+    /* converged; or the solver's own test failed, which is the verdict (a tighter one's too: it did not reach the
+       tolerance asked, and its answer is the solver's last iterate) */
+    if (d->stats.converged || !std::strcmp(d->stats.failed_check, "solver")) break;
+    if (round >= refine_max || tol < CONTACT_REFINE_TIGHTEST) break;
+    /* warm: from lambda and, for the equality, from the multiplier the solve ended with */
+    if (round == 0) PetscCall(TaoSetRecycleHistory(d->tao, PETSC_TRUE));
+    const PetscReal next = ContactTighterTolerance_Private(tol, acceptance, worst);
+    PetscCall(PetscInfo(cp, "solve %" PetscInt_FMT " at relative tolerance %g: the KKT residual %g is above the acceptance %g; solving again warm at %g\n", round, (double)tol, (double)worst,
+                        (double)acceptance, (double)next));
+    tol = next;
+    PetscCall(SetTighterTolerances(cp, tol, first));
+  }
+  if (round > 0) {
+    char head[160] = "", tail[160] = "";
+    PetscCall(TaoSetRecycleHistory(d->tao, warm));
+    PetscCall(RestoreTolerances(cp, first));
+    d->stats.outer_iterations  = total.outer_iterations;
+    d->stats.al_iterations     = total.al_iterations;
+    d->stats.products_qpp      = total.products_qpp;
+    d->stats.products_qpq      = total.products_qpq;
+    d->stats.products_other    = total.products_other;
+    d->stats.products_estimate = total.products_estimate;
+    d->stats.refinements       = round;
+    if (d->stats.converged)
+      PetscCall(PetscSNPrintf(tail, sizeof(tail), ", after %" PetscInt_FMT " tighter solve%s (down to relative tolerance %.0e) that brought the KKT residual within the acceptance", round,
+                              round > 1 ? "s" : "", (double)tol));
+    else if (!std::strcmp(d->stats.failed_check, "solver")) {
+      PetscCall(PetscSNPrintf(head, sizeof(head), "tighter solve %" PetscInt_FMT " (relative tolerance %.0e, the KKT residual above the acceptance before it): ", round, (double)tol));
+    } else PetscCall(PetscSNPrintf(tail, sizeof(tail), ", after %" PetscInt_FMT " solves down to relative tolerance %.0e", round + 1, (double)tol));
+    PetscCall(WrapReason(d->stats, head, tail));
+  }
   PetscCall(PetscLogEventEnd(CONTACT_Solve, cp, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)cp, NULL, "-contact_view"));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -78,9 +78,13 @@ struct ContactProblemData {
   PetscReal pc_contact_scale       = 30;         /* -contact_pc_contact_scale: the contact rows get c/||F|| in the preconditioner (contactpc.cxx) */
   PetscBool pc_contact_rows_scaled = PETSC_TRUE; /* -contact_pc_contact_rows_scaled */
   PetscBool kkt_check              = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
-  PetscReal start_rtol             = 0.1;        /* -contact_start_rtol: a cold solve starts with CG on the bonded problem to this (0: off; contactstart.cxx) */
-  PetscInt  start_max_it           = 100;        /* -contact_start_max_it */
-  PetscReal start_compressive      = 0.6;        /* -contact_start_compressive: the start is kept only if this share of its sum |l_n| presses */
+  PetscInt  refine_max             = 3;          /* -contact_refine_max: tighter warm solves when the KKT check fails after the solver's test passed */
+  /* a ContactModel runs the tighter solves itself (ContactModelSolve(), judged by the mechanics and, if asked, this
+     KKT check): the problem's own ones would nest inside the model's, each of its solves up to refine_max + 1 */
+  PetscBool refine_outside    = PETSC_FALSE;
+  PetscReal start_rtol        = 0.1; /* -contact_start_rtol: a cold solve starts with CG on the bonded problem to this (0: off; contactstart.cxx) */
+  PetscInt  start_max_it      = 100; /* -contact_start_max_it */
+  PetscReal start_compressive = 0.6; /* -contact_start_compressive: the start is kept only if this share of its sum |l_n| presses */
 
   /* -contact_pc_inner_projector: FETI's M as P M P (smalxe projects around it anyway; contactpc.cxx) */
   PetscBool pc_inner_projector = PETSC_FALSE;
