@@ -89,6 +89,28 @@ $ PetscErrorCode field(const PetscReal x[3], PetscReal value[3], void *ctx)
 S*/
 typedef PetscErrorCode (*FEMVectorField)(const PetscReal x[3], PetscReal value[3], void *ctx);
 
+/*S
+  FEMHoldingRow - A constraint row beyond the Dirichlet conditions that can hold rigid motions of the bodies
+  (`FEMComputeFreeRigidMotions()`), such as a contact row: the displacement component along dir at node `node` of
+  body `body`, minus the one at the point sum_v other_weight[v] X(other_node[v]) of body `other_body`.
+
+$ body, node       - the row's node (body node numbering)
+$ other_body       - the body on the other side, or -1 for a rigid foundation (then nother is 0)
+$ nother           - the number of nodes of the other body that carry the point (1 to 3: a node, an edge, a triangle)
+$ other_node       - those nodes
+$ other_weight     - their weights (barycentric)
+$ dir              - the direction of the row (a component of a row that a Dirichlet condition removes is 0)
+
+  Level: intermediate
+
+.seealso: `FEMComputeFreeRigidMotions()`, `FEMCreateFETIWithRows()`
+S*/
+typedef struct {
+  PetscInt  body, node, other_body, nother, other_node[3];
+  PetscReal other_weight[3];
+  PetscReal dir[3];
+} FEMHoldingRow;
+
 PETSC_EXTERN PetscClassId  FEM_CLASSID;
 PETSC_EXTERN PetscLogEvent FEM_SetUp, FEM_Assembly, FEM_Decompose;
 
@@ -132,6 +154,8 @@ PETSC_EXTERN PetscErrorCode FEMCreateFETIWithRows(FEM, PetscInt, const FETIRowKi
                                                   PetscInt[], FETI *);
 PETSC_EXTERN PetscErrorCode FEMAssembleGlobal(FEM, Mat *, Vec *);
 PETSC_EXTERN PetscErrorCode FEMComputeLoadResultant(FEM, PetscInt, const PetscReal[3], PetscReal[3], PetscReal[3], PetscReal *);
+PETSC_EXTERN PetscErrorCode FEMComputeRigidMotionFrame(FEM, PetscInt, PetscReal[3], PetscReal *);
+PETSC_EXTERN PetscErrorCode FEMComputeFreeRigidMotions(FEM, PetscInt, const FEMHoldingRow[], PetscInt *, PetscReal *[]);
 PETSC_EXTERN PetscErrorCode FEMCreateGlobalCoordinates(FEM, Vec *);
 PETSC_EXTERN PetscErrorCode FEMPrimalToGlobal(FEM, Vec, Vec);
 PETSC_EXTERN PetscErrorCode FEMGlobalToPrimal(FEM, Vec, Vec);
