@@ -743,14 +743,14 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   /* a rigid motion nothing resists would make the coarse matrix G G' singular (or nearly: garbage reported
      as converged); named here, before any factorization (contactrigidmotions.cxx) */
   {
-    std::vector<ContactHoldingRow> holding;
+    std::vector<FEMHoldingRow> holding;
     for (const ContactNodeInfo &k : d->nodes) {
       const auto dirs  = RowDirections(*d, k);
       const int  nrows = !(k.coef > 0) ? 1 : (int)dirs.size(); /* tangential rows with a zero bound carry no force */
       for (int r = 0; r < nrows; r++) {
         PetscReal dir[3];
         for (int c = 0; c < 3; c++) dir[c] = (k.fixed & (1u << c)) ? 0 : dirs[r][c]; /* the row as appended */
-        ContactHoldingRow h{k.zone, k.body, k.node, k.other_body, k.nmaster, {k.master[0], k.master[1], k.master[2]}, {k.weight[0], k.weight[1], k.weight[2]}, {dir[0], dir[1], dir[2]}};
+        FEMHoldingRow h{k.body, k.node, k.other_body, k.nmaster, {k.master[0], k.master[1], k.master[2]}, {k.weight[0], k.weight[1], k.weight[2]}, {dir[0], dir[1], dir[2]}};
         PetscCallCXX(holding.push_back(h));
       }
     }

@@ -1,4 +1,4 @@
-/* The rigid motions of the bodies that nothing resists, found at ContactModelSetUp() before FETI is set
+/* The rigid motions of the bodies that nothing resists, checked at ContactModelSetUp() before FETI is set
    up, and the work of the load along them.
 
    A free rigid motion r (K r = 0 and B r = 0) leaves the problem without a unique solution, and without
@@ -7,31 +7,20 @@
    where roundoff lets the factorization through and the solve reports garbage as converged. So the
    motion is found here, named, and the run stops with the cause and the cure.
 
-   What can resist a rigid motion of the bodies: a gluing row takes the difference of two copies of a
-   node, which are equal on a rigid motion of the body, so gluing never does; a Dirichlet condition does
-   (a row of B in Total FETI, a dof removed from the primal space otherwise, where K r != 0); and so do
-   the contact rows (normal rows, and tangential rows that carry a force: friction coefficient or slip
-   bound > 0). So the check works on the 6 rigid motions per body (3 translations, 3 rotations about the
-   body's centroid, scaled by its radius L so that each moves no node by more than 1) and those rows
-   directly: the Gram matrix A = C'C of the rows C evaluated on the motions (36 flops per Dirichlet dof
-   and contact row, no communication beyond gathering the Dirichlet dofs), exact on gluing (no roundoff),
-   and the same whatever the decomposition and the number of ranks. Its null space, over all bodies at
-   once, holds the free motions, also those of several bodies together (two bodies in contact floating
-   together). Contact normal rows resist in one direction only: a body pulled off its support has a
-   resisted but unbalanced motion, which the solver diagnoses (no equilibrium, contactsolve.cxx). */
+   The motions themselves come from FEMComputeFreeRigidMotions() (src/fem/femrigidmotions.cxx: the Gram
+   matrix of the Dirichlet dofs and the rows that can hold the bodies, evaluated on each body's 6 rigid
+   motions), given the contact rows that can resist one: normal rows, and tangential rows that carry a
+   force (friction coefficient or slip bound > 0). This file only tells the user which bodies move, how,
+   why nothing holds them and whether the load works along the motion. Contact normal rows resist in one
+   direction only: a body pulled off its support has a resisted but unbalanced motion, which the solver
+   diagnoses (no equilibrium, contactsolve.cxx). */
 #include <conefeti/private/contactimpl.h>
-#include <petscblaslapack.h>
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 namespace {
 
-/* Free when the eigenvalue of the body-scaled Gram matrix (each body's diagonal block scaled to a largest
-   entry of 1) is below this: roundoff leaves ~1e-16 on a free motion, and the weakest real resistance (a
-   rotation held by a row one cell off its axis on a body of 1e4 cells per edge among 1e4 rows) is ~1e-12 */
-constexpr PetscReal kFreeTol = 1e-13;
 /* a load works along a free motion when its work exceeds this fraction of the load's magnitude */
 constexpr PetscReal kWorkTol = 1e-9;
 /* entries below this (relative) are roundoff in a motion's description */
@@ -43,23 +32,6 @@ struct BodyFrame {
   PetscReal        c[3] = {0, 0, 0}, L = 1;
   PetscBool        dirichlet = PETSC_FALSE;
 };
-
-/* d . r_q(x) for the 6 motions q of a body: translations e_q, rotations (e_k x (x - c)) / L */
-void RowCoefficients(const BodyFrame &f, const PetscReal x[3], const PetscReal d[3], PetscReal w[6])
-{
-  const PetscReal y[3] = {x[0] - f.c[0], x[1] - f.c[1], x[2] - f.c[2]};
-  for (int q = 0; q < 3; q++) w[q] = d[q];
-  /* (e_k x y) . d = e_k . (y x d) */
-  w[3] = (y[1] * d[2] - y[2] * d[1]) / f.L;
-  w[4] = (y[2] * d[0] - y[0] * d[2]) / f.L;
-  w[5] = (y[0] * d[1] - y[1] * d[0]) / f.L;
-}
-
-void AddRow(std::vector<PetscReal> &A, PetscInt n, const PetscInt idx[], const PetscReal w[], PetscInt m)
-{
-  for (PetscInt j = 0; j < m; j++)
-    for (PetscInt i = 0; i < m; i++) A[idx[i] + n * idx[j]] += w[i] * w[j];
-}
 
 PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
@@ -146,11 +118,11 @@ std::string BodyList(const std::vector<PetscInt> &bodies)
 }
 
 struct Checker {
-  FEM                                   fem;
-  const std::vector<ContactZone>       &zones;
-  const std::vector<ContactHoldingRow> &rows;
-  std::vector<BodyFrame>                frames;
-  std::vector<PetscInt>                 dirichlet; /* all Dirichlet dofs, global numbering */
+  FEM                               fem;
+  const std::vector<ContactZone>   &zones;
+  const std::vector<FEMHoldingRow> &rows;
+  std::vector<BodyFrame>            frames;
+  std::vector<PetscInt>             dirichlet; /* all Dirichlet dofs, global numbering */
 
   PetscInt BodyOfNode(PetscInt g) const
   {
@@ -221,7 +193,7 @@ struct Checker {
         };
         for (PetscInt g : dirichlet)
           if (g / 3 >= frames[b].offset && g / 3 < frames[b].offset + frames[b].nnodes) offaxis(&frames[b].X[3 * (g / 3 - frames[b].offset)]);
-        for (const ContactHoldingRow &r : rows) {
+        for (const FEMHoldingRow &r : rows) {
           if (r.body == b) offaxis(&frames[b].X[3 * r.node]);
           if (r.other_body == b)
             for (PetscInt v = 0; v < r.nother; v++) offaxis(&frames[b].X[3 * r.other_node[v]]);
@@ -238,61 +210,35 @@ struct Checker {
   }
 };
 
-/* Reduced row echelon form of the k x n row-major M (rows: a basis of the free motions): each row gets a 1
-   at its own coordinate (translations first) and 0 at the others' (slide along x, slide along y, ...) */
-void EchelonForm(std::vector<PetscReal> &M, PetscInt k, PetscInt n)
-{
-  PetscReal mmax = 0;
-  for (PetscReal x : M) mmax = PetscMax(mmax, std::fabs(x));
-  PetscInt r = 0;
-  for (PetscInt col = 0; col < n && r < k; col++) {
-    PetscInt p = r;
-    for (PetscInt i = r + 1; i < k; i++)
-      if (std::fabs(M[i * n + col]) > std::fabs(M[p * n + col])) p = i;
-    if (std::fabs(M[p * n + col]) <= 1e-6 * mmax) continue;
-    for (PetscInt j = 0; j < n; j++) std::swap(M[r * n + j], M[p * n + j]);
-    const PetscReal piv = M[r * n + col];
-    for (PetscInt j = 0; j < n; j++) M[r * n + j] /= piv;
-    for (PetscInt i = 0; i < k; i++) {
-      if (i == r) continue;
-      const PetscReal f = M[i * n + col];
-      for (PetscInt j = 0; j < n; j++) M[i * n + j] -= f * M[r * n + j];
-    }
-    r++;
-  }
-  for (PetscReal &x : M)
-    if (std::fabs(x) < kClean) x = 0;
-}
-
 } // namespace
 
 /* Stop with an error naming the body and the motion when a rigid motion of the bodies is resisted by no
    Dirichlet condition and no contact row: no equilibrium when the load works along it, no unique
    displacement otherwise (an engineer wants to be told, not handed one of infinitely many answers). */
-PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const std::vector<ContactZone> &zones, const std::vector<ContactHoldingRow> &rows)
+PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const std::vector<ContactZone> &zones, const std::vector<FEMHoldingRow> &rows)
 {
   MPI_Comm        comm = PetscObjectComm((PetscObject)cm);
-  PetscInt        nb, ndir;
+  PetscInt        nb, ndir, k;
+  PetscReal      *free_motions;
   IS              is, all;
   const PetscInt *idx;
   Checker         ck{fem, zones, rows, {}, {}};
 
   PetscFunctionBegin;
+  PetscCall(FEMComputeFreeRigidMotions(fem, (PetscInt)rows.size(), rows.data(), &k, &free_motions));
+  if (!k) PetscFunctionReturn(PETSC_SUCCESS);
+  /* a free motion: what follows only words the error, so its cost (gathering the Dirichlet dofs again) is paid
+     on a run that stops */
   PetscCall(FEMGetNumBodies(fem, &nb));
-  if (!nb) PetscFunctionReturn(PETSC_SUCCESS);
+  const PetscInt         n = 6 * nb;
+  std::vector<PetscReal> M(free_motions, free_motions + (size_t)k * n); /* the free motions in motion coordinates, in echelon form */
+  PetscCall(PetscFree(free_motions));
   PetscCallCXX(ck.frames.resize(nb));
   for (PetscInt b = 0; b < nb; b++) {
     BodyFrame &f = ck.frames[b];
     PetscCall(FEMGetBodyNodes(fem, b, &f.nnodes, &f.X));
     PetscCall(FEMGetBodyNodeOffset(fem, b, &f.offset));
-    for (PetscInt i = 0; i < f.nnodes; i++)
-      for (int d = 0; d < 3; d++) f.c[d] += f.X[3 * i + d] / f.nnodes;
-    f.L = 0;
-    for (PetscInt i = 0; i < f.nnodes; i++) {
-      const PetscReal y[3] = {f.X[3 * i] - f.c[0], f.X[3 * i + 1] - f.c[1], f.X[3 * i + 2] - f.c[2]};
-      f.L                  = PetscMax(f.L, Norm3(y));
-    }
-    if (!(f.L > 0)) f.L = 1;
+    PetscCall(FEMComputeRigidMotionFrame(fem, b, f.c, &f.L));
   }
   PetscCall(FEMGetGlobalDirichletDofs(fem, &is));
   PetscCall(ISAllGather(is, &all));
@@ -302,78 +248,10 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
   PetscCallCXX(ck.dirichlet.assign(idx, idx + ndir));
   PetscCall(ISRestoreIndices(all, &idx));
   PetscCall(ISDestroy(&all));
-
-  /* the Gram matrix of the rows on the motions */
-  const PetscInt         n = 6 * nb;
-  std::vector<PetscReal> A((size_t)n * n, 0.0);
   for (PetscInt g : ck.dirichlet) {
     const PetscInt b = ck.BodyOfNode(g / 3);
-    PetscCheck(b >= 0, comm, PETSC_ERR_PLIB, "Dirichlet dof %" PetscInt_FMT " belongs to no body", g);
-    BodyFrame &f    = ck.frames[b];
-    PetscReal  d[3] = {0, 0, 0}, w[6];
-    PetscInt   ix[6];
-    d[g % 3]    = 1;
-    f.dirichlet = PETSC_TRUE;
-    RowCoefficients(f, &f.X[3 * (g / 3 - f.offset)], d, w);
-    for (int q = 0; q < 6; q++) ix[q] = 6 * b + q;
-    AddRow(A, n, ix, w, 6);
+    if (b >= 0) ck.frames[b].dirichlet = PETSC_TRUE;
   }
-  for (const ContactHoldingRow &r : rows) {
-    PetscReal w[12];
-    PetscInt  ix[12], m = 6;
-    RowCoefficients(ck.frames[r.body], &ck.frames[r.body].X[3 * r.node], r.dir, w);
-    for (int q = 0; q < 6; q++) ix[q] = 6 * r.body + q;
-    if (r.other_body >= 0) {
-      /* the other body's point moves as the weighted sum of its nodes: the row is linear in the node positions */
-      const PetscReal minus[3] = {-r.dir[0], -r.dir[1], -r.dir[2]};
-      for (int q = 0; q < 6; q++) w[6 + q] = 0;
-      for (PetscInt v = 0; v < r.nother; v++) {
-        PetscReal wv[6];
-        RowCoefficients(ck.frames[r.other_body], &ck.frames[r.other_body].X[3 * r.other_node[v]], minus, wv);
-        for (int q = 0; q < 6; q++) w[6 + q] += r.other_weight[v] * wv[q];
-      }
-      for (int q = 0; q < 6; q++) ix[6 + q] = 6 * r.other_body + q;
-      m = 12;
-    }
-    AddRow(A, n, ix, w, m);
-  }
-
-  /* each body's block scaled to a largest diagonal entry of 1: a body held by a million Dirichlet rows
-     does not make another's few contact rows look like roundoff */
-  std::vector<PetscReal> s(n, 1.0);
-  for (PetscInt b = 0; b < nb; b++) {
-    PetscReal dmax = 0;
-    for (int q = 0; q < 6; q++) dmax = PetscMax(dmax, A[(6 * b + q) * (n + 1)]);
-    if (dmax > 0)
-      for (int q = 0; q < 6; q++) s[6 * b + q] = 1 / std::sqrt(dmax);
-  }
-  std::vector<PetscScalar> As((size_t)n * n);
-  for (PetscInt j = 0; j < n; j++)
-    for (PetscInt i = 0; i < n; i++) As[i + n * j] = s[i] * A[i + n * j] * s[j];
-  std::vector<PetscReal> lambda(n);
-  {
-    PetscBLASInt             bn, lwork = -1, info;
-    PetscScalar              wq;
-    std::vector<PetscScalar> work;
-    PetscCall(PetscBLASIntCast(n, &bn));
-    PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "L", &bn, As.data(), &bn, lambda.data(), &wq, &lwork, &info));
-    PetscCall(PetscBLASIntCast((PetscInt)PetscRealPart(wq), &lwork));
-    PetscCallCXX(work.resize(lwork));
-    PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "L", &bn, As.data(), &bn, lambda.data(), work.data(), &lwork, &info));
-    PetscCheck(info == 0, comm, PETSC_ERR_LIB, "LAPACK syev failed (info %d) on the %" PetscInt_FMT " x %" PetscInt_FMT " Gram matrix of the rigid motions", (int)info, n, n);
-  }
-  const PetscReal tol = kFreeTol * PetscMax(lambda[n - 1], 1.0);
-  PetscInt        k   = 0;
-  while (k < n && lambda[k] <= tol) k++; /* ascending */
-  PetscCall(PetscInfo(cm, "%" PetscInt_FMT " of the %" PetscInt_FMT " rigid motions of the bodies are free (eigenvalues of the scaled Gram matrix from %g to %g)\n", k, n, (double)lambda[0],
-                      (double)lambda[n - 1]));
-  if (!k) PetscFunctionReturn(PETSC_SUCCESS);
-
-  /* the free motions in motion coordinates (unscaled), in echelon form */
-  std::vector<PetscReal> M((size_t)k * n);
-  for (PetscInt j = 0; j < k; j++)
-    for (PetscInt i = 0; i < n; i++) M[j * n + i] = s[i] * PetscRealPart(As[i + n * j]);
-  EchelonForm(M, k, n);
 
   /* the load as work per unit of each motion coordinate: force, and moment about the centroid / L */
   std::vector<PetscReal> g(n);

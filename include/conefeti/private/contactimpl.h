@@ -116,14 +116,9 @@ PETSC_INTERN void      ContactPolygonTraction(PetscInt, const PetscReal[], Petsc
 PETSC_INTERN void      ContactPolygonTangentialMotion(PetscInt, const PetscReal[], PetscReal[2]);
 PETSC_INTERN PetscReal ContactPolygonGauge(PetscInt, const PetscReal[2], PetscReal);
 
-/* A contact row of B that can hold bodies (contactrigidmotions.cxx): the displacement component along dir
-   at node `node` of `body`, minus the one at the point sum_v other_weight[v] X(other_node[v]) of `other_body`
-   (-1: a rigid foundation; nother = 0). Normal rows, and tangential rows that can carry a force (friction
-   coefficient or slip bound > 0). */
-struct ContactHoldingRow {
-  PetscInt  zone, body, node, other_body, nother, other_node[3];
-  PetscReal other_weight[3];
-  PetscReal dir[3];
-};
-PETSC_INTERN PetscErrorCode ContactCheckRigidMotions_Private(ContactModel, FEM, const std::vector<ContactZone> &, const std::vector<ContactHoldingRow> &);
+/* Stops with an error that names the rigid motions of the bodies that neither the Dirichlet conditions nor the
+   given contact rows resist (contactrigidmotions.cxx; the motions from FEMComputeFreeRigidMotions()). The rows
+   that can hold bodies: normal rows, and tangential rows that can carry a force (friction coefficient or slip
+   bound > 0), each as appended to B. */
+PETSC_INTERN PetscErrorCode ContactCheckRigidMotions_Private(ContactModel, FEM, const std::vector<ContactZone> &, const std::vector<FEMHoldingRow> &);
 PETSC_INTERN PetscLogEvent  CONTACT_Solve;
