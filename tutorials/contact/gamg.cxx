@@ -39,90 +39,40 @@ PetscLogDouble PeakRSS()
   return 1024.0 * (PetscLogDouble)ru.ru_maxrss;
 }
 
-/* A body whose Dirichlet supports leave it a rigid motion (rollers on one side only) makes K singular: CG's answer
-   would be meaningless. Its free motions are the null space of the 6 x 6 Gram matrix of its rigid-body modes
-   (translations, rotations about its centroid scaled by its radius) at its Dirichlet dofs: a motion that no
-   Dirichlet dof sees is free, as K r = 0 away from them. The conefeti driver's check names the motions and also
-   counts the contact zones. */
-PetscErrorCode CheckFreeRigidMotions(FEM fem, IS dirichlet, Vec coords)
+/* The contact zones are ignored, so only the Dirichlet supports hold the bodies: a body without any, or whose
+   supports leave it a rigid motion (rollers on one side only), makes K singular and CG's answer meaningless.
+   FEMComputeFreeRigidMotions() without further rows gives the motions no Dirichlet dof resists; no row couples the
+   bodies, so each motion of its basis moves one body. A body that no Dirichlet dof holds has all 6 free (any dof
+   holds the translation along its component). The conefeti driver's check (ContactModelSetUp()) also counts the
+   contact zones and names the motions. */
+PetscErrorCode CheckBodiesHeld(FEM fem)
 {
-  MPI_Comm           comm = PetscObjectComm((PetscObject)fem);
-  PetscInt           nbodies, nlocal, cstart;
-  const PetscInt    *dofs;
-  const PetscScalar *x;
+  MPI_Comm   comm = PetscObjectComm((PetscObject)fem);
+  PetscInt   nbodies, nfree;
+  PetscReal *motions;
 
   PetscFunctionBegin;
   PetscCall(FEMGetNumBodies(fem, &nbodies));
-  std::vector<PetscInt>  first(nbodies), count(nbodies);
-  std::vector<PetscReal> frame(5 * nbodies, 0), gram(36 * nbodies, 0); /* per body: centroid sums, node count, radius */
-  for (PetscInt b = 0; b < nbodies; b++) {
-    PetscCall(FEMGetBodyNodeOffset(fem, b, &first[b]));
-    PetscCall(FEMGetBodyNodes(fem, b, &count[b], NULL));
-  }
-  const auto bodyof = [&](PetscInt node) {
-    for (PetscInt b = 0; b < nbodies; b++)
-      if (node >= first[b] && node < first[b] + count[b]) return b;
-    return (PetscInt)-1;
-  };
-  PetscCall(VecGetOwnershipRange(coords, &cstart, NULL));
-  PetscCall(VecGetLocalSize(coords, &nlocal));
-  PetscCall(VecGetArrayRead(coords, &x));
-  for (PetscInt i = 0; i < nlocal / 3; i++) {
-    const PetscInt b = bodyof(cstart / 3 + i);
-    if (b < 0) continue;
-    for (int c = 0; c < 3; c++) frame[5 * b + c] += PetscRealPart(x[3 * i + c]);
-    frame[5 * b + 3] += 1;
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, frame.data(), (PetscMPIInt)frame.size(), MPIU_REAL, MPIU_SUM, comm));
-  for (PetscInt b = 0; b < nbodies; b++)
-    for (int c = 0; c < 3; c++) frame[5 * b + c] /= PetscMax(frame[5 * b + 3], 1.0);
-  for (PetscInt i = 0; i < nlocal / 3; i++) {
-    const PetscInt b = bodyof(cstart / 3 + i);
-    if (b < 0) continue;
-    for (int c = 0; c < 3; c++) frame[5 * b + 4] = PetscMax(frame[5 * b + 4], PetscAbsReal(PetscRealPart(x[3 * i + c]) - frame[5 * b + c]));
-  }
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, frame.data(), (PetscMPIInt)frame.size(), MPIU_REAL, MPIU_MAX, comm)); /* only the radii change: the rest is equal on every rank */
-  PetscCall(ISGetLocalSize(dirichlet, &nlocal));
-  PetscCall(ISGetIndices(dirichlet, &dofs));
-  for (PetscInt i = 0; i < nlocal; i++) {
-    const PetscInt  node = dofs[i] / 3, c = dofs[i] % 3, b = bodyof(node);
-    const PetscReal L = PetscMax(frame[5 * b + 4], PETSC_SMALL);
-    PetscReal       y[3], w[6] = {0, 0, 0, 0, 0, 0};
-    if (b < 0) continue;
-    for (int k = 0; k < 3; k++) y[k] = PetscRealPart(x[dofs[i] - c - cstart + k]) - frame[5 * b + k];
-    w[c] = 1; /* the translation along c; the rotation about axis k moves the node by e_k x y */
-    w[3] = c == 1 ? -y[2] / L : c == 2 ? y[1] / L : 0;
-    w[4] = c == 0 ? y[2] / L : c == 2 ? -y[0] / L : 0;
-    w[5] = c == 0 ? -y[1] / L : c == 1 ? y[0] / L : 0;
-    for (int p = 0; p < 6; p++)
-      for (int q = 0; q < 6; q++) gram[36 * b + 6 * p + q] += w[p] * w[q];
-  }
-  PetscCall(ISRestoreIndices(dirichlet, &dofs));
-  PetscCall(VecRestoreArrayRead(coords, &x));
-  PetscCall(MPIU_Allreduce(MPI_IN_PLACE, gram.data(), (PetscMPIInt)gram.size(), MPIU_REAL, MPIU_SUM, comm));
-  for (PetscInt b = 0; b < nbodies; b++) {
-    PetscReal *A = &gram[36 * b], amax = 0;
-    PetscInt   nfree   = 6;
-    bool       used[6] = {false, false, false, false, false, false};
-    for (int p = 0; p < 6; p++) amax = PetscMax(amax, A[7 * p]);
-    if (amax <= 0) continue; /* no Dirichlet dof: Main() names the body */
-    /* its rank by Cholesky with diagonal pivoting: each pivot above roundoff is one motion held */
-    for (int step = 0; step < 6; step++) {
-      int j = -1;
-      for (int p = 0; p < 6; p++)
-        if (!used[p] && (j < 0 || A[7 * p] > A[7 * j])) j = p;
-      if (A[7 * j] <= 1e-12 * amax) break;
-      used[j] = true;
-      nfree--;
-      for (int p = 0; p < 6; p++)
-        for (int q = 0; q < 6; q++)
-          if (!used[p] && !used[q]) A[6 * p + q] -= A[6 * p + j] * A[6 * j + q] / A[7 * j];
+  PetscCall(FEMComputeFreeRigidMotions(fem, 0, NULL, &nfree, &motions));
+  std::vector<PetscInt> count(nbodies, 0);
+  for (PetscInt j = 0; j < nfree; j++)
+    for (PetscInt b = 0; b < nbodies; b++) {
+      bool moves = false;
+      for (int q = 0; q < 6; q++) moves = moves || motions[6 * nbodies * j + 6 * b + q] != 0;
+      if (moves) {
+        count[b]++;
+        break;
+      }
     }
-    PetscCheck(!nfree, comm, PETSC_ERR_ARG_WRONG,
+  PetscCall(PetscFree(motions));
+  for (PetscInt b = 0; b < nbodies; b++)
+    PetscCheck(count[b] < 6, comm, PETSC_ERR_ARG_WRONG,
+               "gamg: body %" PetscInt_FMT " has no Dirichlet support (-scene_body%" PetscInt_FMT "_fix): it is held only by contact, which this program ignores, so K is singular", b, b);
+  for (PetscInt b = 0; b < nbodies; b++)
+    PetscCheck(!count[b], comm, PETSC_ERR_ARG_WRONG,
                "gamg: the Dirichlet supports of body %" PetscInt_FMT " leave it %" PetscInt_FMT
                " free rigid motion%s (rollers on too few faces?): without its contact zones, which this program ignores, K is singular (the conefeti program names the motions)",
-               b, nfree, nfree > 1 ? "s" : "");
-  }
+               b, count[b], count[b] > 1 ? "s" : "");
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -168,30 +118,10 @@ PetscErrorCode Main(int *status)
   PetscCall(FEMAssembleGlobal(fem, &K, &f));
   PetscCall(FEMGetGlobalDirichletDofs(fem, &dirichlet));
   PetscCall(ISGetSize(dirichlet, &ndirichlet));
-  /* the contact zones are ignored, so only the Dirichlet supports hold the bodies: every body needs one */
+  /* the contact zones are ignored, so only the Dirichlet supports hold the bodies: every body needs them */
   PetscCheck(ndirichlet > 0, comm, PETSC_ERR_ARG_WRONG, "gamg: the scene has no Dirichlet support (-scene_body<b>_fix): without its contact zones, which this program ignores, K is singular");
-  {
-    PetscInt        nbodies, nlocal;
-    const PetscInt *dofs;
-    PetscCall(FEMGetNumBodies(fem, &nbodies));
-    std::vector<PetscInt> held(nbodies, 0), first(nbodies, 0), count(nbodies, 0);
-    for (PetscInt b = 0; b < nbodies; b++) {
-      PetscCall(FEMGetBodyNodeOffset(fem, b, &first[b]));
-      PetscCall(FEMGetBodyNodes(fem, b, &count[b], NULL));
-    }
-    PetscCall(ISGetLocalSize(dirichlet, &nlocal));
-    PetscCall(ISGetIndices(dirichlet, &dofs));
-    for (PetscInt i = 0; i < nlocal; i++)
-      for (PetscInt b = 0; b < nbodies; b++)
-        if (dofs[i] / 3 >= first[b] && dofs[i] / 3 < first[b] + count[b]) held[b] = 1;
-    PetscCall(ISRestoreIndices(dirichlet, &dofs));
-    PetscCall(MPIU_Allreduce(MPI_IN_PLACE, held.data(), (PetscMPIInt)nbodies, MPIU_INT, MPI_MAX, comm));
-    for (PetscInt b = 0; b < nbodies; b++)
-      PetscCheck(held[b], comm, PETSC_ERR_ARG_WRONG,
-                 "gamg: body %" PetscInt_FMT " has no Dirichlet support (-scene_body%" PetscInt_FMT "_fix): it is held only by contact, which this program ignores, so K is singular", b, b);
-  }
+  PetscCall(CheckBodiesHeld(fem));
   PetscCall(FEMCreateGlobalCoordinates(fem, &coords));
-  PetscCall(CheckFreeRigidMotions(fem, dirichlet, coords));
   PetscCall(ISDestroy(&dirichlet));
   PetscCall(MatNullSpaceCreateRigidBody(coords, &nearnull));
   PetscCall(MatSetNearNullSpace(K, nearnull));
