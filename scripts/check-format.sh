@@ -2,7 +2,8 @@
 # Check (or with --fix, apply) clang-format on our C/C++ sources. Exit 1 lists unformatted files.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-mapfile -t files < <(git ls-files '*.c' '*.cxx' '*.h' '*.hpp' 2>/dev/null || find src include tests tutorials -name '*.c' -o -name '*.cxx' -o -name '*.h')
+# tracked files and new ones not yet added (a new test file is formatted before its first commit), not ignored ones
+mapfile -t files < <(git ls-files --cached --others --exclude-standard '*.c' '*.cxx' '*.h' '*.hpp' 2>/dev/null || find src include tests tutorials -name '*.c' -o -name '*.cxx' -o -name '*.h')
 [ ${#files[@]} -eq 0 ] && exit 0
 if [ "${1:-}" = "--fix" ]; then
   clang-format -i "${files[@]}"
