@@ -128,6 +128,7 @@ PETSC_INTERN PetscErrorCode MPGPCoreViewExpansion(const MPGPCore *, PetscViewer)
 PETSC_INTERN PetscErrorCode QPNormSettingsApply(QPNormSettings *, Mat, const char *, const MPGPOptionNames *, QPCounters *);
 /* At the start of a solve: TAO's gatol, gttol and grtol (or with an equality catol and crtol) are finite and >= 0. */
 PETSC_INTERN PetscErrorCode TaoQPCheckTolerances_Private(Tao, PetscBool);
+PETSC_INTERN PetscErrorCode TaoQPCheckMaxIt_Private(Tao);
 
 /* The defaults of the TAO types that depend on the Hessian and the set (mpgpdefaults.cxx): as PETSc's KSP picks
    its PC from the matrix, an assembled sparse Hessian gets a preconditioner in face (ICC, block Jacobi with ICC

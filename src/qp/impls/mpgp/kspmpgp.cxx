@@ -103,6 +103,18 @@ PetscErrorCode KSPSetUp_MPGP(KSP ksp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* KSPSetFromOptions() and KSPSetTolerances() take a negative -ksp_max_it, and the solve then ran as with 0: checked
+   in KSPSetFromOptions_MPGP() (the option) and when a solve starts (KSPSetTolerances()) */
+static PetscErrorCode KSPCheckMaxIt(KSP ksp)
+{
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
+  PetscCheck(ksp->max_it >= 0, PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-%sksp_max_it must be >= 0, got %" PetscInt_FMT, prefix ? prefix : "", ksp->max_it);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode KSPSolve_MPGP(KSP ksp)
 {
   KSP_MPGP   *qp = GetMPGP(ksp);
@@ -119,6 +131,7 @@ PetscErrorCode KSPSolve_MPGP(KSP ksp)
   PetscCheck(ksp->rtol >= 0 && !PetscIsInfOrNanReal(ksp->rtol), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-%sksp_rtol must be finite and >= 0, got %g", prefix, (double)ksp->rtol);
   PetscCheck(ksp->abstol >= 0 && !PetscIsInfOrNanReal(ksp->abstol), PetscObjectComm((PetscObject)ksp), PETSC_ERR_ARG_OUTOFRANGE, "-%sksp_atol must be finite and >= 0, got %g", prefix,
              (double)ksp->abstol);
+  PetscCall(KSPCheckMaxIt(ksp));
   PetscCall(PCGetOperators(ksp->pc, &A, NULL));
   PetscCall(KSPMPGPPrepareSet(ksp, qp));
   if (qp->core.variant == MPGPVariant::MPRGP) {
@@ -179,6 +192,7 @@ PetscErrorCode KSPSetFromOptions_MPGP(KSP ksp, CONEFETI_OPTIONS_ITEMS PetscOptio
   const char *prefix;
 
   PetscFunctionBegin;
+  PetscCall(KSPCheckMaxIt(ksp));
   PetscCall(KSPGetOptionsPrefix(ksp, &prefix));
   PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)ksp), prefix, qp->options, &qp->core, &qp->norm, &qp->counters_view));
   {
@@ -354,7 +368,7 @@ PetscErrorCode KSPCreate_MPGPCommon(KSP ksp, MPGPVariant variant, const char *na
   initial guess is projected. The residual norm reported to monitors and to the convergence test is
   the norm of the projected gradient (the KKT residual); `-ksp_rtol` is relative to |b|. The PC is
   none unless chosen; with bounds a PC M preconditions the CG steps in face, z = [M^-1]_FF g_F on the
-  free entries F (see `TaoQPGetPC()`).
+  free entries F (see `TaoQPGetPC()`). A negative -ksp_max_it is an error.
 
   References:
 . * - Z. Dostal, J. Schoberl, Minimizing quadratic functions over non-negative cone with the rate of convergence and finite termination, Computational Optimization and Applications (2005)

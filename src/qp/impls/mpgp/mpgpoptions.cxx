@@ -195,3 +195,15 @@ PetscErrorCode TaoQPCheckTolerances_Private(Tao tao, PetscBool equality)
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+/* TaoSetFromOptions() and TaoSetMaxIterations() take a negative -tao_max_it, and the solve then ran as with 0: checked
+   in the types' TaoSetFromOptions() (the option) and when a solve starts (TaoSetMaxIterations()) */
+PetscErrorCode TaoQPCheckMaxIt_Private(Tao tao)
+{
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  PetscCheck(tao->max_it >= 0, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-%stao_max_it must be >= 0, got %" PetscInt_FMT, prefix ? prefix : "", tao->max_it);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}

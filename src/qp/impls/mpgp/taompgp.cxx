@@ -333,6 +333,7 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
   PetscCall(TaoGetOptionsPrefix(tao, &prefix));
   if (!prefix) prefix = "";
   PetscCall(TaoQPCheckTolerances_Private(tao, PETSC_FALSE));
+  PetscCall(TaoQPCheckMaxIt_Private(tao));
   PetscCall(TaoMPGPPrepareSet(tao, qp));
   if (qp->core.variant == MPGPVariant::MPRGP) {
     PetscCall(SeparableSetHasCurvedBlocks(qp->set, &curved));
@@ -463,6 +464,7 @@ PetscErrorCode TaoSetFromOptions_MPGP(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOptio
     PetscCall(PetscOptionsHasName(((PetscObject)tao)->options, prefix, qp->options->expansion_projcg, &given));
     if (given) qp->projcg_given = PETSC_TRUE;
   }
+  PetscCall(TaoQPCheckMaxIt_Private(tao));
   PetscCall(MPGPCoreSetFromOptions(PetscOptionsObject, PetscObjectComm((PetscObject)tao), prefix, qp->options, &qp->core, &qp->norm, &qp->counters_view));
   {
     PC          pc;
@@ -754,7 +756,7 @@ ranks, else none)
   matrix; on several ranks each rank's diagonal block), the PC is ICC(0) (block Jacobi with ICC(0) on several
   ranks), the expansion tries the projected CG step and Gamma is 2; otherwise (a MATSHELL, a dense matrix) no
   PC, Dostal's expansion and Gamma 1. Each of the three options given wins over its default; -tao_view says
-  which was chosen and why.
+  which was chosen and why. A negative -tao_max_it is an error.
   The algorithm and what conefeti adds to it: docs/algorithms.md, 'MPRGP and MPGP'.
 
   References:

@@ -833,6 +833,19 @@ PetscErrorCode EstimateNorms(Tao tao, TaoSMALXE *s)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* -tao_max_it: checked in TaoSetFromOptions_SMALXE() (the option; -1 was accepted there) and when a solve starts
+   (TaoSetMaxIterations()) */
+PetscErrorCode CheckMaxIt(Tao tao)
+{
+  const char *prefix;
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetOptionsPrefix(tao, &prefix));
+  PetscCheck(tao->max_it >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-%stao_max_it %" PetscInt_FMT ": smalxe needs at least one outer iteration", prefix ? prefix : "",
+             tao->max_it);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* One inner minimization: `sweeps` block Gauss-Seidel sweeps (one solve when monolithic).
    Leaves the gradient of L at the new x in s->g and returns the norm of its projected gradient. */
 PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
@@ -1029,12 +1042,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
                "TAO smalxe: the Hessian must be square with the solution's size %" PetscInt_FMT ", it is %" PetscInt_FMT " x %" PetscInt_FMT, N, m, n);
   }
   PetscCall(TaoQPCheckTolerances_Private(tao, PETSC_TRUE));
-  {
-    const char *prefix;
-    PetscCall(TaoGetOptionsPrefix(tao, &prefix));
-    PetscCheck(tao->max_it >= 1, PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_OUTOFRANGE, "-%stao_max_it %" PetscInt_FMT ": smalxe needs at least one outer iteration", prefix ? prefix : "",
-               tao->max_it);
-  }
+  PetscCall(CheckMaxIt(tao));
   PetscCall(TaoComputeVariableBounds(tao));
   if (s->setup) {
     PetscCall(RefreshEquality(tao, s));
@@ -1228,6 +1236,7 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   MPI_Comm    comm = PetscObjectComm((PetscObject)tao);
 
   PetscFunctionBegin;
+  PetscCall(CheckMaxIt(tao));
   PetscCall(TaoGetOptionsPrefix(tao, &p));
   if (!p) p = "";
   PetscOptionsHeadBegin(PetscOptionsObject, "smalxe: semi-monotonic augmented Lagrangian for C x = d (conefeti)");
@@ -1740,7 +1749,7 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
   with `TaoSetRecycleHistory()` (`-tao_recycle_history`) it starts from the multiplier the previous
   solve ended with, which a sequence of nearby problems needs for the warm start to pay: from
   multiplier 0 the first inner solve undoes it. The algorithm: docs/algorithms.md, 'SMALXE: the semi-monotonic
-  augmented Lagrangian'.
+  augmented Lagrangian'. -tao_max_it must be >= 1.
 
   References:
 + * - Z. Dostal, Inexact semi-monotonic augmented Lagrangians with optimal feasibility convergence for quadratic programming with simple bounds and equality constraints, SIAM J. Numer. Anal.
