@@ -312,6 +312,48 @@ PetscErrorCode SetEquality(ContactProblem cp)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* G (or Q) acts on the multipliers of F: with another number of columns the solve failed in smalxe, with a message
+   about C and "the solution", or in a product ("Mat mat,Vec x: global dim 8 9"), names the user never gave */
+PetscErrorCode CheckEqualitySizes(ContactProblem cp)
+{
+  ContactProblemData *d = Data(cp);
+  PetscInt            N, M, n, m;
+  MPI_Comm            comm = PetscObjectComm((PetscObject)cp);
+
+  PetscFunctionBegin;
+  PetscCall(MatGetSize(d->F, &N, NULL));
+  if (d->G) {
+    PetscCall(MatGetSize(d->G, &M, &m));
+    PetscCall(MatGetLocalSize(d->G, NULL, &n));
+    PetscCheck(m == N, comm, PETSC_ERR_ARG_SIZ,
+               "ContactProblem: the equality matrix G (ContactProblemSetEquality()) has %" PetscInt_FMT " columns, F (ContactProblemSetOperator()) is %" PetscInt_FMT " x %" PetscInt_FMT
+               ": G must have a column for each multiplier",
+               m, N, N);
+    PetscCheck(n == d->nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "ContactProblem: the equality matrix G (ContactProblemSetEquality()) has %" PetscInt_FMT " local columns on this rank, h (ContactProblemSetOperator()) %" PetscInt_FMT
+               " local entries: G's column layout must be that of the multipliers",
+               n, d->nlocal);
+  }
+  if (d->Q) {
+    PetscInt ltn;
+    PetscCall(MatGetSize(d->Q, &M, &m));
+    PetscCall(MatGetLocalSize(d->Q, NULL, &n));
+    PetscCheck(M == N && m == N, comm, PETSC_ERR_ARG_SIZ,
+               "ContactProblem: the projector Q (ContactProblemSetProjector()) is %" PetscInt_FMT " x %" PetscInt_FMT ", F (ContactProblemSetOperator()) is %" PetscInt_FMT " x %" PetscInt_FMT
+               ": Q must be the size of F",
+               M, m, N, N);
+    PetscCheck(n == d->nlocal, PETSC_COMM_SELF, PETSC_ERR_ARG_SIZ,
+               "ContactProblem: the projector Q (ContactProblemSetProjector()) has %" PetscInt_FMT " local columns on this rank, h (ContactProblemSetOperator()) %" PetscInt_FMT
+               " local entries: Q's column layout must be that of the multipliers",
+               n, d->nlocal);
+    PetscCall(VecGetSize(d->lt, &ltn));
+    PetscCheck(ltn == N, comm, PETSC_ERR_ARG_SIZ,
+               "ContactProblem: the particular solution lt (ContactProblemSetProjector()) has %" PetscInt_FMT " entries, F (ContactProblemSetOperator()) is %" PetscInt_FMT " x %" PetscInt_FMT, ltn, N,
+               N);
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode ValidateNodes(ContactProblem cp)
 {
   ContactProblemData *d = Data(cp);
@@ -464,6 +506,8 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   Notes:
   Only the effects the problem contains are set up: no tangential multipliers enter the set for
   frictionless nodes, and the Coulomb machinery only exists when a Coulomb node does.
+  G (`ContactProblemSetEquality()`) must have a column for each multiplier of F, Q (`ContactProblemSetProjector()`)
+  must be the size of F, each with the column layout of h: otherwise the setup fails with an error naming both sizes.
 
   Level: intermediate
 
@@ -485,6 +529,7 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
   PetscCheck(!(d->Q && d->G), PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_WRONGSTATE, "ContactProblem: give the equality once, as a projector or as G l = e");
   PetscCall(VecGetOwnershipRange(d->h, &d->rstart, NULL));
   PetscCall(VecGetLocalSize(d->h, &d->nlocal));
+  PetscCall(CheckEqualitySizes(cp));
   PetscCall(ValidateNodes(cp));
 
   flags[0] = d->normal.empty() ? 0 : 1;

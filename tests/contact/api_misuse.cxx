@@ -68,6 +68,24 @@ static PetscErrorCode RunCase(const char *name, PetscBool *mistake)
     PetscCall(VecAssemblyBegin(l));
     PetscCall(VecAssemblyEnd(l));
     PetscCall(ContactProblemSolve(cp, l));
+  } else if (!strcmp(name, "equality_columns_not_those_of_F") || !strcmp(name, "projector_not_the_size_of_F")) {
+    /* G with 8 columns for the 9 multipliers of F: was caught only in the solve, by smalxe, as "C has 8 columns, the
+       solution has 9 entries", names the user never gave */
+    const bool projector = !strcmp(name, "projector_not_the_size_of_F");
+    Mat        G;
+    Vec        e, l;
+    PetscCall(MatCreateDense(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, projector ? 8 : 2, 8, NULL, &G));
+    for (PetscInt i = 0; i < (projector ? 8 : 2); i++) PetscCall(MatSetValue(G, i, i, 1.0, INSERT_VALUES));
+    PetscCall(MatAssemblyBegin(G, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(G, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatCreateVecs(G, projector ? &e : NULL, projector ? NULL : &e));
+    PetscCall(VecSet(e, 0.0));
+    if (projector) PetscCall(ContactProblemSetProjector(cp, G, e));
+    else PetscCall(ContactProblemSetEquality(cp, G, e));
+    PetscCall(AddCoulombNodes(cp));
+    PetscCall(VecDuplicate(h, &l));
+    PetscCall(VecSet(l, 0.0));
+    PetscCall(ContactProblemSolve(cp, l));
   } else if (!strcmp(name, "tao_before_setup")) {
     Tao tao;
     PetscCall(ContactProblemGetTao(cp, &tao)); /* was NULL without a word */
