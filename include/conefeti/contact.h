@@ -93,7 +93,8 @@ PETSC_EXTERN const char *const ContactCoulombAlgorithms[];
 . al_iterations    - all augmented Lagrangian outer iterations (differs from outer_iterations for MSA only)
 . products_qpp     - n_A^QPP: Hessian products in the bound-constrained (mprgp) inner solves
 . products_qpq     - n_A^QPQ: Hessian products in the disk-constrained (mpgp) inner solves
-. products_other   - products outside the inner solvers (block linear terms, gradients after a sweep, setup)
+. products_other   - products outside the inner solvers (block linear terms, gradients after a sweep, setup; after a solve that did not
+                     converge, the two of the test of F's symmetry, `ContactProblemSolve()`)
 . products_estimate- products spent estimating ||F|| (reported apart)
 . fixed_point      - relative Coulomb fixed-point residual |g - F l_n| / |F l_n| at the end (0 if not Coulomb)
 . feasibility      - |G l - e| at the end

@@ -11,6 +11,7 @@
      and convergence only when the radii agree with F l_n (smalxe's consistency check);
    - Coulomb, MSA (Algorithm 1): a full smalxe Tresca solve per successive approximation. */
 #include <conefeti/private/contactimpl.h>
+#include <conefeti/private/operatortest.h>
 #include <conefeti/private/reproduciblesum.h>
 #include <algorithm>
 #include <cmath>
@@ -561,6 +562,7 @@ PetscErrorCode ContactProblemSetUp(ContactProblem cp)
   PetscCall(TaoSetOptionsPrefix(d->tao, taoprefix));
   PetscCall(TaoSetType(d->tao, TAOSMALXE));
   PetscCall(TaoSetHessian(d->tao, d->F, d->F, NULL, NULL));
+  PetscCall(TaoSMALXESetOperatorNames_Private(d->tao, "F (ContactProblemSetOperator())", "Q (ContactProblemSetProjector())"));
   PetscCall(TaoQPSetLinearTerm(d->tao, d->h));
   PetscCall(TaoQPSetConstraints(d->tao, d->set));
   PetscCall(SetEquality(cp));
@@ -688,6 +690,41 @@ static PetscErrorCode CheckKKT(ContactProblem cp, Vec lambda, PetscReal acceptan
   PetscCall(PetscSNPrintf(why, sizeof(why), "the solver's test passed (%s), but recomputed from the multipliers the %s residual is %.1e, above the acceptance %.1e", d->stats.reason,
                           natural > equality ? "KKT (natural)" : "equality", (double)PetscMax(natural, equality), (double)d->stats.acceptance));
   PetscCall(PetscStrncpy(d->stats.reason, why, sizeof(d->stats.reason)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A solve that did not converge: an F that is not symmetric or a Q that is not an orthogonal projector makes the
+   inner Hessian PFP + rho Q non-symmetric, and the loop then stagnates or stalls with a reason that blames the loads
+   or the friction. Test them with products (those of F counted in products_other; only here, after a failure, as the
+   counts of successful solves are documented) and put the culprit first in the reason. */
+static PetscErrorCode DiagnoseFailure(ContactProblem cp)
+{
+  ContactProblemData *d = cp->data;
+  MatSymmetryTest     sym;
+  char                why[256] = "", reason[sizeof(d->stats.reason)];
+
+  PetscFunctionBegin;
+  if (d->stats.converged) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MatTestSymmetry_Private(d->F, 0, &sym));
+  d->stats.products_other += 2;
+  if (!sym.symmetric)
+    PetscCall(
+        PetscSNPrintf(why, sizeof(why), "F (ContactProblemSetOperator()) is not symmetric (x'Fy - y'Fx = %g for random x, y, against ||F|| |x| |y| = %g)", (double)sym.asymmetry, (double)sym.scale));
+  else if (d->Q) {
+    MatProjectorTest proj;
+    PetscCall(MatTestProjector_Private(d->Q, &proj));
+    if (!proj.projector)
+      PetscCall(PetscSNPrintf(why, sizeof(why), "Q (ContactProblemSetProjector()) is not a projector (|Q(Qx) - Qx| = %g for a random x, |Qx| = %g)", (double)proj.defect, (double)proj.scale));
+    else {
+      PetscCall(MatTestSymmetry_Private(d->Q, 1.0, &sym));
+      if (!sym.symmetric)
+        PetscCall(PetscSNPrintf(why, sizeof(why), "Q (ContactProblemSetProjector()) is not symmetric, as an orthogonal projector is (x'Qy - y'Qx = %g for random x, y, against |x| |y| = %g)",
+                                (double)sym.asymmetry, (double)sym.scale));
+    }
+  }
+  if (!why[0]) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscSNPrintf(reason, sizeof(reason), "not converged: %s; the solve ended: %s", why, d->stats.reason));
+  PetscCall(PetscStrncpy(d->stats.reason, reason, sizeof(d->stats.reason)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -894,6 +931,10 @@ static void Accumulate(ContactStatistics &total, const ContactStatistics &one)
   A `ContactModel` judges its solutions by the mechanical residuals of u and lambda instead, and runs the
   tighter solves itself (`ContactModelSolve()`): inside a model this solve is one solve.
 
+  A solve that did not converge tests whether F is symmetric and Q an orthogonal projector (two products with F,
+  counted in products_other, and up to four with Q; never after a converged solve) and, when one is not, its
+  reason says so first. An inner solve that fails on them ends in an error of smalxe that names F or Q.
+
   Level: beginner
 
 .seealso: `ContactProblemGetStatistics()`, `ContactProblemSetFromOptions()`, `ContactProblemComputeKKTResidual()`
@@ -977,6 +1018,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
     } else PetscCall(PetscSNPrintf(tail, sizeof(tail), ", after %" PetscInt_FMT " solves down to relative tolerance %.0e", round + 1, (double)tol));
     PetscCall(WrapReason(d->stats, head, tail));
   }
+  PetscCall(DiagnoseFailure(cp));
   PetscCall(PetscLogEventEnd(CONTACT_Solve, cp, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)cp, NULL, "-contact_view"));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -86,6 +86,50 @@ static PetscErrorCode RunCase(const char *name, PetscBool *mistake)
     PetscCall(VecDuplicate(h, &l));
     PetscCall(VecSet(l, 0.0));
     PetscCall(ContactProblemSolve(cp, l));
+  } else if (!strcmp(name, "operator_not_symmetric") || !strncmp(name, "projector_not_a_projector", 25)) {
+    /* F plus a lower triangle, or Q = -I on the first 3 multipliers (Q(Qx) = -Qx) ended with smalxe's "is the Hessian
+       positive semidefinite on the feasible set?"; Q = e_i e_4' (i < 3, Q(Qx) = 0) with "no equilibrium found: the loads
+       exceed what supports and friction carry". The program prints the statistics' reason when the solve ends. */
+    const bool        skew = !strcmp(name, "operator_not_symmetric"), nilpotent = !strcmp(name, "projector_not_a_projector_nilpotent");
+    Mat               A, Q;
+    Vec               l, lt, hp;
+    ContactStatistics st;
+    PetscCall(MatCreateDense(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, 9, 9, NULL, &A));
+    for (PetscInt i = 0; i < 9; i++) {
+      PetscCall(MatSetValue(A, i, i, 1.0 + i, INSERT_VALUES));
+      for (PetscInt j = 0; skew && j < i; j++) PetscCall(MatSetValue(A, i, j, 2.0, INSERT_VALUES));
+    }
+    PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
+    PetscCall(VecDuplicate(h, &hp));
+    for (PetscInt i = 0; i < 9; i++) PetscCall(VecSetValue(hp, i, 1 + PetscSinReal((PetscReal)i), INSERT_VALUES)); /* normal loads that press */
+    PetscCall(VecAssemblyBegin(hp));
+    PetscCall(VecAssemblyEnd(hp));
+    PetscCall(ContactProblemDestroy(&cp));
+    PetscCall(ContactProblemCreate(PETSC_COMM_WORLD, &cp));
+    PetscCall(ContactProblemSetOperator(cp, A, hp));
+    if (!skew) {
+      PetscCall(MatCreateDense(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, 9, 9, NULL, &Q));
+      for (PetscInt i = 0; i < 3; i++) PetscCall(MatSetValue(Q, i, nilpotent ? 4 : i, nilpotent ? 1.0 : -1.0, INSERT_VALUES));
+      PetscCall(MatAssemblyBegin(Q, MAT_FINAL_ASSEMBLY));
+      PetscCall(MatAssemblyEnd(Q, MAT_FINAL_ASSEMBLY));
+      PetscCall(VecDuplicate(h, &lt));
+      PetscCall(VecSet(lt, 0.0));
+      PetscCall(ContactProblemSetProjector(cp, Q, lt));
+      PetscCall(MatDestroy(&Q));
+      PetscCall(VecDestroy(&lt));
+    }
+    PetscCall(AddCoulombNodes(cp));
+    PetscCall(ContactProblemSetFromOptions(cp));
+    PetscCall(VecDuplicate(h, &l));
+    PetscCall(VecSet(l, 0.0));
+    PetscCall(ContactProblemSolve(cp, l));
+    PetscCall(ContactProblemGetStatistics(cp, &st));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "converged %d: %s\n", (int)st.converged, st.reason));
+    PetscCall(MatDestroy(&A));
+    PetscCall(VecDestroy(&l));
+    PetscCall(VecDestroy(&hp));
+    *mistake = st.converged ? PETSC_TRUE : PETSC_FALSE;
   } else if (!strcmp(name, "tao_before_setup")) {
     Tao tao;
     PetscCall(ContactProblemGetTao(cp, &tao)); /* was NULL without a word */

@@ -14,7 +14,8 @@ enum class MPGPStatus {
   UNBOUNDED,      /* p'Ap = 0 along a descent direction that no constraint stops: q is unbounded below */
   NORM_TOO_SMALL, /* q rose in a step: the fixed step length 1/||A|| is too long, the norm estimate too small */
   NOT_A_NUMBER,
-  ACCURACY_FLOOR /* verify: the exact projected gradient stayed above the tolerance that recurred ones met (rounding) */
+  ACCURACY_FLOOR, /* verify: the exact projected gradient stayed above the tolerance that recurred ones met (rounding) */
+  NOT_SYMMETRIC   /* one of the failures above, on an A that is not symmetric (MPGPCoreDiagnose()): the cause */
 };
 
 /* Stops that the exact gradient refused (mpgp's verify, smalxe's exact stop): where rounding sets a floor
@@ -85,10 +86,11 @@ struct MPGPCore {
   PetscBool pending = PETSC_FALSE;
 
   /* state after a solve: g = A x - b is valid for the returned x */
-  PetscInt   its    = 0;
-  PetscReal  f      = 0;
-  PetscReal  gpnorm = 0;
-  MPGPStatus status = MPGPStatus::STOPPED;
+  PetscInt   its       = 0;
+  PetscReal  f         = 0;
+  PetscReal  gpnorm    = 0;
+  MPGPStatus status    = MPGPStatus::STOPPED;
+  PetscReal  asymmetry = 0, asymmetry_scale = 0; /* NOT_SYMMETRIC: x'Ay - y'Ax for random x, y, and ||A|| |x| |y| */
 };
 
 PETSC_INTERN PetscErrorCode MPGPCoreSetUp(MPGPCore *, Vec);
@@ -96,6 +98,7 @@ PETSC_INTERN PetscErrorCode MPGPCoreSolve(MPGPCore *, Vec);
 PETSC_INTERN PetscErrorCode MPGPCoreConfirmGradient(MPGPCore *, Vec, PetscReal *);
 PETSC_INTERN PetscErrorCode TaoQPConfirmGradient_Private(Tao, PetscReal *, PetscBool *);
 PETSC_INTERN PetscErrorCode MPGPCoreReset(MPGPCore *);
+PETSC_INTERN PetscErrorCode MPGPCoreDiagnose(MPGPCore *);
 
 PETSC_INTERN PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate;
 /* the QP's own work between the Hessian products (-log_view): the preconditioner in face, smalxe's |Cx - d|

@@ -169,7 +169,12 @@ PetscErrorCode KSPSolve_MPGP(KSP ksp)
     PetscCall(MPGPCoreSolve(&qp->core, ksp->vec_sol));
     qp->core.resume = PETSC_FALSE;
   }
-  if (qp->core.status == MPGPStatus::INDEFINITE) ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
+  PetscCall(MPGPCoreDiagnose(&qp->core));
+  if (qp->core.status == MPGPStatus::NOT_SYMMETRIC) {
+    PetscCall(PetscInfo(ksp, "KSP %s: the operator is not symmetric (x'Ay - y'Ax = %g for random x, y, against ||A|| |x| |y| = %g)\n", qp->name, (double)qp->core.asymmetry,
+                        (double)qp->core.asymmetry_scale));
+    ksp->reason = KSP_DIVERGED_NONSYMMETRIC;
+  } else if (qp->core.status == MPGPStatus::INDEFINITE) ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
   else if (qp->core.status == MPGPStatus::NORM_TOO_SMALL) {
     PetscCall(PetscInfo(ksp, "KSP %s: q rose: the estimate ||A|| = %g is too small; a MATSHELL operator whose action changed needs PetscObjectStateIncrease(), or give -%s%s\n", qp->name,
                         (double)qp->norm.used, prefix, qp->options->norm + 1));
@@ -223,6 +228,9 @@ PetscErrorCode KSPView_MPGP(KSP ksp, PetscViewer viewer)
   PetscCall(PetscViewerASCIIPushTab(viewer));
   PetscCall(MPGPCoreViewExpansion(&qp->core, viewer));
   PetscCall(QPCountersView(&qp->counters, NULL, viewer));
+  if (qp->core.status == MPGPStatus::NOT_SYMMETRIC)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the operator is not symmetric (x'Ay - y'Ax = %g for random x, y, against ||A|| |x| |y| = %g)\n", (double)qp->core.asymmetry,
+                                     (double)qp->core.asymmetry_scale));
   if (qp->set) PetscCall(SeparableSetView(qp->set, viewer));
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -368,7 +376,9 @@ PetscErrorCode KSPCreate_MPGPCommon(KSP ksp, MPGPVariant variant, const char *na
   initial guess is projected. The residual norm reported to monitors and to the convergence test is
   the norm of the projected gradient (the KKT residual); `-ksp_rtol` is relative to |b|. The PC is
   none unless chosen; with bounds a PC M preconditions the CG steps in face, z = [M^-1]_FF g_F on the
-  free entries F (see `TaoQPGetPC()`). A negative -ksp_max_it is an error.
+  free entries F (see `TaoQPGetPC()`).
+  A must be symmetric: a solve that fails tests it as `TAOMPRGP` does and, when it is not, ends with
+  `KSP_DIVERGED_NONSYMMETRIC` (-ksp_view: "stopped: the operator is not symmetric"). A negative -ksp_max_it is an error.
 
   References:
 . * - Z. Dostal, J. Schoberl, Minimizing quadratic functions over non-negative cone with the rate of convergence and finite termination, Computational Optimization and Applications (2005)

@@ -43,6 +43,7 @@
      (docs/qp-benchmark.md), so it is off by default.
    Math: docs/algorithms.md, 'MPRGP and MPGP'. */
 #include <conefeti/private/mpgpcore.h>
+#include <conefeti/private/operatortest.h>
 #include <conefeti/private/reproduciblesum.h>
 
 PetscLogEvent QP_HessianMult, QP_Solve, QP_NormEstimate, QP_Precondition, QP_Feasibility, QP_MultiplierUpdate, QP_VecReproducible;
@@ -88,6 +89,28 @@ PetscErrorCode MPGPCoreSetUp(MPGPCore *c, Vec x)
   PetscCall(VecDuplicate(x, &c->beta));
   PetscCall(VecDuplicate(x, &c->xprev));
   PetscCall(VecDuplicate(x, &c->gprev));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* After a solve that failed in a way a non-symmetric A explains: CG's recurrences, its step lengths and the
+   decrease of q all assume A = A', and with a non-symmetric A the solve ended with a curvature, an unbounded
+   direction, a rise of q or a drifted gradient that blamed semidefiniteness or the norm estimate. Two products
+   test A (counted as products); if it is not symmetric that is the cause (NOT_SYMMETRIC). Never after a
+   successful solve, whose counts are documented. */
+PetscErrorCode MPGPCoreDiagnose(MPGPCore *c)
+{
+  MatSymmetryTest t;
+
+  PetscFunctionBegin;
+  if (c->status != MPGPStatus::INDEFINITE && c->status != MPGPStatus::UNBOUNDED && c->status != MPGPStatus::NORM_TOO_SMALL && c->status != MPGPStatus::ACCURACY_FLOOR)
+    PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MatTestSymmetry_Private(c->A, c->normA, &t));
+  if (c->counters) c->counters->hessian_mults += 2;
+  if (!t.symmetric) {
+    c->status          = MPGPStatus::NOT_SYMMETRIC;
+    c->asymmetry       = t.asymmetry;
+    c->asymmetry_scale = t.scale;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

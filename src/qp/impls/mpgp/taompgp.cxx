@@ -425,7 +425,12 @@ PetscErrorCode TaoSolve_MPGP(Tao tao)
     qp->core.resume = PETSC_FALSE;
   }
   PetscCall(VecCopy(qp->core.g, tao->gradient));
-  if (qp->core.status == MPGPStatus::INDEFINITE) {
+  PetscCall(MPGPCoreDiagnose(&qp->core));
+  if (qp->core.status == MPGPStatus::NOT_SYMMETRIC) {
+    PetscCall(PetscInfo(tao, "TAO %s: the Hessian is not symmetric (x'Ay - y'Ax = %g for random x, y, against ||A|| |x| |y| = %g)\n", qp->name, (double)qp->core.asymmetry,
+                        (double)qp->core.asymmetry_scale));
+    PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+  } else if (qp->core.status == MPGPStatus::INDEFINITE) {
     PetscCall(PetscInfo(tao, "TAO %s: p'Ap < 0, the Hessian is not positive semidefinite\n", qp->name));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   } else if (qp->core.status == MPGPStatus::UNBOUNDED) {
@@ -557,6 +562,9 @@ PetscErrorCode TaoView_MPGP(Tao tao, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "preconditioning in face (the PC restricted to the free entries):\n"));
     PetscCall(PCView(qp->pc, viewer));
   }
+  if (qp->core.status == MPGPStatus::NOT_SYMMETRIC)
+    PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the Hessian is not symmetric (x'Ay - y'Ax = %g for random x, y, against ||A|| |x| |y| = %g)\n", (double)qp->core.asymmetry,
+                                     (double)qp->core.asymmetry_scale));
   if (qp->core.status == MPGPStatus::INDEFINITE) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the Hessian is not positive semidefinite (p'Ap < 0)\n"));
   if (qp->core.status == MPGPStatus::UNBOUNDED) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: q is unbounded below (p'Ap = 0 along a descent direction no constraint stops)\n"));
   if (qp->core.status == MPGPStatus::NORM_TOO_SMALL)
@@ -756,7 +764,11 @@ ranks, else none)
   matrix; on several ranks each rank's diagonal block), the PC is ICC(0) (block Jacobi with ICC(0) on several
   ranks), the expansion tries the projected CG step and Gamma is 2; otherwise (a MATSHELL, a dense matrix) no
   PC, Dostal's expansion and Gamma 1. Each of the three options given wins over its default; -tao_view says
-  which was chosen and why. A negative -tao_max_it is an error.
+  which was chosen and why.
+  A must be symmetric. A solve that fails (q rises, a direction of curvature p'Ap <= 0, or an exact gradient that
+  stays above the tolerance) tests A with two products (counted in hessian_mults; a successful solve does not): when
+  x'Ay - y'Ax for random x, y exceeds 1e-8 ||A|| |x| |y| it ends with `TAO_DIVERGED_USER` and -tao_view says
+  "stopped: the Hessian is not symmetric". A negative -tao_max_it is an error.
   The algorithm and what conefeti adds to it: docs/algorithms.md, 'MPRGP and MPGP'.
 
   References:

@@ -24,6 +24,7 @@
    pulls it back for the price of one product with Q. */
 #include <conefeti.h>
 #include <conefeti/private/mpgpcore.h>
+#include <conefeti/private/operatortest.h>
 #include <conefeti/private/qpadopt.h>
 #include <conefeti/private/reproduciblesum.h>
 #include <petsc/private/taoimpl.h>
@@ -66,6 +67,8 @@ struct TaoSMALXE {
   Mat          Q         = nullptr; /* projector form: orthogonal projector onto range(C') */
   Vec          xt        = nullptr; /* projector form: particular solution, in range(Q) */
   PetscBool    projector = PETSC_FALSE, Q_from_C = PETSC_FALSE;
+  std::string  hessian_name   = "the Hessian"; /* as failures name them (TaoSMALXESetOperatorNames_Private()) */
+  std::string  projector_name = "the projector Q";
 
   /* augmented Lagrangian state */
   Vec              mu     = nullptr; /* general form: the multiplier (m-vector) */
@@ -846,6 +849,37 @@ PetscErrorCode CheckMaxIt(Tao tao)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* An inner solve failed. A Hessian that is not symmetric, or a Q that is not an orthogonal projector, makes the
+   inner Hessian (A + rho C'C, or PAP + rho Q) non-symmetric, and the inner solver then fails as on an indefinite
+   one ("is the Hessian positive semidefinite?"). Test them with products (counted; only here, after a failure)
+   and write the culprit to why, or "" when both pass. */
+PetscErrorCode DiagnoseInnerFailure(Tao tao, TaoSMALXE *s, char why[], size_t len)
+{
+  MatSymmetryTest sym;
+
+  PetscFunctionBegin;
+  why[0] = 0;
+  PetscCall(MatTestSymmetry_Private(tao->hessian, s->normA, &sym));
+  s->counters.hessian_mults += 2;
+  if (!sym.symmetric) {
+    PetscCall(PetscSNPrintf(why, len, "%s is not symmetric (x'Ay - y'Ax = %g for random x, y, against ||A|| |x| |y| = %g)", s->hessian_name.c_str(), (double)sym.asymmetry, (double)sym.scale));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (s->Q && !s->Q_from_C) { /* a Q built from C is C'C: C's rows are the user's to make orthonormal */
+    MatProjectorTest proj;
+    PetscCall(MatTestProjector_Private(s->Q, &proj));
+    if (!proj.projector) {
+      PetscCall(PetscSNPrintf(why, len, "%s is not a projector (|Q(Qx) - Qx| = %g for a random x, |Qx| = %g)", s->projector_name.c_str(), (double)proj.defect, (double)proj.scale));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    PetscCall(MatTestSymmetry_Private(s->Q, 1.0, &sym)); /* an orthogonal projector is symmetric, of norm 1 */
+    if (!sym.symmetric)
+      PetscCall(PetscSNPrintf(why, len, "%s is not symmetric, as an orthogonal projector is (x'Qy - y'Qx = %g for random x, y, against |x| |y| = %g)", s->projector_name.c_str(), (double)sym.asymmetry,
+                              (double)sym.scale));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* One inner minimization: `sweeps` block Gauss-Seidel sweeps (one solve when monolithic).
    Leaves the gradient of L at the new x in s->g and returns the norm of its projected gradient. */
 PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
@@ -887,8 +921,13 @@ PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
         *gp = std::numeric_limits<PetscReal>::quiet_NaN();
         PetscFunctionReturn(PETSC_SUCCESS);
       }
-      PetscCheck(reason != TAO_DIVERGED_USER, PetscObjectComm((PetscObject)tao), PETSC_ERR_NOT_CONVERGED,
-                 "TAO smalxe: the inner solve of block %zu failed (%s); is the Hessian positive semidefinite on the feasible set, and q bounded below?", k, TaoConvergedReasons[reason]);
+      if (reason == TAO_DIVERGED_USER) {
+        char why[256];
+        PetscCall(DiagnoseInnerFailure(tao, s, why, sizeof(why)));
+        PetscCheck(!why[0], PetscObjectComm((PetscObject)tao), PETSC_ERR_ARG_WRONG, "TAO smalxe: %s; the inner solve of block %zu failed (%s)", why, k, TaoConvergedReasons[reason]);
+        SETERRQ(PetscObjectComm((PetscObject)tao), PETSC_ERR_NOT_CONVERGED,
+                "TAO smalxe: the inner solve of block %zu failed (%s); is the Hessian positive semidefinite on the feasible set, and q bounded below?", k, TaoConvergedReasons[reason]);
+      }
       if (blk.is) {
         PetscCall(VecScatterBegin(blk.scatter, blk.x, tao->solution, INSERT_VALUES, SCATTER_REVERSE));
         PetscCall(VecScatterEnd(blk.scatter, blk.x, tao->solution, INSERT_VALUES, SCATTER_REVERSE));
@@ -1703,6 +1742,19 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
 
 } // namespace
 
+/* the names of the Hessian and the projector in the errors of failed solves: a ContactProblem's F and Q */
+PetscErrorCode TaoSMALXESetOperatorNames_Private(Tao tao, const char hessian[], const char projector[])
+{
+  PetscBool is;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)tao, TAOSMALXE, &is));
+  if (!is) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCallCXX(Get(tao)->hessian_name = hessian);
+  PetscCallCXX(Get(tao)->projector_name = projector);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /*MC
   TAOSMALXE - "smalxe": min 1/2 x'Ax - b'x over a separable set subject to C x = d, by the
   semi-monotonic augmented Lagrangian with adaptive precision (Dostal's SMALBE) around a nested
@@ -1749,7 +1801,10 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
   with `TaoSetRecycleHistory()` (`-tao_recycle_history`) it starts from the multiplier the previous
   solve ended with, which a sequence of nearby problems needs for the warm start to pay: from
   multiplier 0 the first inner solve undoes it. The algorithm: docs/algorithms.md, 'SMALXE: the semi-monotonic
-  augmented Lagrangian'. -tao_max_it must be >= 1.
+  augmented Lagrangian'.
+  A must be symmetric and a given projector Q an orthogonal projector. When an inner solve fails, smalxe tests A's
+  symmetry and Q's |Q(Qx) - Qx| and symmetry with products (counted; never after a successful solve) and its error
+  names the one that is not, else asks whether the Hessian is positive semidefinite. -tao_max_it must be >= 1.
 
   References:
 + * - Z. Dostal, Inexact semi-monotonic augmented Lagrangians with optimal feasibility convergence for quadratic programming with simple bounds and equality constraints, SIAM J. Numer. Anal.
