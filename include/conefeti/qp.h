@@ -154,6 +154,7 @@ PETSC_EXTERN PetscErrorCode TaoSMALXEGetOuterTolerances(Tao, PetscReal *, PetscR
 PETSC_EXTERN PetscErrorCode TaoSMALXESetConsistencyCheck(Tao, PetscErrorCode (*)(Tao, Vec, PetscBool *, void *), void *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStalled(Tao, PetscBool *);
+PETSC_EXTERN PetscErrorCode TaoSMALXEGetInnerLimited(Tao, PetscInt *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetAnderson(Tao, PetscInt, PetscInt);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetPenaltyPreconditioner(Tao, PetscBool);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetExactStop(Tao, PetscBool);

@@ -627,6 +627,7 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
 {
   ContactProblemData *d = cp->data;
   PetscBool           stagnated, stalled;
+  PetscInt            limited;
   const char         *prefix; /* the options the sentences name are the user's, with the problem's prefix */
 
   PetscFunctionBegin;
@@ -634,6 +635,7 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
   if (!prefix) prefix = "";
   PetscCall(TaoSMALXEGetStagnated(d->tao, &stagnated));
   PetscCall(TaoSMALXEGetStalled(d->tao, &stalled));
+  PetscCall(TaoSMALXEGetInnerLimited(d->tao, &limited));
   d->stats.converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
   if (reason > 0) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "converged (%s) in %" PetscInt_FMT " outer iterations", TaoConvergedReasons[reason], its));
   else if (stagnated)
@@ -654,6 +656,22 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
     else if (d->has_coulomb) PetscCall(PetscSNPrintf(cause, sizeof(cause), ": the radii F l_n can lock the loop (large F); try a smaller F or msa"));
     PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "stalled: %" PetscInt_FMT " outer iterations, the last ones without progress (|gP| %.3g, |G l - e| %.3g)%s", its, (double)gp,
                             (double)feas, cause));
+  } else if (limited >= 0) {
+    /* the inner solver that ran into its limit, by the option that names it (merged: block 0 the normal and
+       gluing multipliers, block 1 the tangential pairs; otherwise one inner solver) */
+    Tao       sub;
+    PetscInt  maxit;
+    char      inner[64];
+    PetscBool blocks = (PetscBool)(d->pipeline == CONTACT_PIPELINE_COULOMB && d->algorithm == CONTACT_COULOMB_MERGED);
+    if (blocks) PetscCall(TaoSMALXEGetBlockSubsolver(d->tao, limited, &sub));
+    else PetscCall(TaoSMALXEGetSubsolver(d->tao, &sub));
+    PetscCall(TaoGetMaximumIterations(sub, &maxit));
+    if (blocks) PetscCall(PetscSNPrintf(inner, sizeof(inner), "block%" PetscInt_FMT "_tao", limited));
+    else PetscCall(PetscSNPrintf(inner, sizeof(inner), "subsolver_tao"));
+    PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
+                            "not converged: %" PetscInt_FMT " outer iterations, the inner solves at their limit of %" PetscInt_FMT
+                            " steps in the last ones without progress (raise -%scontact_tao_smalxe_%s_max_it)",
+                            its, maxit, prefix, inner));
   } else if (reason == TAO_DIVERGED_MAXITS)
     PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
   else if (reason == TAO_DIVERGED_NAN)

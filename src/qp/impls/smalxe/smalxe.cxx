@@ -119,6 +119,10 @@ struct TaoSMALXE {
   PetscInt               stagnation_its = 30;
   PetscBool              stagnated      = PETSC_FALSE;
   PetscBool              stalled        = PETSC_FALSE; /* |Cx - d| made no progress while the multiplier settled */
+  /* inner solves at their iteration limit: the block that ran into it in each outer iteration (-1: none), the one
+     that made the loop stop (-1: it did not stop for it), and the window of that stop */
+  std::vector<PetscInt> limited_history;
+  PetscInt              limited_now = -1, inner_limited = -1, inner_limit_its = 3;
 
   /* Anderson acceleration of the multiplier update (depth 0: the plain update mu += rho (Cx - d)) */
   PetscInt         anderson = -1, anderson_start = 3; /* depth -1: automatic (AndersonDepth()) */
@@ -543,6 +547,30 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
       PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
     }
   }
+  if (tao->reason == TAO_CONTINUE_ITERATING && s->inner_limit_its > 0 && k >= s->inner_limit_its && (tao->cnorm > tol_e || tao->residual > tol_g)) {
+    /* an inner solve ran into its iteration limit in each of the last inner_limit_its outer iterations, and the best
+       distance from convergence among them is not half the best before them: every outer iteration now costs the
+       inner limit in products and gains little (Kucera's projected steps alone, -tao_mpgp_arc 0, move slipping
+       friction nodes on small circles a little per step: 10^4 steps for 1e-3 of |gP| on a fuzz scene, whose
+       tighter solve then ran for more than 300 s before the stall test's window of 30 outer iterations was full) */
+    PetscBool all    = PETSC_TRUE;
+    PetscReal recent = PETSC_MAX_REAL, before = PETSC_MAX_REAL;
+    for (PetscInt i = 0; i <= k; i++) {
+      const PetscReal merit = PetscMax(s->gp_history[i] / tol_g, s->feas_history[i] / tol_e);
+      if (i > k - s->inner_limit_its) {
+        recent = PetscMin(recent, merit);
+        if (s->limited_history[i] < 0) all = PETSC_FALSE;
+      } else before = PetscMin(before, merit);
+    }
+    if (all && recent > 0.5 * before) {
+      s->inner_limited = s->limited_history[k];
+      PetscCall(PetscInfo(tao,
+                          "TAO smalxe: the inner solves reached their iteration limit in %" PetscInt_FMT " outer iterations in a row (block %" PetscInt_FMT
+                          " last) and max(|gP| / tol, |Cx - d| / tol) did not halve (%g, best before %g)\n",
+                          s->inner_limit_its, s->inner_limited, (double)recent, (double)before));
+      PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
+    }
+  }
   /* niter counts from 0 (the first inner solve), so niter + 1 outer iterations are done: -tao_max_it N allows N */
   if (tao->reason == TAO_CONTINUE_ITERATING && tao->niter + 1 >= tao->max_it) PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_MAXITS));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -917,6 +945,7 @@ PetscErrorCode InnerSolve(Tao tao, TaoSMALXE *s, PetscReal *gp)
       s->counters.nested_iterations += after.iterations - before.iterations;
       s->counters.estimate_mults += after.estimate_mults - before.estimate_mults;
       PetscCall(TaoGetConvergedReason(blk.sub, &reason));
+      if (reason == TAO_DIVERGED_MAXITS) s->limited_now = (PetscInt)k;
       if (reason == TAO_DIVERGED_NAN) { /* overflow: the outer loop ends with DIVERGED_NAN, a reason, not an error */
         *gp = std::numeric_limits<PetscReal>::quiet_NaN();
         PetscFunctionReturn(PETSC_SUCCESS);
@@ -1152,14 +1181,17 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
   s->feas_history.clear();
   s->mult_history.clear();
   s->gp_history.clear();
-  s->stagnated = PETSC_FALSE;
-  s->stalled   = PETSC_FALSE;
+  s->limited_history.clear();
+  s->stagnated     = PETSC_FALSE;
+  s->stalled       = PETSC_FALSE;
+  s->inner_limited = -1;
   QPRefusedStops refused; /* exact stop: the stops the inner solver's exact gradient refused */
   s->accuracy_floor = PETSC_FALSE;
   for (PetscInt k = 0;; k++) {
     PetscReal gp, e, L;
     PetscReal xg, xb, md;
     PetscCall(UpdateInnerLinearTerm(s));
+    s->limited_now = -1;
     PetscCall(InnerSolve(tao, s, &gp));
     /* a pre-solve hook that moves the set from the iterate (the Coulomb radii F l_n) hands the first inner solve
        a set computed from the starting point, which may be far from any solution (the particular solution of
@@ -1181,6 +1213,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
     s->feas                = e;
     PetscCallCXX(s->feas_history.push_back(e));
     PetscCallCXX(s->gp_history.push_back(gp));
+    PetscCallCXX(s->limited_history.push_back(s->limited_now));
     PetscCall(VecCopy(s->g, tao->gradient));
     tao->niter = k;
     s->counters.iterations++;
@@ -1315,6 +1348,10 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
                             "Stop when |Cx - d| makes less than 1% progress in this many outer iterations: infeasible if the multiplier grew by a quarter meanwhile, stalled if it settled (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
+  PetscCall(PetscOptionsInt("-tao_smalxe_inner_limit_its",
+                            "Stop when the inner solves reach their iteration limit in this many outer iterations in a row without halving the distance from convergence (0: never)",
+                            "TaoSMALXEGetInnerLimited", s->inner_limit_its, &s->inner_limit_its, NULL));
+  PetscCheck(s->inner_limit_its >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_inner_limit_its must be >= 0 (0: never), got %" PetscInt_FMT, p, s->inner_limit_its);
   PetscCall(PetscOptionsBool("-tao_smalxe_exact_stop", "Confirm a stop on the inner solver's exact gradient (one product; off in the contact solves, which check their answer from scratch)",
                              "TaoSMALXESetExactStop", s->exact_stop, &s->exact_stop, NULL));
   PetscCall(PetscOptionsBool("-tao_smalxe_penalty_pc", "Projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q in face (unless the inner solver has a PC of its own)",
@@ -1408,6 +1445,10 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
   if (s->accuracy_floor)
     PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: the inner solver's exact projected gradient stays above the tolerance its recurred one met (rounding: an ill-conditioned Hessian)\n"));
   if (s->stalled) PetscCall(PetscViewerASCIIPrintf(viewer, "stopped: |Cx - d| stalled: no progress in %" PetscInt_FMT " outer iterations, the multiplier settled\n", s->stagnation_its));
+  if (s->inner_limited >= 0)
+    PetscCall(PetscViewerASCIIPrintf(
+        viewer, "stopped: the inner solves (block %" PetscInt_FMT " last) reached their iteration limit in %" PetscInt_FMT " outer iterations in a row without halving the distance from convergence\n",
+        s->inner_limited, s->inner_limit_its));
   PetscCall(QPCountersView(&s->counters, NULL, viewer));
   /* TaoView() prints tao->niter, the index of the last outer iteration counted from 0: one less than the
      outer iterations run, which the contact summaries report as Iter */
@@ -1454,6 +1495,7 @@ const char *const kComposed[] = {"TaoQPSetConstraints_C",
                                  "TaoSMALXEGetOuterTolerances_C",
                                  "TaoSMALXEGetStagnated_C",
                                  "TaoSMALXEGetStalled_C",
+                                 "TaoSMALXEGetInnerLimited_C",
                                  "TaoSMALXESetAnderson_C",
                                  "TaoSMALXESetPenaltyPreconditioner_C",
                                  "TaoSMALXESetExactStop_C",
@@ -1715,6 +1757,13 @@ PetscErrorCode GetStagnated_SMALXE(Tao tao, PetscBool *flag)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode GetInnerLimited_SMALXE(Tao tao, PetscInt *block)
+{
+  PetscFunctionBegin;
+  *block = Get(tao)->inner_limited;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GetStalled_SMALXE(Tao tao, PetscBool *flag)
 {
   PetscFunctionBegin;
@@ -1776,15 +1825,14 @@ PetscErrorCode TaoSMALXESetOperatorNames_Private(Tao tao, const char hessian[], 
 . -tao_smalxe_norm_method      - slepc or power
 . -tao_smalxe_norm_margin      - safety margin on the estimate (negative: the method's default, 0.01 slepc, 0.05 power)
 . -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
-. -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance, times rho/rho_default below 1 (0: only the adaptive precision)
-. -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
-. -tao_smalxe_anderson_start <3> - first outer iteration (counted from 0, at least 1) whose update is accelerated
-. -tao_smalxe_rho_balance <-1> - with blocks: residual balancing of rho by this factor (0: off; -1: 2 with blocks, 0 without)
-. -tao_smalxe_exact_stop <true> - confirm a stop on the inner solver's exact gradient (see `TaoSMALXESetExactStop()`)
-. -tao_smalxe_penalty_pc <true> - projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`)
-. -tao_smalxe_pc_q_scale <1>   - with a preconditioner of A (`TaoSMALXESetProjectedPreconditioner()`): the inner CG steps use P M P + (this/rho) Q
-. -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
-. -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner solves)
+. -tao_smalxe_inner_limit_its <3> - stop when the inner solves reach their iteration limit in this many outer iterations in a row without halving the distance from convergence
+(`TaoSMALXEGetInnerLimited()`) . -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance, times rho/rho_default below 1 (0: only the adaptive precision) .
+-tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`) . -tao_smalxe_anderson_start <3>
+- first outer iteration (counted from 0, at least 1) whose update is accelerated . -tao_smalxe_rho_balance <-1> - with blocks: residual balancing of rho by this factor (0: off; -1: 2 with blocks, 0
+without) . -tao_smalxe_exact_stop <true> - confirm a stop on the inner solver's exact gradient (see `TaoSMALXESetExactStop()`) . -tao_smalxe_penalty_pc <true> - projector form: precondition the inner
+CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`) . -tao_smalxe_pc_q_scale <1>   - with a preconditioner of A (`TaoSMALXESetProjectedPreconditioner()`): the inner CG
+steps use P M P + (this/rho) Q . -tao_smalxe_counters_view    - print the counters as one JSON line after each solve . -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner
+solves)
 - -tao_smalxe_block<k>_tao_*   - options of block k's nested solver
 
   Notes:
@@ -1862,6 +1910,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetConsistencyCheck_C", SetConsistencyCheck_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStagnated_C", GetStagnated_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStalled_C", GetStalled_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetInnerLimited_C", GetInnerLimited_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetAnderson_C", SetAnderson_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPenaltyPreconditioner_C", SetPenaltyPreconditioner_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetExactStop_C", SetExactStop_SMALXE));

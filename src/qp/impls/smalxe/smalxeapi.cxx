@@ -300,6 +300,38 @@ PetscErrorCode TaoSMALXEGetStalled(Tao tao, PetscBool *flag)
 }
 
 /*@C
+  TaoSMALXEGetInnerLimited - Whether the last solve stopped because its inner solves kept running into their
+  iteration limit: in each of the last -tao_smalxe_inner_limit_its outer iterations an inner solve ended at its
+  iteration limit, and the best distance from convergence, max(|gP| / tol, |Cx - d| / tol), among them was not
+  half the best before them. Each outer iteration then costs the inner limit in Hessian products for little
+  gain; raising the inner solver's -tao_max_it, or choosing an inner solver that suits the set, may help.
+
+  Not Collective
+
+  Input Parameter:
+. tao - the solver
+
+  Output Parameter:
+. block - the block (0 when there are no blocks) whose inner solve ran into its limit in the last outer
+          iteration, if the solve stopped for it (reason `TAO_DIVERGED_USER`); -1 otherwise
+
+  Options Database Key:
+. -tao_smalxe_inner_limit_its <3> - the window (0 turns the test off)
+
+  Level: intermediate
+
+.seealso: `TAOSMALXE`, `TaoSMALXEGetStalled()`, `TaoSMALXEGetBlockSubsolver()`
+@*/
+PetscErrorCode TaoSMALXEGetInnerLimited(Tao tao, PetscInt *block)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidIntPointer(block, 2);
+  PetscUseMethod(tao, "TaoSMALXEGetInnerLimited_C", (Tao, PetscInt *), (tao, block));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   TaoSMALXEGetStagnated - Whether the last solve stopped because |Cx - d| stagnated, which means
   that C x = d cannot be met over the set (or that rho is far too small).
 
