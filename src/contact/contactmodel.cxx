@@ -855,8 +855,8 @@ PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol, const SolverT
   if (d.cp) {
     ContactProblemData &p     = *d.cp->data;
     const PetscBool     first = (PetscBool)(rtol == t.rtol);
-    p.msa_rtol                = t.msa_rtol > 0 && !first ? PetscMin(t.msa_rtol * rtol / t.rtol, 0.5) : t.msa_rtol;
-    p.fixed_point_rtol        = t.fixed_point_rtol > 0 && !first ? PetscMin(t.fixed_point_rtol * rtol / t.rtol, 0.5) : t.fixed_point_rtol;
+    p.msa_rtol                = first ? t.msa_rtol : ContactScaledTolerance_Private(t.msa_rtol, rtol, t.rtol);
+    p.fixed_point_rtol        = first ? t.fixed_point_rtol : ContactScaledTolerance_Private(t.fixed_point_rtol, rtol, t.rtol);
     p.acceptance_factor       = first ? t.acceptance_factor : t.acceptance_factor * t.rtol / rtol;
     p.rtol                    = rtol;
     PetscCall(TaoSetTolerances(p.tao, 0.0, 0.0, rtol));
@@ -943,16 +943,6 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
     PetscCall(FETIRecoverPrimal(d.feti, d.lambda, d.alpha, d.u));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-void Accumulate(ContactStatistics &total, const ContactStatistics &one)
-{
-  total.outer_iterations += one.outer_iterations;
-  total.al_iterations += one.al_iterations;
-  total.products_qpp += one.products_qpp;
-  total.products_qpq += one.products_qpq;
-  total.products_other += one.products_other;
-  total.products_estimate += one.products_estimate;
 }
 
 } // namespace
@@ -1043,7 +1033,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     if (refine != refine0) PetscCall(PetscInfo(cm, "solve %" PetscInt_FMT " at relative tolerance %g: F products refine the float factors' solves\n", round, (double)tol));
     PetscCall(FETISetKplusRefine(d->feti, refine));
     PetscCall(SolveOnce(cm, round > 0 ? PETSC_TRUE : PETSC_FALSE, &one));
-    Accumulate(d->stats, one);
+    ContactStatisticsAccumulate_Private(d->stats, one);
     d->stats.fixed_point = one.fixed_point;
     d->stats.feasibility = one.feasibility;
     d->solved            = PETSC_TRUE;

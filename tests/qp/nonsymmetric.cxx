@@ -3,7 +3,7 @@
    min 1/2 x'Ax - b'x with A = tridiag(-1 - s, 2, -1 + s), n = 30 (-skew s, default 1: A's symmetric part is the
    Dirichlet Laplacian, its skew part s tridiag(-1, 0, 1)), b_i = 1 + sin(i), x >= 0 with -lower. -shell gives A as a
    MATSHELL (MatIsSymmetric() cannot test it); -ksp solves with KSPSetOperators() and the KSP type of -ksp_type
-   (default mprgp), else a TAO solve of -tao_type (default mprgp). Prints the reason; "SYMMETRIC" for -skew 0. */
+   (default mprgp), else a TAO solve of -tao_type (default mprgp). Prints the reason. */
 #include <conefeti.h>
 
 static PetscErrorCode ShellMult(Mat S, Vec x, Vec y)

@@ -26,6 +26,22 @@ static inline PetscReal ContactTighterTolerance_Private(PetscReal tol, PetscReal
   return PetscMax(tol * PetscMin(PetscMax(0.3 * acceptance / PetscMax(worst, acceptance), 1e-4), 0.1), tol > CONTACT_REFINE_TIGHTEST ? CONTACT_REFINE_TIGHTEST : CONTACT_REFINE_LAST);
 }
 
+/* the counts of one more solve added to those of the solves before it (the tighter solves of a ContactModel and of a
+   ContactProblem alone) */
+static inline void ContactStatisticsAccumulate_Private(ContactStatistics &total, const ContactStatistics &one)
+{
+  total.outer_iterations += one.outer_iterations;
+  total.al_iterations += one.al_iterations;
+  total.products_qpp += one.products_qpp;
+  total.products_qpq += one.products_qpq;
+  total.products_other += one.products_other;
+  total.products_estimate += one.products_estimate;
+}
+
+/* a fixed-point tolerance the user gave (> 0), scaled with the tighter solve's relative tolerance rtol against the
+   first one rtol0, at most 0.5; one not given (-1: it follows -contact_rtol) stays */
+static inline PetscReal ContactScaledTolerance_Private(PetscReal given, PetscReal rtol, PetscReal rtol0) { return given > 0 ? PetscMin(given * rtol / rtol0, 0.5) : given; }
+
 /* the smallest -contact_rtol at which a ContactModel stores the subdomains' factors in float (they perturb F by
    about 1e-7 relative, the floor of the mechanical residuals they reach) */
 #define CONTACT_SINGLE_PRECISION_MIN_RTOL 1e-6

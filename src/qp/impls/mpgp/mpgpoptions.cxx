@@ -196,8 +196,8 @@ PetscErrorCode TaoQPCheckTolerances_Private(Tao tao, PetscBool equality)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* TaoSetFromOptions() and TaoSetMaxIterations() take a negative -tao_max_it, and the solve then ran as with 0: checked
-   in the types' TaoSetFromOptions() (the option) and when a solve starts (TaoSetMaxIterations()) */
+/* TaoSetFromOptions() and TaoSetMaximumIterations() take a negative -tao_max_it, and the solve then ran as with 0: checked
+   in the types' TaoSetFromOptions() (the option) and when a solve starts (TaoSetMaximumIterations()) */
 PetscErrorCode TaoQPCheckMaxIt_Private(Tao tao)
 {
   const char *prefix;

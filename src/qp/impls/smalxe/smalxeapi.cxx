@@ -303,8 +303,10 @@ PetscErrorCode TaoSMALXEGetStalled(Tao tao, PetscBool *flag)
   TaoSMALXEGetInnerLimited - Whether the last solve stopped because its inner solves kept running into their
   iteration limit: in each of the last -tao_smalxe_inner_limit_its outer iterations an inner solve ended at its
   iteration limit, and the best distance from convergence, max(|gP| / tol, |Cx - d| / tol), among them was not
-  half the best before them. Each outer iteration then costs the inner limit in Hessian products for little
-  gain; raising the inner solver's -tao_max_it, or choosing an inner solver that suits the set, may help.
+  1% below the best before them (tested from 2 -tao_smalxe_inner_limit_its outer iterations on, as the stall test
+  of `TaoSMALXEGetStalled()` with its own window). Each outer iteration then costs the inner limit in Hessian
+  products for little gain; raising the inner solver's -tao_max_it, or choosing an inner solver that suits the set,
+  may help.
 
   Not Collective
 
@@ -316,7 +318,7 @@ PetscErrorCode TaoSMALXEGetStalled(Tao tao, PetscBool *flag)
           iteration, if the solve stopped for it (reason `TAO_DIVERGED_USER`); -1 otherwise
 
   Options Database Key:
-. -tao_smalxe_inner_limit_its <3> - the window (0 turns the test off)
+. -tao_smalxe_inner_limit_its <5> - the window (0 turns the test off)
 
   Level: intermediate
 
