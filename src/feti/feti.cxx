@@ -590,16 +590,20 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_kplus_speedup <2>     - auto: a block is a candidate when an F product reads at least this many times fewer numbers of it than of the factor (`FETISetKplusSpeedup()`)
 . -feti_kplus_memory_budget <MB> - auto: all dense blocks together take at most this many megabytes (all ranks; default: no bound but the ratio) (`FETISetKplusMemoryBudget()`)
 . -feti_kplus_explicit_schur <true> - build those blocks from a MUMPS Schur complement (when MUMPS is there); false: by solves with the subdomain factor
-. -feti_memory_budget <MB>     - memory the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup); `FETISetUp()` drops the explicit blocks when only
-they exceed it and stops when the factorizations do . -feti_view                   - view the problem after setup . -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of
-`FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8, unpreconditioned norm) . -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
+. -feti_memory_budget <MB>     - memory the factorizations and explicit K+ blocks may take per node (default: what the node has available at setup); `FETISetUp()` drops
+  the explicit blocks when only they exceed it and stops when the factorizations do
+. -feti_view                   - view the problem after setup
+. -feti_ksp_type, -feti_ksp_rtol, -feti_ksp_monitor, ... - the projected CG of `FETISolveLinear()` (default mprgp without bounds, i.e. CG with reproducible sums; rtol 1e-8,
+  unpreconditioned norm)
+. -feti_pc_type <dirichlet,lumped,none> - its preconditioner, applied as P M^-1 P
 . -feti_sub_pc_factor_mat_solver_type <cholmod,mumps,petsc> - the sparse Cholesky of the subdomains
-. -feti_coarse_mode <auto,single,redundant,parallel,split> - the direct solver of G G': factored once on rank 0 (solves gather there; the same numbers as on one rank), on every rank, in parallel
-(MUMPS), or by two parts and a separator, rank 0 solving one part and rank 1 the other (split; the same numbers on any number of ranks, one included); auto (default): split from -feti_coarse_split_dim
-and redundant below it, both below -feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim, parallel from there . -feti_coarse_split_dim <1000> - the coarse dimension from which auto
-splits (each of two ranks reads half of the factor per solve; docs/scale.md) . -feti_coarse_redundant_dim <10000> - the coarse dimension below which auto
-factors on every rank (a small factor per rank; no rank waits for the coarse solves of rank 0) . -feti_coarse_parallel_dim <50000> - the coarse dimension from which auto factors in parallel (a larger
-factor does not fit one rank's memory and time; docs/scale.md)
+. -feti_coarse_mode <auto,single,redundant,parallel,split> - the direct solver of G G': factored once on rank 0 (solves gather there; the same numbers as on one rank), on
+  every rank, in parallel (MUMPS), or by two parts and a separator, rank 0 solving one part and rank 1 the other (split; the same numbers on any number of ranks, one
+  included); auto (default): split from -feti_coarse_split_dim and redundant below it, both below -feti_coarse_redundant_dim, single below -feti_coarse_parallel_dim,
+  parallel from there
+. -feti_coarse_split_dim <1000> - the coarse dimension from which auto splits (each of two ranks reads half of the factor per solve; docs/scale.md)
+. -feti_coarse_redundant_dim <10000> - the coarse dimension below which auto factors on every rank (a small factor per rank; no rank waits for the coarse solves of rank 0)
+. -feti_coarse_parallel_dim <50000> - the coarse dimension from which auto factors in parallel (a larger factor does not fit one rank's memory and time; docs/scale.md)
 . -feti_rigid_rows <true>      - G = R'B' and G' = B R from each touched node's coordinates and each subdomain's 6 x k transform of its rigid-body modes, where every
   kernel is spanned by them (built from coordinates); false: from R's stored rows (k numbers per dof)
 - -feti_coarse_pc_factor_mat_solver_type ... - its options (single: on rank 0; redundant: -feti_coarse_redundant_...)
