@@ -735,30 +735,14 @@ static PetscErrorCode CheckKKT(ContactProblem cp, Vec lambda, PetscReal acceptan
    counts of successful solves are documented) and put the culprit first in the reason. */
 static PetscErrorCode DiagnoseFailure(ContactProblem cp)
 {
-  ContactProblemData *d = cp->data;
-  MatSymmetryTest     sym;
+  ContactProblemData *d        = cp->data;
   char                why[256] = "", reason[sizeof(d->stats.reason)];
 
   PetscFunctionBegin;
   /* only the solver's own failure: a failed KKT check after the solver's test passed is not theirs */
   if (d->stats.converged || std::strcmp(d->stats.failed_check, "solver")) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(MatTestSymmetry_Private(d->F, 0, &sym));
+  PetscCall(MatDiagnoseOperators_Private(d->F, 0, "F (ContactProblemSetOperator())", 'F', d->Q, "Q (ContactProblemSetProjector())", why, sizeof(why)));
   d->stats.products_other += 2;
-  if (!sym.symmetric)
-    PetscCall(
-        PetscSNPrintf(why, sizeof(why), "F (ContactProblemSetOperator()) is not symmetric (x'Fy - y'Fx = %g for random x, y, against ||F|| |x| |y| = %g)", (double)sym.asymmetry, (double)sym.scale));
-  else if (d->Q) {
-    MatProjectorTest proj;
-    PetscCall(MatTestProjector_Private(d->Q, &proj));
-    if (!proj.projector)
-      PetscCall(PetscSNPrintf(why, sizeof(why), "Q (ContactProblemSetProjector()) is not a projector (|Q(Qx) - Qx| = %g for a random x, |Qx| = %g)", (double)proj.defect, (double)proj.scale));
-    else {
-      PetscCall(MatTestSymmetry_Private(d->Q, 1.0, &sym));
-      if (!sym.symmetric)
-        PetscCall(PetscSNPrintf(why, sizeof(why), "Q (ContactProblemSetProjector()) is not symmetric, as an orthogonal projector is (x'Qy - y'Qx = %g for random x, y, against |x| |y| = %g)",
-                                (double)sym.asymmetry, (double)sym.scale));
-    }
-  }
   if (!why[0]) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscSNPrintf(reason, sizeof(reason), "not converged: %s; the solve ended: %s", why, d->stats.reason));
   PetscCall(PetscStrncpy(d->stats.reason, reason, sizeof(d->stats.reason)));

@@ -22,6 +22,9 @@ struct MatProjectorTest {
 /* two products each; normA is an estimate of ||A|| (0: none) */
 PETSC_INTERN PetscErrorCode MatTestSymmetry_Private(Mat, PetscReal, MatSymmetryTest *);
 PETSC_INTERN PetscErrorCode MatTestProjector_Private(Mat, MatProjectorTest *);
+/* why a failed solve's operators are to blame: A (named Aname, written Aletter in the formula) not symmetric, else Q (if
+   any) not a projector or not symmetric; "" when they pass. Two products with A, up to four with Q (uncounted) */
+PETSC_INTERN PetscErrorCode MatDiagnoseOperators_Private(Mat, PetscReal, const char[], char, Mat, const char[], char[], size_t);
 
 #include <petsctao.h>
 /* the names of smalxe's Hessian and projector in the errors of a failed solve ("the Hessian", "the projector Q") */

@@ -67,3 +67,28 @@ PetscErrorCode MatTestProjector_Private(Mat Q, MatProjectorTest *t)
   PetscCall(VecDestroy(&QQx));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+PetscErrorCode MatDiagnoseOperators_Private(Mat A, PetscReal normA, const char Aname[], char Aletter, Mat Q, const char Qname[], char why[], size_t len)
+{
+  MatSymmetryTest sym;
+
+  PetscFunctionBegin;
+  why[0] = 0;
+  PetscCall(MatTestSymmetry_Private(A, normA, &sym));
+  if (!sym.symmetric) {
+    PetscCall(
+        PetscSNPrintf(why, len, "%s is not symmetric (x'%cy - y'%cx = %g for random x, y, against ||%c|| |x| |y| = %g)", Aname, Aletter, Aletter, (double)sym.asymmetry, Aletter, (double)sym.scale));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (!Q) PetscFunctionReturn(PETSC_SUCCESS);
+  MatProjectorTest proj;
+  PetscCall(MatTestProjector_Private(Q, &proj));
+  if (!proj.projector) {
+    PetscCall(PetscSNPrintf(why, len, "%s is not a projector (|Q(Qx) - Qx| = %g for a random x, |Qx| = %g)", Qname, (double)proj.defect, (double)proj.scale));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(MatTestSymmetry_Private(Q, 1.0, &sym)); /* an orthogonal projector is symmetric, of norm 1 */
+  if (!sym.symmetric)
+    PetscCall(PetscSNPrintf(why, len, "%s is not symmetric, as an orthogonal projector is (x'Qy - y'Qx = %g for random x, y, against |x| |y| = %g)", Qname, (double)sym.asymmetry, (double)sym.scale));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
