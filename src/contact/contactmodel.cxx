@@ -868,6 +868,45 @@ PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol, const SolverT
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The solver's state as the user left it (its tolerances, whether the F products refine float factors, whether the
+   contact solve recycles the previous multiplier), put back when ContactModelSolve() ends in an error: the tighter
+   solves change them while they run and restore them at the end, which an error skips. A user who catches the error
+   (PetscPushErrorHandler()) and solves again would otherwise solve at a tolerance other than the one set. A
+   destructor cannot report an error of its own: restoring is tried, and the first error stands */
+class UserStateOnError {
+public:
+  explicit UserStateOnError(ContactModel cm) : cm_(cm) {}
+  PetscErrorCode Save()
+  {
+    ContactModelData &d = *cm_->data;
+
+    PetscFunctionBegin;
+    PetscCall(GetSolverTolerances(cm_, t_));
+    PetscCall(FETIGetKplusRefine(d.feti, &refine_));
+    if (d.cp) PetscCall(ContactProblemGetTao(d.cp, &tao_));
+    if (tao_) PetscCall(TaoGetRecycleHistory(tao_, &recycle_));
+    armed_ = true;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  void                    Disarm() { armed_ = false; }
+  const SolverTolerances &Tolerances() const { return t_; }
+  PetscBool               Refine() const { return refine_; }
+  ~UserStateOnError()
+  {
+    if (!armed_) return;
+    (void)SetSolverTolerance(cm_, t_.rtol, t_);
+    (void)FETISetKplusRefine(cm_->data->feti, refine_);
+    if (tao_) (void)TaoSetRecycleHistory(tao_, recycle_);
+  }
+
+private:
+  ContactModel     cm_;
+  SolverTolerances t_;
+  PetscBool        refine_ = PETSC_FALSE, recycle_ = PETSC_FALSE;
+  Tao              tao_   = nullptr;
+  bool             armed_ = false;
+};
+
 /* No load at all (f = 0, no prescribed displacement, no initial penetration): u = 0 and l = 0 satisfy every
    equation and inequality exactly, and no solver is needed (an iterative one would chase 0 relative to 0) */
 PetscErrorCode WithoutLoad(ContactModel cm, PetscBool *none)
@@ -974,6 +1013,8 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
   the last, unless its residuals are not finite or -contact_kkt_check is on: then the solver's reason is the verdict.
   Such a solve below a relative tolerance of 1e-6 refines the F products where the subdomains' factors are
   stored in float (`FETISetKplusRefine()`): their perturbation of F, about 1e-7, would otherwise be its floor.
+  The solver's tolerances, the refinement and a cold start are the user's again at the end, also when the solve
+  ends in an error (a user who catches it can solve again).
   If the residuals are still above the acceptance after -contact_refine_max such solves, the solve has not
   converged, and `ContactModelGetStatistics()` says which check failed, where, and by how much.
   With -contact_kkt_check turned on (off in a model by default), the KKT residual recomputed from the multipliers
@@ -993,10 +1034,10 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
 PetscErrorCode ContactModelSolve(ContactModel cm)
 {
   ContactModelData *d;
-  PetscBool         noload = PETSC_FALSE, refine0;
+  PetscBool         noload = PETSC_FALSE;
   PetscReal         rtol0, tol;
-  SolverTolerances  first;
   PetscInt          nsingle;
+  UserStateOnError  user(cm);
   ContactStatistics one = {};
   ContactResiduals  r;
 
@@ -1021,9 +1062,10 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
     PetscCall(ConeFETIProgressEnd_Private(d->progress));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(GetSolverTolerances(cm, first));
-  tol = rtol0;
-  PetscCall(FETIGetKplusRefine(d->feti, &refine0));
+  PetscCall(user.Save());
+  const SolverTolerances &first   = user.Tolerances();
+  const PetscBool         refine0 = user.Refine();
+  tol                             = rtol0;
   PetscCall(FETIGetKplusPrecision(d->feti, NULL, &nsingle, NULL, NULL));
   for (PetscInt round = 0;; round++) {
     /* float factors perturb F by about 1e-7 (relative), the floor of what a solve reaches with them: a tighter
@@ -1109,6 +1151,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
   }
   if (tol != rtol0) PetscCall(SetSolverTolerance(cm, rtol0, first));
   PetscCall(FETISetKplusRefine(d->feti, refine0));
+  user.Disarm(); /* the user's state is back */
   PetscCall(ConeFETIProgressEnd_Private(d->progress));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -880,6 +880,47 @@ static PetscErrorCode RestoreTolerances(ContactProblem cp, const UserTolerances 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The solver's state as the user left it (the tolerances, and whether a solve recycles the previous one's multiplier),
+   put back when ContactProblemSolve() ends in an error: its tighter solves and the MSA loop change both while they
+   run and restore them on their way out, which an error skips. A user who catches the error (PetscPushErrorHandler())
+   and solves again would otherwise solve at a tighter tolerance than the one set, warm where a cold solve was asked.
+   Restoring cannot report an error of its own from a destructor: it is tried, and the first error stands */
+class UserStateOnError {
+public:
+  explicit UserStateOnError(ContactProblem cp) : cp_(cp) {}
+  PetscErrorCode Save()
+  {
+    ContactProblemData *d = cp_->data;
+
+    PetscFunctionBegin;
+    t_.rtol             = d->rtol;
+    t_.msa_rtol         = d->msa_rtol;
+    t_.fixed_point_rtol = d->fixed_point_rtol;
+    PetscCall(TaoGetTolerances(d->tao, &t_.gatol, &t_.grtol, &t_.gttol));
+    PetscCall(TaoGetRecycleHistory(d->tao, &recycle_));
+    armed_ = true;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  void                  Disarm() { armed_ = false; }
+  const UserTolerances &Tolerances() const { return t_; }
+  ~UserStateOnError()
+  {
+    if (!armed_) return;
+    ContactProblemData *d = cp_->data;
+    d->rtol               = t_.rtol;
+    d->msa_rtol           = t_.msa_rtol;
+    d->fixed_point_rtol   = t_.fixed_point_rtol;
+    (void)TaoSetTolerances(d->tao, t_.gatol, t_.grtol, t_.gttol);
+    (void)TaoSetRecycleHistory(d->tao, recycle_);
+  }
+
+private:
+  ContactProblem cp_;
+  UserTolerances t_;
+  PetscBool      recycle_ = PETSC_FALSE;
+  bool           armed_   = false;
+};
+
 /* st.reason = head + st.reason + tail, the middle shortened so that neither end is cut */
 static PetscErrorCode WrapReason(ContactStatistics &st, const char *head, const char *tail)
 {
@@ -933,7 +974,8 @@ static PetscErrorCode WrapReason(ContactStatistics &st, const char *head, const 
   -contact_refine_max times. The statistics add up the solves (iterations, products) and `ContactStatistics`
   refinements says how many tighter solves ran; the reason says down to which tolerance. The acceptance stays
   the one of the first tolerances, and the tolerances (-contact_rtol, the solver's, and -contact_msa_rtol and
-  -contact_fixed_point_rtol, which a tighter solve scales when they are given) are the user's again at the end.
+  -contact_fixed_point_rtol, which a tighter solve scales when they are given) are the user's again at the end,
+  and so is the recycling of the multiplier, also when the solve ends in an error.
   If the KKT residual is still above the acceptance after them, the solve has not converged (failed_check
   "dual_kkt" or "dual_equality"). A tighter solve whose own test fails (its iteration limit, a stall below what it
   can reach) is judged by the KKT residual like the others: within the acceptance it has converged (the reason says
@@ -957,8 +999,8 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
   PetscBool           warm;
   PetscReal           acceptance, worst = 0, tol;
   PetscBool           stopped_ok = PETSC_FALSE;
-  UserTolerances      first;
-  ContactStatistics   total = {};
+  ContactStatistics   total      = {};
+  UserStateOnError    user(cp);
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
@@ -972,6 +1014,8 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
   }
   PetscCall(ContactProblemSetUp(cp));
   d = cp->data;
+  PetscCall(user.Save());
+  const UserTolerances &first = user.Tolerances();
   PetscCall(PetscLogEventBegin(CONTACT_Solve, cp, 0, 0, 0));
   /* a warm solve (the previous solve's multiplier recycled) starts where it is; a cold one may first solve the
      bonded problem loosely (-contact_start_rtol, contactstart.cxx) */
@@ -985,12 +1029,8 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
 
   /* every solve is judged against the first tolerances' acceptance (inside a model: the model's, whose factor it
      scales as it tightens -contact_rtol) */
-  acceptance             = d->acceptance_factor * d->rtol;
-  first.rtol             = d->rtol;
-  first.msa_rtol         = d->msa_rtol;
-  first.fixed_point_rtol = d->fixed_point_rtol;
-  PetscCall(TaoGetTolerances(d->tao, &first.gatol, &first.grtol, &first.gttol));
-  tol = first.rtol;
+  acceptance = d->acceptance_factor * d->rtol;
+  tol        = first.rtol;
   /* only a failed KKT check gets tighter solves here: without the check nothing judges the answer but the solver's
      test, and a ContactModel runs them itself (refine_outside) */
   refine_max = d->kkt_check && !d->refine_outside ? d->refine_max : 0;
@@ -1035,6 +1075,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
     } else PetscCall(PetscSNPrintf(tail, sizeof(tail), ", after %" PetscInt_FMT " solves down to relative tolerance %.0e", round + 1, (double)tol));
     PetscCall(WrapReason(d->stats, head, tail));
   }
+  user.Disarm(); /* the user's state is back */
   PetscCall(DiagnoseFailure(cp));
   PetscCall(PetscLogEventEnd(CONTACT_Solve, cp, 0, 0, 0));
   PetscCall(PetscObjectViewFromOptions((PetscObject)cp, NULL, "-contact_view"));

@@ -19,6 +19,9 @@
    rows, and the total normal force l_0 + l_3 + l_6 = 1.5 in projector form: P(h - F lt) = 0, which made every
    tolerance of the solver 0 and ended the solve with "is the Hessian positive semidefinite?". The solution is
    l_n = 0.5 on each node, nothing else: it must converge to it.
+   -fail_in_tighter_solve (with far_gap): a monitor of the solver fails (PETSC_ERR_USER) in the first tighter solve. The
+   error must reach the program and leave the solver as the user set it (tolerance -contact_rtol, no recycled
+   multiplier); the problem solved again (the monitor quiet) must converge as above.
    Prints the verdict, the independent residual, and "CORRECT". */
 #include <conefeti.h>
 #include <cmath>
@@ -80,6 +83,17 @@ static PetscErrorCode ZeroReducedRhs(void)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* fails once the solver runs below the user's tolerance 1e-6 (a tighter solve), while armed */
+static PetscErrorCode FailInTighterSolve(Tao tao, void *ctx)
+{
+  PetscReal gttol;
+
+  PetscFunctionBegin;
+  PetscCall(TaoGetTolerances(tao, NULL, NULL, &gttol));
+  PetscCheck(!*static_cast<PetscBool *>(ctx) || gttol >= 1e-6, PETSC_COMM_SELF, PETSC_ERR_USER, "the monitor fails in a tighter solve (tolerance %g), as asked", (double)gttol);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
   const PetscInt     n     = 8;
@@ -90,6 +104,7 @@ int main(int argc, char **argv)
   ContactStatistics  st;
   const PetscInt     normal[5] = {0, 1, 2, 3, 4};
   PetscReal          worst = 0, mu = 0, err = 0, gttol = 0;
+  PetscBool          fail     = PETSC_FALSE;
   const PetscReal    exact[8] = {4.0 / 11, 5.0 / 11, 5.0 / 11, 4.0 / 11, 0, 5.0 / 14, 6.0 / 14, 5.0 / 14}; /* far_gap's solution */
   const PetscScalar *la, *ra, *sa = NULL;
 
@@ -139,6 +154,25 @@ int main(int argc, char **argv)
   }
   PetscCall(ContactProblemSetFromOptions(cp));
   PetscCall(VecSet(l, 0.0));
+  PetscCall(PetscOptionsGetBool(NULL, NULL, "-fail_in_tighter_solve", &fail, NULL));
+  if (fail) {
+    Tao            tao;
+    PetscErrorCode ierr;
+    PetscBool      recycle;
+    PetscCall(ContactProblemSetUp(cp)); /* it creates the solver */
+    PetscCall(ContactProblemGetTao(cp, &tao));
+    PetscCall(TaoMonitorSet(tao, FailInTighterSolve, &fail, NULL));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = ContactProblemSolve(cp, l);
+    PetscCall(PetscPopErrorHandler());
+    PetscCall(TaoGetTolerances(tao, NULL, NULL, &gttol));
+    PetscCall(TaoGetRecycleHistory(tao, &recycle));
+    PetscCheck(ierr == PETSC_ERR_USER && gttol == 1e-6 && !recycle, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the solve returned %d (the monitor's error: %d); then tolerance %g (set: 1e-6), recycle %d",
+               (int)ierr, (int)PETSC_ERR_USER, (double)gttol, (int)recycle);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "error in a tighter solve: state restored\n"));
+    fail = PETSC_FALSE; /* the monitor quiet; solved again from the start */
+    PetscCall(VecSet(l, 0.0));
+  }
   PetscCall(ContactProblemSolve(cp, l));
   PetscCall(ContactProblemGetStatistics(cp, &st));
   {

@@ -3,7 +3,13 @@
    and the contact model; counted phases reach k = n, with k never decreasing; outer iterations count up within a
    solve (or an MSA step) with finite residuals and a positive tolerance; the summary's time_phases are the sums of
    the durations the hook saw on this rank (rank 0's: the summary's). The scene comes from the options
-   (e.g. -options_file petsc-options/brick.opts). Prints "progress hook: ... checks passed" or fails. */
+   (e.g. -options_file petsc-options/brick.opts). Prints "progress hook: ... checks passed" or fails.
+
+   -fail_at_solve k: the hook fails (PETSC_ERR_USER) at the first outer iteration of the k-th solve (k = 2: the
+   first tighter solve of ContactModelSolve()). The error must reach the program, and leave the model's state as the
+   user set it: the contact solver's tolerance -contact_rtol, no recycled multiplier, and the F products' refinement of
+   float factors off. The same scene solved again (the hook quiet) must then converge as a first solve does. Prints
+   "error in solve k: state restored, solved again: ..." or fails. */
 #include <conefeti.h>
 
 #include <cmath>
@@ -16,6 +22,7 @@ struct Seen {
   PetscInt                   iterations                 = 0; /* outer iterations reported */
   PetscLogDouble             time[CONEFETI_PHASE_COUNT] = {};
   PetscInt                   checks                     = 0;
+  PetscInt                   solves = 0, fail_at_solve = 0; /* solves begun; the one whose first outer iteration fails */
 };
 
 static PetscErrorCode Hook(const ConeFETIProgressInfo *info, void *ctx)
@@ -28,6 +35,8 @@ static PetscErrorCode Hook(const ConeFETIProgressInfo *info, void *ctx)
   if (info->phase == CONEFETI_PHASE_SOLVE && info->iteration > 0) { /* an outer iteration: within the solve */
     PetscCheck(s.open == CONEFETI_PHASE_SOLVE, PETSC_COMM_SELF, PETSC_ERR_PLIB, "an outer iteration outside the solve phase");
     if (info->step != s.step || info->iteration <= s.iteration) s.iteration = 0; /* a new MSA step or a tighter re-solve starts again */
+    if (s.iteration == 0 && info->step <= 1) s.solves++;
+    PetscCheck(s.solves != s.fail_at_solve, PETSC_COMM_SELF, PETSC_ERR_USER, "the hook fails in solve %d, as asked", (int)s.solves);
     PetscCheck(info->iteration == s.iteration + 1 || s.iteration == 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "outer iteration %d after %d", (int)info->iteration, (int)s.iteration);
     PetscCheck(std::isfinite((double)info->residual) && info->residual >= 0 && info->tol > 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "outer iteration %d: residual %g, tol %g", (int)info->iteration,
                (double)info->residual, (double)info->tol);
@@ -69,8 +78,43 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, "progress hook contract\n"));
   PetscCall(ConeFETIInitializePackage());
   PetscCallMPI(MPI_Comm_rank(PETSC_COMM_WORLD, &rank));
+  PetscCall(PetscOptionsGetInt(NULL, NULL, "-fail_at_solve", &seen.fail_at_solve, NULL));
   PetscCall(ContactSceneCreateFromOptions(PETSC_COMM_WORLD, NULL, &scene));
   PetscCall(ContactSceneSetProgress(scene, Hook, &seen));
+  if (seen.fail_at_solve > 0) {
+    PetscErrorCode    ierr;
+    ContactModel      cm;
+    ContactProblem    cp;
+    ContactStatistics st;
+    Tao               tao;
+    FETI              feti;
+    PetscReal         rtol = 1e-6, gttol;
+    PetscBool         recycle, refine;
+    char              verdict[64];
+    PetscCall(PetscOptionsGetReal(NULL, NULL, "-contact_rtol", &rtol, NULL));
+    PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, NULL));
+    ierr = ContactSceneSolve(scene);
+    PetscCall(PetscPopErrorHandler());
+    PetscCheck(ierr == PETSC_ERR_USER, PETSC_COMM_SELF, PETSC_ERR_PLIB, "the solve returned %d, not the hook's error %d", (int)ierr, (int)PETSC_ERR_USER);
+    PetscCall(ContactSceneGetContactModel(scene, &cm));
+    PetscCall(ContactModelGetContactProblem(cm, &cp));
+    PetscCall(ContactProblemGetTao(cp, &tao));
+    PetscCall(TaoGetTolerances(tao, NULL, NULL, &gttol));
+    PetscCall(TaoGetRecycleHistory(tao, &recycle));
+    PetscCall(ContactModelGetFETI(cm, &feti));
+    PetscCall(FETIGetKplusRefine(feti, &refine));
+    const PetscInt failed = seen.solves;
+    PetscCheck(failed == seen.fail_at_solve && gttol == rtol && !recycle && !refine, PETSC_COMM_SELF, PETSC_ERR_PLIB,
+               "after the error in solve %d of %d: tolerance %g (set: %g), recycle %d, refine %d", (int)seen.fail_at_solve, (int)failed, (double)gttol, (double)rtol, (int)recycle, (int)refine);
+    seen = Seen{}; /* the hook quiet, its bookkeeping from the start */
+    PetscCall(ContactSceneSolve(scene));
+    PetscCall(ContactModelGetStatistics(cm, &st));
+    PetscCall(PetscSNPrintf(verdict, sizeof(verdict), "%s, %d tighter solves", st.converged ? "converged" : "not converged", (int)st.refinements));
+    PetscCall(PetscPrintf(PETSC_COMM_WORLD, "error in solve %d: state restored, solved again: %s\n", (int)failed, verdict));
+    PetscCall(ContactSceneDestroy(&scene));
+    PetscCall(PetscFinalize());
+    return 0;
+  }
   PetscCall(ContactSceneSolve(scene));
   PetscCall(ContactSceneGetSummary(scene, &summary));
   PetscCheck(seen.open < 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "phase %s never ended", ConeFETIPhases[seen.open]);
