@@ -604,6 +604,8 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_coarse_split_dim <1000> - the coarse dimension from which auto splits (each of two ranks reads half of the factor per solve; docs/scale.md)
 . -feti_coarse_redundant_dim <10000> - the coarse dimension below which auto factors on every rank (a small factor per rank; no rank waits for the coarse solves of rank 0)
 . -feti_coarse_parallel_dim <50000> - the coarse dimension from which auto factors in parallel (a larger factor does not fit one rank's memory and time; docs/scale.md)
+. -feti_coarse_check_tol <1e-6> - at setup the factors of G G' must solve a pseudo-random system to this fraction after one refinement, else G G' is singular (a motion
+  nothing holds, which a Cholesky factorization lets through as a rounding-sized pivot); 0: no check
 . -feti_rigid_rows <true>      - G = R'B' and G' = B R from each touched node's coordinates and each subdomain's 6 x k transform of its rigid-body modes, where every
   kernel is spanned by them (built from coordinates); false: from R's stored rows (k numbers per dof)
 - -feti_coarse_pc_factor_mat_solver_type ... - its options (single: on rank 0; redundant: -feti_coarse_redundant_...)
@@ -706,6 +708,12 @@ PetscErrorCode FETISetFromOptions(FETI feti)
                             impl.coarsesplitdim, &impl.coarsesplitdim, NULL));
   PetscCheck(impl.coarsesplitdim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_split_dim %" PetscInt_FMT " must be >= 0", prefix ? prefix : "",
              impl.coarsesplitdim);
+  PetscCall(PetscOptionsReal(
+      "-feti_coarse_check_tol",
+      "At setup the factors of G G' must solve (G G') x = b for a pseudo-random b to this fraction of |b| after one refinement, else G G' is singular (a motion nothing holds); 0: no check",
+      "FETISetUp", impl.coarsechecktol, &impl.coarsechecktol, NULL));
+  PetscCheck(impl.coarsechecktol >= 0 && impl.coarsechecktol < 1, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_check_tol %g must be in [0, 1) (0: no check)",
+             prefix ? prefix : "", (double)impl.coarsechecktol);
   PetscCall(PetscOptionsInt("-feti_coarse_parallel_dim", "Coarse dimension from which -feti_coarse_mode auto factors G G' in parallel (MUMPS) instead of on rank 0", "FETISetUp",
                             impl.coarseparalleldim, &impl.coarseparalleldim, NULL));
   PetscCheck(impl.coarseparalleldim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_parallel_dim %" PetscInt_FMT " must be >= 0", prefix ? prefix : "",
@@ -1458,22 +1466,82 @@ PetscErrorCode FETIGetSubdomainFixingDofs(FETI feti, PetscInt s, IS *is)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+#define FETI_SINGULAR_COARSE_MESSAGE                                                                                                                                     \
+  "some combination of the subdomains' rigid-body modes satisfies every row of B, so nothing holds it: a body (or a part of one) without a Dirichlet row, held only by " \
+  "frictionless contact rows, or touching only along a line it can turn about. A FEM model's ContactModelSetUp() names such a motion before this point; with "           \
+  "FETISetConstraints() directly, check that the rows hold every floating subdomain"
+
 static PetscErrorCode SetUpCoarse(FETI feti)
 {
   FETI_Impl &impl = *feti->impl;
   PetscBool  failed;
   Mat        GGt;
+  PetscInt   nrows;
 
   PetscFunctionBegin;
+  PetscCall(MatGetSize(impl.B, &nrows, NULL));
+  PetscCheck(nrows > 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_WRONG,
+             "B has no rows, so nothing holds the %" PetscInt_FMT " rigid-body modes of the floating subdomains (G G' = 0): give the gluing and Dirichlet rows with FETISetConstraints()",
+             impl.ncoarse);
   PetscCall(PetscLogEventBegin(FETI_Assembly, feti, 0, 0, 0));
   PetscCall(FETICreateCoarseMatrix(feti, NULL, &GGt));
   PetscCall(PetscLogEventEnd(FETI_Assembly, feti, 0, 0, 0));
   PetscCall(FETICoarseSolverCreate(feti, GGt, impl.coarse, &failed));
   PetscCall(MatDestroy(&GGt));
-  PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
-             "The coarse matrix G G' is singular: some combination of the subdomains' rigid-body modes satisfies every row of B, so nothing holds it: a body (or a part "
-             "of one) without a Dirichlet row, held only by frictionless contact rows, or touching only along a line it can turn about. A FEM model's ContactModelSetUp() "
-             "names such a motion before this point; with FETISetConstraints() directly, check that the rows hold every floating subdomain");
+  PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED, "The coarse matrix G G' is singular: " FETI_SINGULAR_COARSE_MESSAGE);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* A Cholesky factorization meets a zero pivot only when G G' is singular to the last bits: with more than two
+   subdomains in a chain, the pivot of a motion that nothing holds is rounding noise of the other pivots' size times
+   the chain's condition, no failure, and every solve then came out "converged" with a rigid motion of arbitrary size
+   (the tip of a free cantilever moved by whatever the rounding gave, one value per solver package). So the factors
+   must solve (G G') x = b for a b that is no combination of G's rows: a fixed pseudo-random vector (its entries from
+   their global index, the same on any number of ranks), with one step of iterative refinement. A nonsingular G G'
+   leaves a residual of the order of its condition times the rounding, squared by the refinement; a singular one keeps
+   b's part in its null space, about sqrt(k / N) of |b| for k free motions among N coarse unknowns. Two coarse solves
+   and two products with G and G' at setup; no count of the solve changes. */
+static PetscErrorCode CheckCoarseSolvable(FETI feti)
+{
+  FETI_Impl   &impl = *feti->impl;
+  Vec          b, x, dx, r, w;
+  PetscInt     lo, hi;
+  PetscScalar *ba;
+  PetscReal    bnorm, rnorm;
+
+  PetscFunctionBegin;
+  PetscCall(VecDuplicate(impl.wc1, &b));
+  PetscCall(VecDuplicate(impl.wc1, &x));
+  PetscCall(VecDuplicate(impl.wc1, &dx));
+  PetscCall(VecDuplicate(impl.wc1, &r));
+  PetscCall(VecDuplicate(impl.wd1, &w));
+  PetscCall(VecGetOwnershipRange(b, &lo, &hi));
+  PetscCall(VecGetArrayWrite(b, &ba));
+  for (PetscInt i = lo; i < hi; i++) {
+    /* splitmix64 of the global index: entries in [-1, 1) */
+    unsigned long long z = 0x9E3779B97F4A7C15ULL * (unsigned long long)(i + 1);
+    z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    ba[i - lo] = (PetscScalar)((double)(z >> 11) / 4503599627370496.0 - 1.0);
+  }
+  PetscCall(VecRestoreArrayWrite(b, &ba));
+  PetscCall(VecSet(x, 0.0));
+  PetscCall(VecCopy(b, r));
+  for (int step = 0; step < 2; step++) { /* x += (G G')^-1 r, r = b - G G' x */
+    PetscCall(FETICoarseSolverApply(impl.coarse, r, dx));
+    PetscCall(VecAXPY(x, 1.0, dx));
+    PetscCall(FETIApplyGt(feti, x, w));
+    PetscCall(FETIApplyG(feti, w, r));
+    PetscCall(VecAYPX(r, -1.0, b));
+  }
+  PetscCall(VecNorm(b, NORM_2, &bnorm));
+  PetscCall(VecNorm(r, NORM_2, &rnorm));
+  PetscCall(PetscInfo(feti, "coarse problem: |b - G G' x| / |b| = %g for a pseudo-random b after one refinement (%g or more: G G' singular)\n", (double)(rnorm / bnorm), (double)impl.coarsechecktol));
+  for (Vec *v : {&b, &x, &dx, &r, &w}) PetscCall(VecDestroy(v));
+  PetscCheck(rnorm <= impl.coarsechecktol * bnorm, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
+             "The coarse matrix G G' is singular (its factors solve (G G') x = b only to %.1e of |b| for a pseudo-random b, -feti_coarse_check_tol %g): " FETI_SINGULAR_COARSE_MESSAGE,
+             (double)(rnorm / bnorm), (double)impl.coarsechecktol);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -1696,6 +1764,7 @@ PetscErrorCode FETISetUp(FETI feti)
   if (impl.ncoarse) {
     PetscCall(FETIApplyCoarseInverse(feti, impl.e, impl.wc2));
     PetscCall(FETIApplyGt(feti, impl.wc2, impl.lambdatilde));
+    if (impl.coarsechecktol > 0) PetscCall(CheckCoarseSolvable(feti));
   } else PetscCall(VecSet(impl.lambdatilde, 0.0));
   PetscCall(ConeFETIProgressEnd_Private(impl.progress));
   PetscCall(PetscLogEventEnd(FETI_SetUp, feti, 0, 0, 0));

@@ -13,6 +13,7 @@ struct Problem {
   Mat                      B = NULL;
   std::vector<FETIRowKind> kinds;
   PetscBool                allOnRank0 = PETSC_FALSE; /* every slab on rank 0, none elsewhere */
+  PetscBool                unclamped  = PETSC_FALSE; /* no Dirichlet rows at x = 0: a bar that nothing holds */
 };
 
 static PetscErrorCode AssembleSlab(Problem &p, PetscInt s, MatType type, Mat *K, Vec *f, Vec *coords)
@@ -105,7 +106,7 @@ static PetscErrorCode BuildBar(Problem &p, MatType type = MATSEQAIJ)
   }
   const PetscInt nface = (p.cells + 1) * (p.cells + 1);
   for (PetscInt s = p.first; s < p.first + p.nlocal; s++) {
-    if (s == 0) nlocalrows += 3 * nface;
+    if (s == 0 && !p.unclamped) nlocalrows += 3 * nface;
     if (s < p.slabs - 1) nlocalrows += 3 * nface;
   }
   PetscCallMPI(MPI_Scan(&nlocalrows, &firstrow, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD));
@@ -118,7 +119,7 @@ static PetscErrorCode BuildBar(Problem &p, MatType type = MATSEQAIJ)
       for (PetscInt j = 0; j < nx; j++)
         for (PetscInt c = 0; c < 3; c++) {
           const PetscInt left = s * p.ndofslab + 3 * (0 + nx * (j + nx * k)) + c;
-          if (s == 0) {
+          if (s == 0 && !p.unclamped) {
             PetscCall(MatSetValue(p.B, row++, left, 1.0, INSERT_VALUES));
             p.kinds.push_back(FETI_ROW_DIRICHLET);
           }
