@@ -34,6 +34,17 @@
 S*/
 typedef struct _p_SeparableSet *SeparableSet;
 
+/*MC
+  SEPARABLESET_DISK_RADIUS_MAX - The largest disk radius a `SeparableSet` takes, 1e150: the solvers square radii, and
+  larger ones overflowed into NaN. A radius this large acts as no bound on any problem whose solution and data stay
+  far below it (the contact layer holds slip bounds at it).
+
+  Level: intermediate
+
+.seealso: `SeparableSetAddDisks()`, `SeparableSetSetDiskRadii()`
+M*/
+#define SEPARABLESET_DISK_RADIUS_MAX 1e150
+
 PETSC_EXTERN PetscClassId SEPARABLESET_CLASSID;
 
 PETSC_EXTERN PetscErrorCode SeparableSetCreate(MPI_Comm, PetscInt, PetscInt, SeparableSet *);

@@ -29,6 +29,11 @@ static PetscErrorCode Misuse(const std::string &c)
   if (c == "negative_radius") {
     PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
     PetscCall(SeparableSetAddDisks(set, 1, idx, NULL, r));
+  } else if (c == "huge_radius" || c == "huge_radius_set") { /* its square overflowed: the solve ended DIVERGED_NAN */
+    PetscReal rr[1] = {1.0}, huge[1] = {1e200};
+    PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
+    PetscCall(SeparableSetAddDisks(set, 1, idx, NULL, c == "huge_radius" ? huge : rr));
+    PetscCall(SeparableSetSetDiskRadii(set, huge));
   } else if (c == "disk_center_nan") {
     PetscReal rr[1] = {1.0}, center[2] = {std::numeric_limits<PetscReal>::quiet_NaN(), 0.0};
     PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));

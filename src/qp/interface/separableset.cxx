@@ -202,8 +202,9 @@ PetscErrorCode SeparableSetAddDisks(SeparableSet set, PetscInt n, const PetscInt
   }
   for (PetscInt k = 0; k < n; k++) {
     PetscInt i, j;
-    PetscCheck(radius[k] >= 0 && !PetscIsInfOrNanReal(radius[k]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
-               "SeparableSetAddDisks: disk %" PetscInt_FMT " has invalid radius %g (must be finite and >= 0)", k, (double)radius[k]);
+    PetscCheck(radius[k] >= 0 && radius[k] <= SEPARABLESET_DISK_RADIUS_MAX, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "SeparableSetAddDisks: disk %" PetscInt_FMT " has invalid radius %g (must be in [0, %g], SEPARABLESET_DISK_RADIUS_MAX: the solvers square radii)", k, (double)radius[k],
+               (double)SEPARABLESET_DISK_RADIUS_MAX);
     PetscCheck(idx[2 * k] != idx[2 * k + 1], PETSC_COMM_SELF, PETSC_ERR_ARG_WRONG, "SeparableSetAddDisks: disk %" PetscInt_FMT " uses entry %" PetscInt_FMT " twice", k, idx[2 * k]);
     PetscCheck(!center || (!PetscIsInfOrNanReal(center[2 * k]) && !PetscIsInfOrNanReal(center[2 * k + 1])), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
                "SeparableSetAddDisks: disk %" PetscInt_FMT " has a center (%g, %g) that is not finite", k, center ? (double)center[2 * k] : 0.0, center ? (double)center[2 * k + 1] : 0.0);
@@ -284,8 +285,9 @@ PetscErrorCode SeparableSetSetDiskRadii(SeparableSet set, const PetscReal radius
   PetscValidHeaderSpecific(set, SEPARABLESET_CLASSID, 1);
   d = set->data;
   for (size_t k = 0; k < d->disk_radius.size(); k++) {
-    PetscCheck(radius[k] >= 0 && !PetscIsInfOrNanReal(radius[k]), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "SeparableSetSetDiskRadii: disk %zu gets invalid radius %g (must be finite and >= 0)", k,
-               (double)radius[k]);
+    PetscCheck(radius[k] >= 0 && radius[k] <= SEPARABLESET_DISK_RADIUS_MAX, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+               "SeparableSetSetDiskRadii: disk %zu gets invalid radius %g (must be in [0, %g], SEPARABLESET_DISK_RADIUS_MAX: the solvers square radii)", k, (double)radius[k],
+               (double)SEPARABLESET_DISK_RADIUS_MAX);
     d->disk_radius[k] = radius[k];
   }
   PetscCall(PetscObjectStateIncrease((PetscObject)set));

@@ -199,6 +199,12 @@ PetscErrorCode BuildBlocksFromBounds(Tao tao, TAO_MPGP *qp)
     PetscCall(VecGetArrayRead(tao->XU, &u));
     for (PetscInt k = 0; k < n; k += 2) {
       const PetscReal w0 = PetscRealPart(u[k] - l[k]), w1 = PetscRealPart(u[k + 1] - l[k + 1]);
+      /* PETSC_INFINITY (a finite number, PETSC_MAX_REAL / 4) is how TAO says "no bound": its box gave a radius of 1e307,
+         whose square overflowed, and the solve ended DIVERGED_NAN with 6.6e306 in every entry */
+      for (PetscInt e = k; e < k + 2; e++)
+        PetscCheck(PetscRealPart(l[e]) > PETSC_NINFINITY && PetscRealPart(u[e]) < PETSC_INFINITY, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
+                   "-%stao_mpgp_block_type disk: entry %" PetscInt_FMT " has no bound (%g, %g; PETSC_INFINITY means none): each pair's box [l,u]^2 must be finite to give its disk", prefix, rstart + e,
+                   (double)PetscRealPart(l[e]), (double)PetscRealPart(u[e]));
       PetscCheck(PetscIsNormalReal(w0) || w0 == 0, PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_mpgp_block_type disk: entry %" PetscInt_FMT " needs finite bounds l <= u", prefix, rstart + k);
       PetscCheck(w0 >= 0 && PetscAbsReal(w0 - w1) <= 1e-12 * PetscMax(PetscAbsReal(w0), PetscAbsReal(w1)), PETSC_COMM_SELF, PETSC_ERR_ARG_OUTOFRANGE,
                  "-%stao_mpgp_block_type disk: the box of entries %" PetscInt_FMT ",%" PetscInt_FMT " is not a square with l <= u (widths %g, %g)", prefix, rstart + k, rstart + k + 1, (double)w0,
