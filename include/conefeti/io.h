@@ -92,6 +92,7 @@ typedef struct {
 . unmatched_nodes - slave nodes of zones between bodies without a master point within the search distance (`ContactModelGetUnmatchedNodes()`)
 . left_out_friction, left_out_overlapping, left_out_overlap - nodes of the contact faces that their Dirichlet conditions keep out of contact (`ContactModelGetLeftOutNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
+. linear_option - with contact: the first option of the linear FETI solve given (-feti_ksp_*, -feti_pc_*), which such a scene does not run ("" when none)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
 . bodies_zones  - the contact zones between bodies (their forces on the zones' other bodies are the opposite of those in contact_force)
 . normal_force  - the sum of the normal contact forces l_n over all contact nodes
@@ -131,6 +132,7 @@ typedef struct {
   PetscInt                 left_out_friction, left_out_overlapping;
   PetscReal                left_out_overlap;
   PetscReal                max_nu;
+  char                     linear_option[64];
   PetscReal                contact_force[3], normal_force;
   PetscInt                 bodies_zones;
   PetscInt                 nsupports;

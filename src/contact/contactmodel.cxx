@@ -935,6 +935,38 @@ PetscErrorCode WithoutLoad(ContactModel cm, PetscBool *none)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The contact solve says "no equilibrium" when |G l - e| stagnates while its multiplier grows: the loads need more than
+   supports and contact can carry. The model can check that claim: when the supports alone hold every body
+   (FEMComputeFreeRigidMotions() without contact rows finds no free motion), G l = e is met by the gluing and support
+   forces with no contact force at all, so an equilibrium exists and the stagnation is the solver's (with Coulomb
+   friction: radii F l_n that lock the loop, e.g. F = 10 on the paper's brick with the merged algorithm). The
+   reason then says that instead of a false statement about the mechanics. Computed only after such a verdict. */
+PetscErrorCode CorrectNoEquilibrium(ContactModel cm)
+{
+  ContactModelData &d = *cm->data;
+  Tao               tao;
+  PetscBool         stagnated = PETSC_FALSE;
+  PetscInt          nfree;
+  const char       *prefix;
+  char              cure[160];
+
+  PetscFunctionBegin;
+  if (!d.cp || !d.fem) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(ContactProblemGetTao(d.cp, &tao));
+  PetscCall(TaoSMALXEGetStagnated(tao, &stagnated));
+  if (!stagnated) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(FEMComputeFreeRigidMotions(d.fem, 0, NULL, &nfree, NULL));
+  if (nfree) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscObjectGetOptionsPrefix((PetscObject)d.cp, &prefix));
+  if (d.pipeline == CONTACT_PIPELINE_COULOMB)
+    PetscCall(PetscSNPrintf(cure, sizeof(cure), "the Coulomb radii F l_n lock the loop (large F; try a smaller F or another -%scontact_coulomb_algorithm)", prefix ? prefix : ""));
+  else PetscCall(PetscStrncpy(cure, "a limit of the solver", sizeof(cure)));
+  PetscCall(PetscSNPrintf(d.stats.reason, sizeof(d.stats.reason),
+                          "not converged: |G l - e| stagnates at %.3g while the multiplier grows, although the supports hold every body (an equilibrium exists): %s", (double)d.stats.feasibility,
+                          cure));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* One solve at the tolerance set: the linear FETI solve, or the contact pipeline (warm: from the current
    multipliers and the equality's multiplier of the previous solve), then the primal solution. */
 PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
@@ -956,7 +988,13 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
     st->outer_iterations = its;
     st->al_iterations    = its;
     st->products_qpp     = its + 1;
-    PetscCall(PetscSNPrintf(st->reason, sizeof(st->reason), "linear FETI solve (projected CG): %s in %" PetscInt_FMT " iterations", KSPConvergedReasons[reason], its));
+    KSPType   type;
+    PetscReal rtol;
+    PetscCall(KSPGetType(ksp, &type));
+    PetscCall(KSPGetTolerances(ksp, &rtol, NULL, NULL, NULL));
+    /* a breakdown (or no convergence) at a tolerance near the rounding of the residual is the tolerance's, not the problem's */
+    PetscCall(PetscSNPrintf(st->reason, sizeof(st->reason), "linear FETI solve (KSP %s): %s in %" PetscInt_FMT " iterations%s", type ? type : "?", KSPConvergedReasons[reason], its,
+                            reason < 0 && rtol < 1e-12 ? " (-feti_ksp_rtol below 1e-12: below what rounding lets the residual reach?)" : ""));
   } else {
     Vec       w;
     Tao       tao;
@@ -1093,6 +1131,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
       d->stats.converged = PETSC_FALSE;
       PetscCall(PetscStrncpy(d->stats.failed_check, "solver", sizeof(d->stats.failed_check)));
       PetscCall(PetscStrncpy(d->stats.reason, one.reason, sizeof(d->stats.reason)));
+      PetscCall(CorrectNoEquilibrium(cm));
       break;
     }
     if (!kkt_failed && r.max <= d->stats.acceptance) {

@@ -43,8 +43,9 @@ PetscErrorCode FrictionSet(ContactProblem cp, SeparableSet *set)
 /* The largest disk radius: a slip bound beyond it acts as an infinite one (the pair sticks). The solvers square
    radii (the disks' feasible steps, the radii's norms), so bounds near the largest real ended DIVERGED_NAN
    (F = 1e200, or a Tresca bound of 1e300); held below 1e150 they solve as the sticking friction they are. Forces
-   as large as the cap overflow the solve's own norms anyway (a load of 1e150 converges, 1e200 does not) */
-constexpr PetscReal CONTACT_RADIUS_MAX = 1e150;
+   as large as the cap overflow the solve's own norms anyway (a load of 1e150 converges, 1e200 does not). The cap is
+   the largest radius a SeparableSet takes */
+constexpr PetscReal CONTACT_RADIUS_MAX = SEPARABLESET_DISK_RADIUS_MAX;
 
 /* the disk radius of contact node j under the normal multiplier l_n: its Tresca bound, or F l_n */
 PetscReal DiskRadius(const ContactProblemData *d, PetscInt j, PetscReal ln)
@@ -655,7 +656,9 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
     /* the cause the loop's structure points to: merged's Gauss-Seidel sweep, whose blocks the penalty
        couples (the METIS bricks stalled so at rho = ||PFP||, at any F), or radii that lock the loop */
     char cause[160] = "";
-    if (d->has_coulomb && d->algorithm == CONTACT_COULOMB_MERGED)
+    if (d->rtol < 1e-12) /* the relative residuals stop falling near the rounding of F's products, whatever the law */
+      PetscCall(PetscSNPrintf(cause, sizeof(cause), ": the relative tolerance %g is below what rounding lets the residuals reach", (double)d->rtol));
+    else if (d->has_coulomb && d->algorithm == CONTACT_COULOMB_MERGED)
       PetscCall(PetscSNPrintf(cause, sizeof(cause), ": merged's Gauss-Seidel sweep too slow (try -%scontact_coulomb_algorithm monolithic) or radii F l_n locking the loop (large F)", prefix));
     else if (d->has_coulomb) PetscCall(PetscSNPrintf(cause, sizeof(cause), ": the radii F l_n can lock the loop (large F); try a smaller F or msa"));
     PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "stalled: %" PetscInt_FMT " outer iterations, the last ones without progress (|gP| %.3g, |G l - e| %.3g)%s", its, (double)gp,

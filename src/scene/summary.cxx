@@ -183,6 +183,19 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   PetscCall(FETIGetKplusType(feti, &s->kplus_type, &s->kplus_blocks));
   PetscCall(FETIGetKplusPrecision(feti, &s->kplus_precision, &s->kplus_single, &s->kplus_factor_bytes, &s->kplus_factor_double_bytes));
   PetscCall(FEMGetNumSubdomains(impl.fem, &s->subdomains, NULL, NULL));
+  if (s->pipeline != CONTACT_PIPELINE_LINEAR) { /* the linear solve's options are read (FETISetFromOptions()), so PETSc does not call them unused */
+    const char *prefix;
+    char       *all;
+    PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
+    PetscCall(PetscOptionsGetAll(NULL, &all));
+    const std::string ksp = "-" + std::string(prefix ? prefix : "") + "feti_ksp_", pc = "-" + std::string(prefix ? prefix : "") + "feti_pc_";
+    for (char *tok = std::strtok(all, " "); tok; tok = std::strtok(NULL, " "))
+      if (!std::strncmp(tok, ksp.c_str(), ksp.size()) || !std::strncmp(tok, pc.c_str(), pc.size())) {
+        PetscCall(PetscStrncpy(s->linear_option, tok, sizeof(s->linear_option)));
+        break;
+      }
+    PetscCall(PetscFree(all));
+  }
   PetscCall(FETIGetConstraints(feti, &B, &c, &kinds));
   PetscCall(ContactModelGetSolution(impl.cm, &lambda, NULL));
   PetscCall(ConeFETIVecFingerprint(lambda, s->fingerprint));
@@ -391,6 +404,11 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                      "note: Poisson's ratio %g is close to 0.5: linear tetrahedra lock for nearly incompressible material (displacements too small, "
                                      "stresses oscillate; refining helps only slowly) and the dual problem is ill-conditioned (more F products)\n",
                                      (double)s->max_nu));
+  if (s->linear_option[0])
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "note: %s is an option of the linear FETI solve (-feti_ksp_*, -feti_pc_*), which a scene with contact does not run: its solve is "
+                                     "preconditioned by -contact_pc_type and iterated by -contact_tao_*\n",
+                                     s->linear_option));
   if (s->kplus_fallback)
     PetscCall(PetscViewerASCIIPrintf(
         viewer, "note: the explicit K+ blocks would not fit in memory; F products use the subdomain factors instead (slower products, same results; -feti_memory_budget, docs/feti.md)\n"));
