@@ -158,7 +158,8 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
   *status = 0;
   PetscCall(ConeFETIInitializePackage());
   PetscOptionsBegin(comm, NULL, "conefeti driver", "conefeti");
-  PetscCall(PetscOptionsString("-output", "Write <basename>.h5 and <basename>.xmf (open the .xmf in ParaView)", "ContactSceneWriteOutput", output, output, sizeof(output), &hasoutput));
+  PetscCall(PetscOptionsString("-output", "Write <basename>.h5 and <basename>.xmf (open the .xmf in ParaView; a name ending in .h5 or .xmf stands for its base name)", "ContactSceneWriteOutput",
+                               output, output, sizeof(output), &hasoutput));
   PetscCall(PetscOptionsBool("-output_unconverged", "Write the output even when the solve did not converge", "ContactSceneWriteOutput", unconverged, &unconverged, NULL));
   PetscCall(PetscOptionsString("-summary_json", "Also write the JSON summary line to this file", "ContactSceneSummaryViewJSON", jsonfile, jsonfile, sizeof(jsonfile), &hasjson));
   PetscCall(PetscOptionsBool("-summary_table", "Print the human-readable table", "ContactSceneSummaryView", table, &table, NULL));
@@ -169,6 +170,14 @@ static PetscErrorCode Run(PetscBool traceback, int *status)
   PetscCall(PetscOptionsBool("-traceback", "On an error, print PETSc's full report (traceback, options, configure line) instead of the message alone", "", traceback, &traceback, NULL));
   PetscOptionsEnd();
   PetscCheck(!hasoutput || output[0], comm, PETSC_ERR_ARG_WRONG, "-output needs a base name: -output results/brick writes results/brick.h5 and results/brick.xmf");
+  if (hasoutput) { /* -output res.h5 (or res.xmf) names one of the two files: it wrote res.h5.h5 and res.h5.xmf */
+    const size_t len = std::strlen(output);
+    for (const char *ext : {".h5", ".xmf"})
+      if (len > std::strlen(ext) && !std::strcmp(output + len - std::strlen(ext), ext)) {
+        output[len - std::strlen(ext)] = 0;
+        break;
+      }
+  }
   PetscCheck(!hasjson || jsonfile[0], comm, PETSC_ERR_ARG_WRONG, "-summary_json needs a file name");
 
   PetscCall(ContactSceneCreateFromOptions(comm, NULL, &scene));

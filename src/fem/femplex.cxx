@@ -173,7 +173,10 @@ PetscErrorCode Convert(DM dm, PlexBody &body)
   PetscCall(DMGetDimension(dm, &dim));
   PetscCall(DMGetCoordinateDim(dm, &cdim));
   if (dim != 3 || cdim != 3) {
-    body.error = ConeFETIFormat("%s: a %dD mesh in %dD space; a body needs a 3D mesh of tetrahedra", name, (int)dim, (int)cdim);
+    /* the usual cause: a .geo file with Physical Surfaces but no Physical Volume, whose mesh file Gmsh writes with
+       the elements of the physical groups only, so the tetrahedra are left out */
+    body.error = ConeFETIFormat("%s: a %dD mesh in %dD space; a body needs a 3D mesh of tetrahedra%s", name, (int)dim, (int)cdim,
+                                dim < 3 ? " (Gmsh writes only the elements of physical groups when there are any: give the volume a Physical Volume, or set Mesh.SaveAll = 1)" : "");
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(DMGetCellCoordinateDM(dm, &cdm));

@@ -671,7 +671,8 @@ PetscErrorCode FETIKSPSetUpFactorization(FETI feti, KSP ksp, PetscErrorCode (*pr
             prefix ? prefix : "", PCFailedReasons[reason], prefix ? prefix : "", prefix ? prefix : "");
   }
   PetscCheck(!ierr || ierr == PETSC_ERR_MAT_CH_ZRPVT || ierr == PETSC_ERR_MAT_LU_ZRPVT, PETSC_COMM_SELF, ierr,
-             "The sparse factorization (options prefix -%s) failed inside the solver package with PETSc error %d, not at a zero pivot: check the -%spc_factor_mat_solver_type and -%smat_* options",
+             "The sparse factorization (options prefix -%s) failed inside the solver package with PETSc error %d, not at a zero pivot: the package's message above says why (out of "
+             "memory, or a bad option: check the memory, the -%spc_factor_mat_solver_type and the -%smat_* options)",
              prefix ? prefix : "", (int)ierr, prefix ? prefix : "", prefix ? prefix : "");
   *failed = (ierr || reason != PC_NOERROR) ? PETSC_TRUE : PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);

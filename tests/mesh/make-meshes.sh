@@ -35,4 +35,12 @@ Box(2) = {2, 0, 0, 1, 1, 1};
 Mesh.MeshSizeMax = 0.5;
 GEO
 gmsh -3 "$out/two-pieces.geo" -o "$out/two-pieces.msh" >"$out/two-pieces.log" 2>&1 || { cat "$out/two-pieces.log"; exit 1; }
+# a box with a Physical Surface and no Physical Volume: Gmsh writes the surface's triangles only (the most common mistake)
+cat >"$out/no-physical-volume.geo" <<'GEO'
+SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 1, 1, 1};
+Physical Surface("bottom") = {5};
+Mesh.MeshSizeMax = 0.5;
+GEO
+gmsh -3 "$out/no-physical-volume.geo" -o "$out/no-physical-volume.msh" >"$out/no-physical-volume.log" 2>&1 || { cat "$out/no-physical-volume.log"; exit 1; }
 echo "make-meshes.sh: meshes in $out"
