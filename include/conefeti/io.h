@@ -132,7 +132,6 @@ typedef struct {
   PetscInt                 left_out_friction, left_out_overlapping;
   PetscReal                left_out_overlap;
   PetscReal                max_nu;
-  char                     linear_option[64];
   PetscReal                contact_force[3], normal_force;
   PetscInt                 bodies_zones;
   PetscInt                 nsupports;
@@ -143,6 +142,7 @@ typedef struct {
   char                     fingerprint[17];
   PetscBool                finite, converged;
   char                     reason[512];
+  char                     linear_option[64];
 } ContactSceneSummary;
 
 PETSC_EXTERN PetscErrorCode ContactSceneCreate(MPI_Comm, ContactScene *);

@@ -873,9 +873,9 @@ PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol, const SolverT
    solves change them while they run and restore them at the end, which an error skips. A user who catches the error
    (PetscPushErrorHandler()) and solves again would otherwise solve at a tolerance other than the one set. A
    destructor cannot report an error of its own: restoring is tried, and the first error stands */
-class UserStateOnError {
+class ModelStateOnError {
 public:
-  explicit UserStateOnError(ContactModel cm) : cm_(cm) {}
+  explicit ModelStateOnError(ContactModel cm) : cm_(cm) {}
   PetscErrorCode Save()
   {
     ContactModelData &d = *cm_->data;
@@ -891,7 +891,7 @@ public:
   void                    Disarm() { armed_ = false; }
   const SolverTolerances &Tolerances() const { return t_; }
   PetscBool               Refine() const { return refine_; }
-  ~UserStateOnError()
+  ~ModelStateOnError()
   {
     if (!armed_) return;
     (void)SetSolverTolerance(cm_, t_.rtol, t_);
@@ -951,7 +951,8 @@ PetscErrorCode CorrectNoEquilibrium(ContactModel cm)
   char              cure[160];
 
   PetscFunctionBegin;
-  if (!d.cp || !d.fem) PetscFunctionReturn(PETSC_SUCCESS);
+  /* only the solver's own sentence: a diagnosis in front of it (F not symmetric, Q no projector) is the real cause */
+  if (!d.cp || !d.fem || std::strncmp(d.stats.reason, "no equilibrium", 14)) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(ContactProblemGetTao(d.cp, &tao));
   PetscCall(TaoSMALXEGetStagnated(tao, &stagnated));
   if (!stagnated) PetscFunctionReturn(PETSC_SUCCESS);
@@ -992,9 +993,13 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
     PetscReal rtol;
     PetscCall(KSPGetType(ksp, &type));
     PetscCall(KSPGetTolerances(ksp, &rtol, NULL, NULL, NULL));
-    /* a breakdown (or no convergence) at a tolerance near the rounding of the residual is the tolerance's, not the problem's */
-    PetscCall(PetscSNPrintf(st->reason, sizeof(st->reason), "linear FETI solve (KSP %s): %s in %" PetscInt_FMT " iterations%s", type ? type : "?", KSPConvergedReasons[reason], its,
-                            reason < 0 && rtol < 1e-12 ? " (-feti_ksp_rtol below 1e-12: below what rounding lets the residual reach?)" : ""));
+    /* a breakdown (or no convergence) at a tolerance near the rounding of the residual is the tolerance's, not the problem's;
+       KSP mprgp and mpgp also break down when the exact residual stays above the tolerance the recurred one met */
+    const char *why = "";
+    if (reason < 0 && rtol < 1e-12) why = " (-feti_ksp_rtol below 1e-12: below what rounding lets the residual reach?)";
+    else if (reason == KSP_DIVERGED_BREAKDOWN)
+      why = " (rounding limits the accuracy: the exact residual stays above the tolerance; an ill-conditioned coarse problem, e.g. a long chain of subdomains? -info says more)";
+    PetscCall(PetscSNPrintf(st->reason, sizeof(st->reason), "linear FETI solve (KSP %s): %s in %" PetscInt_FMT " iterations%s", type ? type : "?", KSPConvergedReasons[reason], its, why));
   } else {
     Vec       w;
     Tao       tao;
@@ -1075,7 +1080,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
   PetscBool         noload = PETSC_FALSE;
   PetscReal         rtol0, tol;
   PetscInt          nsingle;
-  UserStateOnError  user(cm);
+  ModelStateOnError user(cm);
   ContactStatistics one = {};
   ContactResiduals  r;
 

@@ -888,9 +888,10 @@ static PetscErrorCode RestoreTolerances(ContactProblem cp, const UserTolerances 
    run and restore them on their way out, which an error skips. A user who catches the error (PetscPushErrorHandler())
    and solves again would otherwise solve at a tighter tolerance than the one set, warm where a cold solve was asked.
    Restoring cannot report an error of its own from a destructor: it is tried, and the first error stands */
-class UserStateOnError {
+namespace {
+class ProblemStateOnError {
 public:
-  explicit UserStateOnError(ContactProblem cp) : cp_(cp) {}
+  explicit ProblemStateOnError(ContactProblem cp) : cp_(cp) {}
   PetscErrorCode Save()
   {
     ContactProblemData *d = cp_->data;
@@ -906,7 +907,7 @@ public:
   }
   void                  Disarm() { armed_ = false; }
   const UserTolerances &Tolerances() const { return t_; }
-  ~UserStateOnError()
+  ~ProblemStateOnError()
   {
     if (!armed_) return;
     ContactProblemData *d = cp_->data;
@@ -923,6 +924,7 @@ private:
   PetscBool      recycle_ = PETSC_FALSE;
   bool           armed_   = false;
 };
+} // namespace
 
 /* st.reason = head + st.reason + tail, the middle shortened so that neither end is cut */
 static PetscErrorCode WrapReason(ContactStatistics &st, const char *head, const char *tail)
@@ -1003,7 +1005,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
   PetscReal           acceptance, worst = 0, tol;
   PetscBool           stopped_ok = PETSC_FALSE;
   ContactStatistics   total      = {};
-  UserStateOnError    user(cp);
+  ProblemStateOnError user(cp);
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);

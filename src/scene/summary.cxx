@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <strings.h>
 #include <string>
 
 /* the type of a TAO once it has one; else keep the default given */
@@ -188,9 +189,12 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
     char       *all;
     PetscCall(PetscObjectGetOptionsPrefix((PetscObject)feti, &prefix));
     PetscCall(PetscOptionsGetAll(NULL, &all));
-    const std::string ksp = "-" + std::string(prefix ? prefix : "") + "feti_ksp_", pc = "-" + std::string(prefix ? prefix : "") + "feti_pc_";
+    std::string ksp, pc;
+    PetscCallCXX(ksp = "-" + std::string(prefix ? prefix : "") + "feti_ksp_");
+    PetscCallCXX(pc = "-" + std::string(prefix ? prefix : "") + "feti_pc_");
+    /* option names are case-insensitive; a token that begins with '-' and this name is an option, not a value */
     for (char *tok = std::strtok(all, " "); tok; tok = std::strtok(NULL, " "))
-      if (!std::strncmp(tok, ksp.c_str(), ksp.size()) || !std::strncmp(tok, pc.c_str(), pc.size())) {
+      if (!strncasecmp(tok, ksp.c_str(), ksp.size()) || !strncasecmp(tok, pc.c_str(), pc.size())) {
         PetscCall(PetscStrncpy(s->linear_option, tok, sizeof(s->linear_option)));
         break;
       }

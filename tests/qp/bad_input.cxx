@@ -29,8 +29,8 @@ static PetscErrorCode Misuse(const std::string &c)
   if (c == "negative_radius") {
     PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
     PetscCall(SeparableSetAddDisks(set, 1, idx, NULL, r));
-  } else if (c == "huge_radius" || c == "huge_radius_set") { /* its square overflowed: the solve ended DIVERGED_NAN */
-    PetscReal rr[1] = {1.0}, huge[1] = {1e200};
+  } else if (c == "huge_radius" || c == "huge_radius_set" || c == "nan_radius_set") { /* its square overflowed: the solve ended DIVERGED_NAN */
+    PetscReal rr[1] = {1.0}, huge[1] = {c == "nan_radius_set" ? std::numeric_limits<PetscReal>::quiet_NaN() : 1e200};
     PetscCall(SeparableSetCreate(PETSC_COMM_WORLD, 4, PETSC_DETERMINE, &set));
     PetscCall(SeparableSetAddDisks(set, 1, idx, NULL, c == "huge_radius" ? huge : rr));
     PetscCall(SeparableSetSetDiskRadii(set, huge));

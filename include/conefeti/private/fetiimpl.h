@@ -181,7 +181,7 @@ struct FETI_Impl {
   PetscInt           coarseparalleldim  = 50000;                       /* -feti_coarse_parallel_dim: auto's switch from single to parallel */
   PetscInt           coarseredundantdim = 10000;                       /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
   PetscInt           coarsesplitdim     = 1000;                        /* -feti_coarse_split_dim: auto's switch from redundant to split */
-  PetscReal          coarsechecktol     = 1e-6;                        /* -feti_coarse_check_tol: the factors of G G' must solve a pseudo-random system to it (0: no check) */
+  PetscReal          coarsechecktol     = 1e-3;                        /* -feti_coarse_check_tol: the factors of G G' must solve a pseudo-random system to it (0: no check) */
   PetscBool          rigidrows          = PETSC_TRUE;                  /* -feti_rigid_rows: G and G' through R = Rhat T where the kernels allow it */
 
   /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */

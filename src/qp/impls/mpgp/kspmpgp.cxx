@@ -156,6 +156,10 @@ PetscErrorCode KSPSolve_MPGP(KSP ksp)
   qp->core.precondition     = pcnone ? nullptr : KSPQPPrecondition; /* in face: restricted to the free entries */
   qp->core.precondition_ctx = ksp;
   ksp->reason               = KSP_CONVERGED_ITERATING;
+  /* with PETSc's default test the solve stops only on an exact residual, as the TAO types do: CG's recurred residual
+     drifts from b - A x where the operator is applied inexactly (FETI's P F P with an ill-conditioned coarse problem: a
+     chain of 96 subdomains stopped at a recurred 1e-11 while b - A x was 2e-4 of b, and its answer was 1e8 off) */
+  qp->core.verify = (PetscBool)(ksp->converged == KSPConvergedDefault);
   PetscCall(MPGPCoreSolve(&qp->core, ksp->vec_sol));
   if (qp->core.status == MPGPStatus::NORM_TOO_SMALL && qp->norm.user <= 0 && !qp->unconstrained) {
     /* the cached estimate belongs to an operator that has changed behind the same state: estimate
@@ -182,6 +186,11 @@ PetscErrorCode KSPSolve_MPGP(KSP ksp)
   } else if (qp->core.status == MPGPStatus::UNBOUNDED) { /* as KSPCG on p'Ap = 0 */
     PetscCall(PetscInfo(ksp, "KSP %s: p'Ap = 0 along a descent direction no constraint stops: the problem is unbounded below (a singular operator with an inconsistent right-hand side?)\n", qp->name));
     ksp->reason = KSP_DIVERGED_INDEFINITE_MAT;
+  } else if (qp->core.status == MPGPStatus::ACCURACY_FLOOR) {
+    PetscCall(PetscInfo(
+        ksp, "KSP %s: the exact residual stays at %g, above the tolerance the recurred one met: rounding limits the accuracy (an ill-conditioned or inexactly applied operator); ask for less\n",
+        qp->name, (double)qp->core.gpnorm));
+    ksp->reason = KSP_DIVERGED_BREAKDOWN;
   } else if (qp->core.status == MPGPStatus::NOT_A_NUMBER) ksp->reason = KSP_DIVERGED_NANORINF;
   if (qp->counters_view) {
     PetscViewer viewer;
@@ -359,7 +368,7 @@ PetscErrorCode KSPCreate_MPGPCommon(KSP ksp, MPGPVariant variant, const char *na
 
 /*MC
   KSPMPRGP - "mprgp": KSPSolve(A x = b) as min 1/2 x'Ax - b'x subject to l <= x <= u (Dostal-Schoberl
-  MPRGP); without bounds it is CG (PCG with a preconditioner), with the same iterates as `KSPCG`.
+  MPRGP); without bounds it is CG (PCG with a preconditioner), with the same iterates as `KSPCG` until it stops.
 
   Options Database Keys:
 + -ksp_mprgp_gamma <1>           - proportioning parameter Gamma
@@ -379,6 +388,11 @@ PetscErrorCode KSPCreate_MPGPCommon(KSP ksp, MPGPVariant variant, const char *na
   free entries F (see `TaoQPGetPC()`).
   A must be symmetric: a solve that fails tests it as `TAOMPRGP` does and, when it is not, ends with
   `KSP_DIVERGED_NONSYMMETRIC` (-ksp_view: "stopped: the operator is not symmetric"). A negative -ksp_max_it is an error.
+  With PETSc's default convergence test the solve stops only on an exact residual: when the recurred one meets the
+  test, b - A x is computed (one product) and must meet it too, else the solve goes on from it with a restarted
+  direction; three such refusals that do not halve it end the solve with `KSP_DIVERGED_BREAKDOWN` (rounding limits
+  the accuracy: an ill-conditioned or inexactly applied operator, -info says so). Where `KSPCG` would stop on a
+  drifted residual the iterates then differ.
 
   References:
 . * - Z. Dostal, J. Schoberl, Minimizing quadratic functions over non-negative cone with the rate of convergence and finite termination, Computational Optimization and Applications (2005)
