@@ -119,6 +119,8 @@ struct TaoSMALXE {
   PetscInt               stagnation_its = 30;
   PetscBool              stagnated      = PETSC_FALSE;
   PetscBool              stalled        = PETSC_FALSE; /* |Cx - d| made no progress while the multiplier settled */
+  /* a stall first raises rho (by beta) this many times, each followed by a full stall window, before it stops */
+  PetscInt stall_rho_growths = 1, stall_rho_done = 0, stall_base = 0;
   /* inner solves at their iteration limit: the block that ran into it in each outer iteration (-1: none), the one
      that made the loop stop (-1: it did not stop for it), and the window of that stop */
   std::vector<PetscInt> limited_history;
@@ -514,6 +516,8 @@ bool Progressed(const TaoSMALXE *s, PetscInt k, PetscInt window, PetscReal tol_g
 
 /* Outer: |gP| <= tol_g and |Cx - d| <= tol_e (Tolerances()); both relative, so scaling A and b, or C and d,
    does not change the iterations. */
+PetscErrorCode UpdateNormH(TaoSMALXE *s);
+
 PetscErrorCode OuterConvergenceTest(Tao tao, void *)
 {
   TaoSMALXE *s = Get(tao);
@@ -541,13 +545,29 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
                         (double)tao->cnorm, s->stagnation_its));
     PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
   }
-  if (tao->reason == TAO_CONTINUE_ITERATING && s->stagnation_its > 0 && k >= 2 * s->stagnation_its && (tao->cnorm > tol_e || tao->residual > tol_g)) {
+  if (tao->reason == TAO_CONTINUE_ITERATING && s->stagnation_its > 0 && k - s->stall_base >= 2 * s->stagnation_its && (tao->cnorm > tol_e || tao->residual > tol_g)) {
     /* the best distance from convergence, max(|gP| / tol_g, |Cx - d| / tol_e), of the last stagnation_its
        outer iterations is not 1% below the best before them (a minimum over a window, so that a loop
        cycling between a few states counts too), while the multiplier does not grow: the iteration is
        stuck, more of it will not help. Both parts count: a loop whose |Cx - d| sits at its tolerance while
        |gP| still falls steadily (a slow Gauss-Seidel sweep between blocks) is not stuck */
-    if (!Progressed(s, k, s->stagnation_its, tol_g, tol_e) && s->mult_history[k] <= 1.25 * s->mult_history[k - s->stagnation_its]) {
+    if (!Progressed(s, k, s->stagnation_its, tol_g, tol_e) && s->mult_history[k] <= 1.25 * s->mult_history[k - s->stagnation_its] && s->stall_rho_done < s->stall_rho_growths &&
+        s->update == SMALXE_UPDATE_M && tao->cnorm > 10 * tol_e) {
+      /* a penalty far too small for the coupling the set puts between range(Q) and the rest (a clamped block whose
+         Tresca disks, large, sit on nodes far from their foundation: fuzz boxes seed 106, scene 2189, stuck at |gP| of
+         2e-4 of its reference at rho = ||PFP||, converged in 5 outer iterations at 2 ||PFP||): grow rho as SMALBE does,
+         and give the loop a full window again before the stall test may stop it. Only when |Cx - d| is stuck far
+         (10 times) above its tolerance, the part a penalty enforces: a loop stuck near it is at rounding's floor (the
+         brick at -contact_rtol 1e-15: 2.3 times), where a larger rho only makes each inner solve dearer */
+      const PetscReal rho0 = s->rho;
+      s->rho *= s->beta;
+      PetscCall(UpdateNormH(s));
+      s->stall_rho_done++;
+      s->stall_base = k;
+      PetscCall(PetscInfo(tao,
+                          "TAO smalxe: stuck at |gP| = %g (tol %g), |Cx - d| = %g (tol %g) for %" PetscInt_FMT " outer iterations: rho %g -> %g (-tao_smalxe_stall_rho_growths %" PetscInt_FMT ")\n",
+                          (double)tao->residual, (double)tol_g, (double)tao->cnorm, (double)tol_e, s->stagnation_its, (double)rho0, (double)s->rho, s->stall_rho_growths));
+    } else if (!Progressed(s, k, s->stagnation_its, tol_g, tol_e) && s->mult_history[k] <= 1.25 * s->mult_history[k - s->stagnation_its]) {
       s->stalled = PETSC_TRUE;
       PetscCall(PetscInfo(tao,
                           "TAO smalxe: stalls at |gP| = %g (tol %g), |Cx - d| = %g (tol %g): the best of max(|gP| / tol, |Cx - d| / tol) did not fall by 1%% in %" PetscInt_FMT " outer iterations\n",
@@ -1169,9 +1189,11 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
   s->mult_history.clear();
   s->gp_history.clear();
   s->limited_history.clear();
-  s->stagnated     = PETSC_FALSE;
-  s->stalled       = PETSC_FALSE;
-  s->inner_limited = -1;
+  s->stagnated      = PETSC_FALSE;
+  s->stalled        = PETSC_FALSE;
+  s->inner_limited  = -1;
+  s->stall_rho_done = 0;
+  s->stall_base     = 0;
   QPRefusedStops refused; /* exact stop: the stops the inner solver's exact gradient refused */
   s->accuracy_floor = PETSC_FALSE;
   for (PetscInt k = 0;; k++) {
@@ -1335,6 +1357,11 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
                             "Stop when |Cx - d| makes less than 1% progress in this many outer iterations: infeasible if the multiplier grew by a quarter meanwhile, stalled if it settled (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
+  PetscCall(PetscOptionsInt("-tao_smalxe_stall_rho_growths",
+                            "A stall (no 1% progress in -tao_smalxe_stagnation_its outer iterations) with |Cx - d| above 10 times its tolerance first multiplies rho by -tao_smalxe_beta this many "
+                            "times, each with a full window again (with -tao_smalxe_update M)",
+                            "TaoSMALXEGetStalled", s->stall_rho_growths, &s->stall_rho_growths, NULL));
+  PetscCheck(s->stall_rho_growths >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_stall_rho_growths must be >= 0 (0: a stall stops the loop), got %" PetscInt_FMT, p, s->stall_rho_growths);
   PetscCall(PetscOptionsInt("-tao_smalxe_inner_limit_its", "Stop when the inner solves reach their iteration limit in this many outer iterations in a row without 1% progress (0: never)",
                             "TaoSMALXEGetInnerLimited", s->inner_limit_its, &s->inner_limit_its, NULL));
   PetscCheck(s->inner_limit_its >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_inner_limit_its must be >= 0 (0: never), got %" PetscInt_FMT, p, s->inner_limit_its);
@@ -1811,6 +1838,7 @@ PetscErrorCode TaoSMALXESetOperatorNames_Private(Tao tao, const char hessian[], 
 . -tao_smalxe_norm_method      - slepc or power
 . -tao_smalxe_norm_margin      - safety margin on the estimate (negative: the method's default, 0.01 slepc, 0.05 power)
 . -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
+. -tao_smalxe_stall_rho_growths <1> - a stall with |Cx - d| above 10 times its tolerance first multiplies rho by beta this many times, each followed by a full window (update M only)
 . -tao_smalxe_inner_limit_its <5> - stop when inner solves reach their iteration limit this many outer iterations in a row without 1% progress
 . -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance, times rho/rho_default below 1 (0: only the adaptive precision)
 . -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
