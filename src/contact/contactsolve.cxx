@@ -910,12 +910,8 @@ public:
   ~ProblemStateOnError()
   {
     if (!armed_) return;
-    ContactProblemData *d = cp_->data;
-    d->rtol               = t_.rtol;
-    d->msa_rtol           = t_.msa_rtol;
-    d->fixed_point_rtol   = t_.fixed_point_rtol;
-    (void)TaoSetTolerances(d->tao, t_.gatol, t_.grtol, t_.gttol);
-    (void)TaoSetRecycleHistory(d->tao, recycle_);
+    (void)RestoreTolerances(cp_, t_);
+    (void)TaoSetRecycleHistory(cp_->data->tao, recycle_);
   }
 
 private:

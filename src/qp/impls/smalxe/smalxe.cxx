@@ -551,8 +551,8 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
        cycling between a few states counts too), while the multiplier does not grow: the iteration is
        stuck, more of it will not help. Both parts count: a loop whose |Cx - d| sits at its tolerance while
        |gP| still falls steadily (a slow Gauss-Seidel sweep between blocks) is not stuck */
-    if (!Progressed(s, k, s->stagnation_its, tol_g, tol_e) && s->mult_history[k] <= 1.25 * s->mult_history[k - s->stagnation_its] && s->stall_rho_done < s->stall_rho_growths &&
-        s->update == SMALXE_UPDATE_M && tao->cnorm > 10 * tol_e) {
+    const bool stuck = !Progressed(s, k, s->stagnation_its, tol_g, tol_e) && s->mult_history[k] <= 1.25 * s->mult_history[k - s->stagnation_its];
+    if (stuck && s->stall_rho_done < s->stall_rho_growths && s->update == SMALXE_UPDATE_M && tao->cnorm > 10 * tol_e) {
       /* a penalty far too small for the coupling the set puts between range(Q) and the rest (a clamped block whose
          Tresca disks, large, sit on nodes far from their foundation: fuzz boxes seed 106, scene 2189, stuck at |gP| of
          2e-4 of its reference at rho = ||PFP||, converged in 5 outer iterations at 2 ||PFP||): grow rho as SMALBE does,
@@ -567,7 +567,7 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
       PetscCall(PetscInfo(tao,
                           "TAO smalxe: stuck at |gP| = %g (tol %g), |Cx - d| = %g (tol %g) for %" PetscInt_FMT " outer iterations: rho %g -> %g (-tao_smalxe_stall_rho_growths %" PetscInt_FMT ")\n",
                           (double)tao->residual, (double)tol_g, (double)tao->cnorm, (double)tol_e, s->stagnation_its, (double)rho0, (double)s->rho, s->stall_rho_growths));
-    } else if (!Progressed(s, k, s->stagnation_its, tol_g, tol_e) && s->mult_history[k] <= 1.25 * s->mult_history[k - s->stagnation_its]) {
+    } else if (stuck) {
       s->stalled = PETSC_TRUE;
       PetscCall(PetscInfo(tao,
                           "TAO smalxe: stalls at |gP| = %g (tol %g), |Cx - d| = %g (tol %g): the best of max(|gP| / tol, |Cx - d| / tol) did not fall by 1%% in %" PetscInt_FMT " outer iterations\n",
