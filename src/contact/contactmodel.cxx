@@ -998,7 +998,8 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
     const char *why = "";
     if (reason < 0 && rtol < 1e-12) why = " (-feti_ksp_rtol below 1e-12: below what rounding lets the residual reach?)";
     else if (reason == KSP_DIVERGED_BREAKDOWN)
-      why = " (rounding limits the accuracy: the exact residual stays above the tolerance; an ill-conditioned coarse problem, e.g. a long chain of subdomains? -info says more)";
+      why = " (rounding limits the accuracy: the exact residual stays above the tolerance; an ill-conditioned coarse problem? -info :feti gives its residual and condition estimate, "
+            "-feti_coarse_refine more refinement steps)";
     PetscCall(PetscSNPrintf(st->reason, sizeof(st->reason), "linear FETI solve (KSP %s): %s in %" PetscInt_FMT " iterations%s", type ? type : "?", KSPConvergedReasons[reason], its, why));
   } else {
     Vec       w;

@@ -57,6 +57,11 @@ static PetscErrorCode FETIReset(FETI feti)
   PetscCall(VecDestroy(&impl.wc2));
   PetscCall(VecDestroy(&impl.wp3));
   PetscCall(VecDestroy(&impl.wd3));
+  PetscCall(VecDestroy(&impl.wcr));
+  PetscCall(VecDestroy(&impl.wcdy));
+  PetscCall(VecDestroy(&impl.wdr));
+  impl.coarsesteps = 0;
+  impl.coarseres0  = -1;
   PetscCall(VecDestroy(&impl.rhs));
   PetscCall(VecDestroy(&impl.residual));
   PetscCall(VecDestroy(&impl.alpha));
@@ -606,6 +611,8 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_coarse_parallel_dim <50000> - the coarse dimension from which auto factors in parallel (a larger factor does not fit one rank's memory and time; docs/scale.md)
 . -feti_coarse_check_tol <1e-3> - at setup the factors of G G' must solve a pseudo-random system to this fraction after one refinement, else G G' is singular (a motion
   nothing holds, which a Cholesky factorization lets through as a rounding-sized pivot) or hopelessly ill-conditioned; 0: no check
+. -feti_coarse_refine <-1>     - steps of iterative refinement in every coarse solve (each one more product with G' and G and one more solve); -1 (default): chosen at
+  setup from the check's residual without refinement, none up to 1e-12 (every scene of this repository), one up to 1e-8, two above (long chains of subdomains)
 . -feti_rigid_rows <true>      - G = R'B' and G' = B R from each touched node's coordinates and each subdomain's 6 x k transform of its rigid-body modes, where every
   kernel is spanned by them (built from coordinates); false: from R's stored rows (k numbers per dof)
 - -feti_coarse_pc_factor_mat_solver_type ... - its options (single: on rank 0; redundant: -feti_coarse_redundant_...)
@@ -714,6 +721,11 @@ PetscErrorCode FETISetFromOptions(FETI feti)
       "FETISetUp", impl.coarsechecktol, &impl.coarsechecktol, NULL));
   PetscCheck(impl.coarsechecktol >= 0 && impl.coarsechecktol < 1, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_check_tol %g must be in [0, 1) (0: no check)",
              prefix ? prefix : "", (double)impl.coarsechecktol);
+  PetscCall(PetscOptionsInt("-feti_coarse_refine",
+                            "Steps of iterative refinement in every coarse solve (G G')^-1 x, each one more product with G' and G; -1: chosen at setup from the coarse check's residual", "FETISetUp",
+                            impl.coarserefine, &impl.coarserefine, NULL));
+  PetscCheck(impl.coarserefine >= -1 && impl.coarserefine <= 10, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
+             "-%sfeti_coarse_refine %" PetscInt_FMT " must be in [-1, 10] (-1: chosen at setup)", prefix ? prefix : "", impl.coarserefine);
   PetscCall(PetscOptionsInt("-feti_coarse_parallel_dim", "Coarse dimension from which -feti_coarse_mode auto factors G G' in parallel (MUMPS) instead of on rank 0", "FETISetUp",
                             impl.coarseparalleldim, &impl.coarseparalleldim, NULL));
   PetscCheck(impl.coarseparalleldim >= 0, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_parallel_dim %" PetscInt_FMT " must be >= 0", prefix ? prefix : "",
@@ -1285,7 +1297,12 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
     if (impl.memfactors >= 0)
       PetscCall(PetscViewerASCIIPrintf(viewer, "memory estimate (node of rank 0): factors %.1f MB, explicit K+ blocks %.1f MB, budget %.1f MB\n", impl.memfactors / 1048576.0,
                                        impl.memblocks / 1048576.0, impl.membudget / 1048576.0));
-    if (impl.ncoarse) PetscCall(FETICoarseSolverView(impl.coarse, viewer));
+    if (impl.ncoarse) {
+      PetscCall(FETICoarseSolverView(impl.coarse, viewer));
+      if (impl.coarsesteps)
+        PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solves refined by %" PetscInt_FMT " step(s) each (-feti_coarse_refine %" PetscInt_FMT "; unrefined residual of the check %.1e)\n",
+                                         impl.coarsesteps, impl.coarserefine, (double)impl.coarseres0));
+    }
   }
   PetscCall(PetscViewerASCIIPopTab(viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -1481,14 +1498,15 @@ PetscErrorCode FETIGetSubdomainFixingDofs(FETI feti, PetscInt s, IS *is)
    clamp). A nonsingular one leaves rounding times its condition, which grows like the length of a chain of subdomains
    to the fourth (the clamped bar of tutorials/feti/ex1_handoff: 7e-14 at 8 slabs of one cell, 2e-10 at 64, 1.4e-6 at
    1024), hence the tolerance 1e-3. -info prints the residual and a condition estimate (|G G' b| / |b| times |x| / |b|).
-   Two coarse solves and three products with G and G' at setup; no count of the solve changes. */
+   The residual of the first solve, before the refinement, also chooses the refinement of every coarse solve
+   (SetUpCoarseRefinement()). Two coarse solves and three products with G and G' at setup; no count of the solve changes. */
 static PetscErrorCode CheckCoarseSolvable(FETI feti)
 {
   FETI_Impl   &impl = *feti->impl;
   Vec          b, x, dx, r, w;
   PetscInt     lo, hi;
   PetscScalar *ba;
-  PetscReal    bnorm, rnorm, xnorm, abnorm;
+  PetscReal    bnorm, rnorm, xnorm, abnorm, r0norm = 0;
 
   PetscFunctionBegin;
   PetscCall(VecDuplicate(impl.wc1, &b));
@@ -1515,6 +1533,7 @@ static PetscErrorCode CheckCoarseSolvable(FETI feti)
     PetscCall(FETIApplyGt(feti, x, w));
     PetscCall(FETIApplyG(feti, w, r));
     PetscCall(VecAYPX(r, -1.0, b));
+    if (!step) PetscCall(VecNorm(r, NORM_2, &r0norm));
   }
   PetscCall(VecNorm(b, NORM_2, &bnorm));
   PetscCall(VecNorm(r, NORM_2, &rnorm));
@@ -1522,13 +1541,47 @@ static PetscErrorCode CheckCoarseSolvable(FETI feti)
   PetscCall(FETIApplyGt(feti, b, w));
   PetscCall(FETIApplyG(feti, w, dx));
   PetscCall(VecNorm(dx, NORM_2, &abnorm));
-  PetscCall(PetscInfo(feti, "coarse problem: |b - G G' x| / |b| = %g for a pseudo-random b after one refinement (above -feti_coarse_check_tol %g: singular); condition estimate %g\n",
-                      (double)(rnorm / bnorm), (double)impl.coarsechecktol, (double)(abnorm / bnorm * xnorm / bnorm)));
+  PetscCall(PetscInfo(feti, "coarse problem: |b - G G' x| / |b| = %g for a pseudo-random b, %g after one refinement (above -feti_coarse_check_tol %g: singular); condition estimate %g\n",
+                      (double)(r0norm / bnorm), (double)(rnorm / bnorm), (double)impl.coarsechecktol, (double)(abnorm / bnorm * xnorm / bnorm)));
   for (Vec *v : {&b, &x, &dx, &r, &w}) PetscCall(VecDestroy(v));
-  PetscCheck(rnorm <= impl.coarsechecktol * bnorm, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
+  impl.coarseres0 = r0norm / bnorm;
+  PetscCheck(!(impl.coarsechecktol > 0) || rnorm <= impl.coarsechecktol * bnorm, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
              "The coarse matrix G G' is singular, or so ill-conditioned that its factors solve (G G') x = b only to %.1e of |b| for a pseudo-random b (-feti_coarse_check_tol %g; 0 "
              "skips this check): " FETI_SINGULAR_COARSE_MESSAGE,
              (double)(rnorm / bnorm), (double)impl.coarsechecktol);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The projector P = I - G'(G G')^-1 G is only as good as G (P x) = 0 holds: a coarse solve whose residual is
+   rounding times |G G'| |y| leaves that much of range(G') in P x. With a well-conditioned G G' that is rounding of
+   |G x|; on a long chain of subdomains, where G G' gets ill-conditioned like the chain's length to the fourth, it
+   is not: the projected CG of the clamped bar of tutorials/feti/ex1_handoff (slabs of one cell) then stalls at a
+   relative residual of about ten times the check's unrefined residual (1.6e-8 at 96 slabs, above the default rtol
+   1e-8), and ended DIVERGED_BREAKDOWN from 96 slabs on. A step of iterative refinement with the residual formed
+   through G' and G, r = x - G (G' y), brings it down to rounding of |G' y|, what the projector needs: with one step
+   the bar converges in 8-9 iterations up to 512 slabs (unrefined residual 3e-7), with two at 1024 (2e-6), to the
+   deflections that follow the shorter bars'. The check's unrefined residual for a pseudo-random b, about 2e-16 times
+   G G''s condition, chooses the steps: none up to 1e-12 (every shipped scene: 6e-15 to 1.5e-13; the bar up to about
+   20 slabs), one up to 1e-8, two above. */
+#define FETI_COARSE_REFINED_RESIDUAL 1e-12
+#define FETI_COARSE_REFINE_MAX       10
+static PetscErrorCode SetUpCoarseRefinement(FETI feti)
+{
+  FETI_Impl &impl = *feti->impl;
+
+  PetscFunctionBegin;
+  if (impl.coarserefine >= 0) impl.coarsesteps = impl.coarserefine;
+  else {
+    PetscReal left = impl.coarseres0; /* a step multiplies it by about 100 times itself (the fit above) */
+    for (impl.coarsesteps = 0; !(left <= FETI_COARSE_REFINED_RESIDUAL) && impl.coarsesteps < FETI_COARSE_REFINE_MAX; impl.coarsesteps++) left *= std::min((PetscReal)1, 100 * impl.coarseres0);
+  }
+  if (impl.coarsesteps > 0) {
+    PetscCall(VecDuplicate(impl.wc1, &impl.wcr));
+    PetscCall(VecDuplicate(impl.wc1, &impl.wcdy));
+    PetscCall(VecDuplicate(impl.wd1, &impl.wdr));
+  }
+  PetscCall(PetscInfo(feti, "coarse solves: %" PetscInt_FMT " step(s) of iterative refinement each (-feti_coarse_refine %" PetscInt_FMT "%s)\n", impl.coarsesteps, impl.coarserefine,
+                      impl.coarserefine < 0 ? ": chosen from the check's unrefined residual" : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -1551,7 +1604,8 @@ static PetscErrorCode SetUpCoarse(FETI feti)
   PetscCall(MatDestroy(&GGt));
   PetscCheck(!failed, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED, "The coarse matrix G G' is singular: " FETI_SINGULAR_COARSE_MESSAGE);
   /* before the subdomains are factored: a refused setup pays for no factorization */
-  if (impl.coarsechecktol > 0) PetscCall(CheckCoarseSolvable(feti));
+  if (impl.coarsechecktol > 0 || impl.coarserefine < 0) PetscCall(CheckCoarseSolvable(feti));
+  PetscCall(SetUpCoarseRefinement(feti));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -122,9 +122,14 @@ PetscErrorCode FETIApplyK(FETI feti, Vec x, Vec y)
   Output Parameter:
 . y - (G G')^-1 x
 
+  Notes:
+  With -feti_coarse_refine steps (chosen at setup unless given: none on a well-conditioned G G'), each solve is
+  followed by that many steps of iterative refinement, y += (G G')^-1 (x - G (G' y)), each one more coarse solve in
+  `FETIGetCoarseSolveCount()`; x and y must then be different vectors.
+
   Level: developer
 
-.seealso: `FETIGetOperators()`
+.seealso: `FETIGetOperators()`, `FETIGetCoarseSolveCount()`
 @*/
 PetscErrorCode FETIApplyCoarseInverse(FETI feti, Vec x, Vec y)
 {
@@ -133,9 +138,20 @@ PetscErrorCode FETIApplyCoarseInverse(FETI feti, Vec x, Vec y)
   FETI_Impl &impl = *feti->impl;
   PetscCheck(impl.setupcalled, PetscObjectComm((PetscObject)feti), PETSC_ERR_ORDER, "Call FETISetUp() first");
   if (!impl.ncoarse) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(x != y || !impl.coarsesteps, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_IDN, "FETIApplyCoarseInverse(): x and y must differ when the solves are refined (-feti_coarse_refine)");
   PetscCall(PetscLogEventBegin(FETI_CoarseSolve, feti, 0, 0, 0));
   impl.ncoarsesolves++;
   PetscCall(FETICoarseSolverApply(impl.coarse, x, y));
+  /* iterative refinement with the residual through G' and G (SetUpCoarseRefinement(), feti.cxx): on a long chain of
+     subdomains the factors' residual, rounding of |G G'| |y|, is far above the rounding of |G' y| that P needs */
+  for (PetscInt k = 0; k < impl.coarsesteps; k++) {
+    PetscCall(FETIApplyGt(feti, y, impl.wdr));
+    PetscCall(FETIApplyG(feti, impl.wdr, impl.wcr));
+    PetscCall(VecAYPX(impl.wcr, -1.0, x));
+    impl.ncoarsesolves++;
+    PetscCall(FETICoarseSolverApply(impl.coarse, impl.wcr, impl.wcdy));
+    PetscCall(VecAXPY(y, 1.0, impl.wcdy));
+  }
   PetscCall(PetscLogEventEnd(FETI_CoarseSolve, feti, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

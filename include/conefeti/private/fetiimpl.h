@@ -182,6 +182,7 @@ struct FETI_Impl {
   PetscInt           coarseredundantdim = 10000;                       /* -feti_coarse_redundant_dim: auto's switch from redundant to single */
   PetscInt           coarsesplitdim     = 1000;                        /* -feti_coarse_split_dim: auto's switch from redundant to split */
   PetscReal          coarsechecktol     = 1e-3;                        /* -feti_coarse_check_tol: the factors of G G' must solve a pseudo-random system to it (0: no check) */
+  PetscInt           coarserefine       = PETSC_DECIDE;                /* -feti_coarse_refine: refinement steps per coarse solve (PETSC_DECIDE: from the coarse check) */
   PetscBool          rigidrows          = PETSC_TRUE;                  /* -feti_rigid_rows: G and G' through R = Rhat T where the kernels allow it */
 
   /* memory (fetimemory.cxx): estimates on this rank's node at setup, and whether the explicit K+ asked for was dropped for it */
@@ -205,9 +206,12 @@ struct FETI_Impl {
      index of each such row (increasing), CSR of those rows of R's diagonal block (local coarse columns) */
   std::vector<PetscInt>    grows, gptr, gcols, gfirst; /* gfirst: the first column of each kept row when every row's columns are consecutive (gcols then empty) */
   std::vector<PetscScalar> gvals;
-  PetscBool                gpairs        = PETSC_FALSE; /* R's products sum each row in pairs (PETSc's inode kernel): so do ours */
-  PetscBool                growsset      = PETSC_FALSE; /* FETISetUpCoarseRows() ran; grows empty then: PETSc's products */
-  PetscInt                 ncoarsesolves = 0;           /* coarse solves since FETISetUp() (FETIGetCoarseSolveCount()) */
+  PetscBool                gpairs        = PETSC_FALSE;                  /* R's products sum each row in pairs (PETSc's inode kernel): so do ours */
+  PetscBool                growsset      = PETSC_FALSE;                  /* FETISetUpCoarseRows() ran; grows empty then: PETSc's products */
+  PetscInt                 ncoarsesolves = 0;                            /* coarse solves since FETISetUp() (FETIGetCoarseSolveCount()) */
+  PetscInt                 coarsesteps   = 0;                            /* refinement steps of every coarse solve, as set up (FETIApplyCoarseInverse()) */
+  PetscReal                coarseres0    = -1;                           /* the coarse check's |b - G G' x| / |b| without refinement (-1: not measured) */
+  Vec                      wcr = nullptr, wcdy = nullptr, wdr = nullptr; /* refinement: coarse residual and correction, dual G' y */
   /* G' without B's ghost exchange (fetioperators.cxx, FETISetUpGhostCoarseRows()): the rows of R at B's ghost primal
      columns (Bsum.garray), CSR with global coarse columns, to compute R x there from a coarse solution every rank has
      in full (checked bit for bit against the exchange at its first use) */
