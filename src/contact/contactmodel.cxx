@@ -699,8 +699,10 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   if (d->setup) PetscFunctionReturn(PETSC_SUCCESS);
   PetscObjectOptionsBegin((PetscObject)cm);
   /* the contact problem reads it too (for its KKT residual): the same text, so that -help lists one meaning */
-  PetscCall(PetscOptionsReal("-contact_acceptance_factor", "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol",
-                             "ContactModelSolve", d->acceptance_factor, &d->acceptance_factor, NULL));
+  PetscCall(PetscOptionsReal("-contact_acceptance_factor",
+                             "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol (by default also at most 0.1, or "
+                             "-contact_rtol if that is larger; a factor given is taken as given)",
+                             "ContactModelSolve", d->acceptance_factor, &d->acceptance_factor, &d->acceptance_given));
   PetscCall(PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual (or, with -contact_kkt_check, the KKT residual) does not",
                             "ContactModelSolve", d->refine_max, &d->refine_max, NULL));
   PetscCall(PetscOptionsInt("-contact_friction_polygon",
@@ -1042,7 +1044,8 @@ PetscErrorCode SolveOnce(ContactModel cm, PetscBool warm, ContactStatistics *st)
 
   Options Database Keys:
 + -contact_acceptance_factor <10> - a solve converges only when every mechanical residual is at most this times the
-                                    solver's relative tolerance (-contact_rtol, or -feti_ksp_rtol without contact)
+                                    solver's relative tolerance (-contact_rtol, or -feti_ksp_rtol without contact); without
+                                    the option also at most 0.1 (or the tolerance, if larger)
 . -contact_refine_max <3>         - when the solver's own test passes but a residual does not, solve again from the
                                     current multipliers at a tighter tolerance, at most this many times
 - -contact_kkt_check <false>      - also hold the KKT residual recomputed from the multipliers within the acceptance
@@ -1093,7 +1096,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
   PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_SOLVE, 0));
   PetscCall(GetSolverTolerance(cm, &rtol0));
   d->stats.pipeline   = d->pipeline;
-  d->stats.acceptance = d->acceptance_factor * rtol0;
+  d->stats.acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, rtol0);
   if (d->cp) PetscCall(ContactProblemGetCoulombAlgorithm(d->cp, &d->stats.algorithm));
   PetscCall(WithoutLoad(cm, &noload));
   if (noload) {

@@ -418,15 +418,14 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_msa_recycle <true>           - MSA: each Tresca solve after the first starts from the previous one's multiplier of the equality (`TaoSetRecycleHistory()`)
 . -contact_fixed_point_rtol <rtol>      - monolithic: radii must agree with F l_n to this relative tolerance
 . -contact_kkt_check <true>             - recompute the KKT residual before saying converged (a `ContactModel` turns it off: it judges by the mechanics)
-. -contact_acceptance_factor <10>       - converged only when the KKT residual recomputed from the multipliers (`ContactProblemComputeKKTResidual()`) is at most this times -contact_rtol
-. -contact_refine_max <3>              - tighter warm solves when the solver's test passes but the KKT check does not, at most this many (0: none; `ContactProblemSolve()`)
-. -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still slip)
-. -contact_start_rtol <0.1>            - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`)
-. -contact_start_max_it <100>           - most CG steps of that start
-. -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum |l_n| presses
-. -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; a `ContactModel` takes dirichlet when at most half its subdomains use dense K+ blocks in F;
-                                          with one, the inner solvers default to the projected CG expansion; see `ContactProblemGetPC()`)
-. -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
+. -contact_acceptance_factor <10>       - converged only when the KKT residual recomputed from the multipliers (`ContactProblemComputeKKTResidual()`) is at most this times -contact_rtol; without the
+option also at most 0.1 (or -contact_rtol, if larger) . -contact_refine_max <3>              - tighter warm solves when the solver's test passes but the KKT check does not, at most this many (0: none;
+`ContactProblemSolve()`) . -contact_coulomb_follow_radii <true>  - Coulomb: when F l_n grows between solves, tangential pairs on their old circle are scaled onto the new one (they most likely still
+slip) . -contact_start_rtol <0.1>            - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`) .
+-contact_start_max_it <100>           - most CG steps of that start . -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum
+|l_n| presses . -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; a `ContactModel` takes dirichlet when at most half its subdomains use dense K+
+blocks in F; with one, the inner solvers default to the projected CG expansion; see `ContactProblemGetPC()`) . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0:
+Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
 - -contact_tao_smalxe_*, -contact_tao_smalxe_subsolver_tao_*, -contact_tao_smalxe_block<k>_tao_* - the solvers (see `TAOSMALXE`)
 
   Notes:
@@ -465,8 +464,10 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
                              &d->follow_radii, NULL));
   PetscCall(PetscOptionsBool("-contact_kkt_check", "Recompute the KKT residual from the multipliers before saying converged (default: on; off in a ContactModel, which judges by the mechanics)",
                              "ContactProblemComputeKKTResidual", d->kkt_check, &d->kkt_check, NULL));
-  PetscCall(PetscOptionsReal("-contact_acceptance_factor", "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol",
-                             "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, NULL));
+  PetscCall(PetscOptionsReal("-contact_acceptance_factor",
+                             "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol (by default also at most 0.1, or "
+                             "-contact_rtol if that is larger; a factor given is taken as given)",
+                             "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, &d->acceptance_given));
   /* the model reads it too (for its mechanical residuals): the same text, so that -help lists one meaning */
   PetscCall(PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual (or, with -contact_kkt_check, the KKT residual) does not",
                             "ContactProblemSolve", d->refine_max, &d->refine_max, NULL));
@@ -1030,7 +1031,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
 
   /* every solve is judged against the first tolerances' acceptance (inside a model: the model's, whose factor it
      scales as it tightens -contact_rtol) */
-  acceptance = d->acceptance_factor * d->rtol;
+  acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, d->rtol);
   tol        = first.rtol;
   /* only a failed KKT check gets tighter solves here: without the check nothing judges the answer but the solver's
      test, and a ContactModel runs them itself (refine_outside) */

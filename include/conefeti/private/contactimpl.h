@@ -40,6 +40,14 @@ static inline void ContactStatisticsAccumulate_Private(ContactStatistics &total,
 
 /* a fixed-point tolerance the user gave (> 0), scaled with the tighter solve's relative tolerance rtol against the
    first one rtol0, at most 0.5; one not given (-1: it follows -contact_rtol) stays */
+/* The acceptance of a solve: -contact_acceptance_factor times its tolerance, but by default never looser than 0.1
+   (or the tolerance itself, if that is looser): with -contact_rtol 0.09 the factor 10 accepted the indentation scene
+   62% off as converged. A factor the user gave is taken as given. */
+#define CONTACT_ACCEPTANCE_LOOSEST 0.1
+static inline PetscReal ContactAcceptance_Private(PetscReal factor, PetscBool given, PetscReal rtol)
+{
+  return given ? factor * rtol : PetscMin(factor * rtol, PetscMax(rtol, (PetscReal)CONTACT_ACCEPTANCE_LOOSEST));
+}
 static inline PetscReal ContactScaledTolerance_Private(PetscReal given, PetscReal rtol, PetscReal rtol0) { return given > 0 ? PetscMin(given * rtol / rtol0, 0.5) : given; }
 
 /* the smallest -contact_rtol at which a ContactModel stores the subdomains' factors in float (they perturb F by
@@ -86,15 +94,16 @@ struct ContactProblemData {
   PetscReal rtol                   = CONTACT_DEFAULT_RTOL; /* -contact_rtol; smalxe: |gP| and feasibility relative to |h| */
   PetscReal msa_rtol               = -1;                   /* MSA: |g^(l+1) - g^(l)| <= msa_rtol |g^(l+1)| (< 0: rtol) */
   PetscInt  msa_max_it             = 100;
-  PetscReal msa_start_rtol         = 1e-2;       /* MSA: tolerance of the first Tresca solve (bounds of the initial multipliers) */
-  PetscBool msa_recycle            = PETSC_TRUE; /* MSA: Tresca solves after the first keep the equality's multiplier */
-  PetscReal fixed_point_rtol       = -1;         /* monolithic: radii consistent with F l_n to this relative tolerance (< 0: rtol) */
-  PetscBool follow_radii           = PETSC_TRUE; /* Coulomb: a tangential pair on its old circle moves onto the new one when the radius grows */
-  PetscReal acceptance_factor      = 10;         /* converged only with the KKT residual <= factor * rtol */
-  PetscReal pc_contact_scale       = 30;         /* -contact_pc_contact_scale: the contact rows get c/||F|| in the preconditioner (contactpc.cxx) */
-  PetscBool pc_contact_rows_scaled = PETSC_TRUE; /* -contact_pc_contact_rows_scaled */
-  PetscBool kkt_check              = PETSC_TRUE; /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
-  PetscInt  refine_max             = 3;          /* -contact_refine_max: tighter warm solves when the KKT check fails after the solver's test passed */
+  PetscReal msa_start_rtol         = 1e-2;        /* MSA: tolerance of the first Tresca solve (bounds of the initial multipliers) */
+  PetscBool msa_recycle            = PETSC_TRUE;  /* MSA: Tresca solves after the first keep the equality's multiplier */
+  PetscReal fixed_point_rtol       = -1;          /* monolithic: radii consistent with F l_n to this relative tolerance (< 0: rtol) */
+  PetscBool follow_radii           = PETSC_TRUE;  /* Coulomb: a tangential pair on its old circle moves onto the new one when the radius grows */
+  PetscReal acceptance_factor      = 10;          /* converged only with the KKT residual <= factor * rtol */
+  PetscBool acceptance_given       = PETSC_FALSE; /* -contact_acceptance_factor was given: no cap (ContactAcceptance_Private()) */
+  PetscReal pc_contact_scale       = 30;          /* -contact_pc_contact_scale: the contact rows get c/||F|| in the preconditioner (contactpc.cxx) */
+  PetscBool pc_contact_rows_scaled = PETSC_TRUE;  /* -contact_pc_contact_rows_scaled */
+  PetscBool kkt_check              = PETSC_TRUE;  /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
+  PetscInt  refine_max             = 3;           /* -contact_refine_max: tighter warm solves when the KKT check fails after the solver's test passed */
   /* a ContactModel runs the tighter solves itself (ContactModelSolve(), judged by the mechanics and, if asked, this
      KKT check): the problem's own ones would nest inside the model's, each of its solves up to refine_max + 1 */
   PetscBool refine_outside    = PETSC_FALSE;

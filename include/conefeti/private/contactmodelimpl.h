@@ -49,8 +49,9 @@ struct ContactModelData {
   PetscObjectState residuals_state[2] = {-1, -1};
 
   /* acceptance of a solution by its mechanical residuals (ContactModelSolve()) */
-  PetscReal acceptance_factor = 10; /* every residual <= factor * the solver's relative tolerance */
-  PetscInt  refine_max        = 3;  /* tighter solves, warm started, when the solver's own test passed but the residuals did not */
+  PetscReal acceptance_factor = 10;          /* every residual <= factor * the solver's relative tolerance */
+  PetscBool acceptance_given  = PETSC_FALSE; /* -contact_acceptance_factor was given: no cap (ContactAcceptance_Private()) */
+  PetscInt  refine_max        = 3;           /* tighter solves, warm started, when the solver's own test passed but the residuals did not */
 
   /* contact nodes whose multipliers this rank owns, in the contact problem's order (law by law) */
   std::vector<PetscInt>  local;       /* indices into nodes */
