@@ -394,6 +394,7 @@ PETSC_EXTERN PetscErrorCode ContactModelComputeResiduals(ContactModel, ContactRe
 PETSC_EXTERN PetscErrorCode ContactModelGetNodes(ContactModel, PetscInt *, const PetscInt **, const PetscInt **, const PetscReal **, const PetscReal **);
 PETSC_EXTERN PetscErrorCode ContactModelGetUnmatchedNodes(ContactModel, PetscInt *);
 PETSC_EXTERN PetscErrorCode ContactModelGetLeftOutNodes(ContactModel, PetscInt *, PetscInt *, PetscReal *);
+PETSC_EXTERN PetscErrorCode ContactModelGetZoneInside(ContactModel, PetscInt *, PetscReal *);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodeStates(ContactModel, PetscReal[], PetscReal[], PetscReal[], ContactNodeStatus[]);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodeGeometry(ContactModel, PetscReal[], PetscReal[]);
 PETSC_EXTERN PetscErrorCode ContactModelGetNodePartners(ContactModel, PetscInt[], PetscInt[], PetscReal[], PetscReal[]);

@@ -93,6 +93,7 @@ typedef struct {
 . left_out_friction, left_out_overlapping, left_out_overlap - nodes of the contact faces that their Dirichlet conditions keep out of contact (`ContactModelGetLeftOutNodes()`)
 . max_nu        - the largest Poisson's ratio of the scene's bodies (above 0.45 the table notes that linear tetrahedra lock)
 . linear_option - with contact: the first option of the linear FETI solve given (-feti_ksp_*, -feti_pc_*), which such a scene does not run ("" when none)
+. zone_inside, zone_inside_overlap - the first foundation zone whose every contact node starts inside its obstacle (-1: none), and the smallest overlap there (`ContactModelGetZoneInside()`)
 . contact_force - the resultant of the contact forces on the zones' first bodies (`ContactModelGetContactForce()`, all zones)
 . bodies_zones  - the contact zones between bodies (their forces on the zones' other bodies are the opposite of those in contact_force)
 . normal_force  - the sum of the normal contact forces l_n over all contact nodes
@@ -143,6 +144,8 @@ typedef struct {
   PetscBool                finite, converged;
   char                     reason[512];
   char                     linear_option[64];
+  PetscInt                 zone_inside;
+  PetscReal                zone_inside_overlap;
 } ContactSceneSummary;
 
 PETSC_EXTERN PetscErrorCode ContactSceneCreate(MPI_Comm, ContactScene *);

@@ -1438,6 +1438,55 @@ PetscErrorCode ContactModelGetLeftOutNodes(ContactModel cm, PetscInt *nfriction,
 }
 
 /*@C
+  ContactModelGetZoneInside - The first foundation zone whose every contact node starts inside its obstacle.
+
+  Not Collective
+
+  Input Parameter:
+. cm - the model (set up)
+
+  Output Parameters:
++ zone    - that zone, -1 when every foundation zone has a node outside its obstacle (or on its surface)
+- overlap - the smallest initial overlap (-gap) of the zone's nodes, 0 when zone is -1; NULL if not needed
+
+  Notes:
+  The solution pushes every node of such a zone out of the obstacle by at least its overlap. That is a flat punch
+  pressed into a face on purpose, or an obstacle on the body's side by mistake: a plane whose normal points away
+  from the body instead of toward it, a sphere or cylinder that holds the face. The conefeti driver prints a note.
+
+  Level: intermediate
+
+.seealso: `ContactModelGetNodeGeometry()`, `ContactModelGetLeftOutNodes()`
+@*/
+PetscErrorCode ContactModelGetZoneInside(ContactModel cm, PetscInt *zone, PetscReal *overlap)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
+  PetscValidIntPointer(zone, 2);
+  PetscCheck(cm->data->setup, PetscObjectComm((PetscObject)cm), PETSC_ERR_ORDER, "Call ContactModelSetUp() first");
+  *zone = -1;
+  if (overlap) *overlap = 0;
+  /* the nodes are the same on every rank: the same answer everywhere, no communication */
+  const std::vector<ContactNodeInfo> &nodes = cm->data->nodes;
+  for (PetscInt z = 0; z < (PetscInt)cm->data->zones.size() && *zone < 0; z++) {
+    PetscInt  count    = 0;
+    PetscBool inside   = PETSC_TRUE;
+    PetscReal smallest = PETSC_MAX_REAL;
+    for (const ContactNodeInfo &nd : nodes) {
+      if (nd.zone != z || nd.other_body >= 0) continue;
+      count++;
+      if (!(nd.gap < 0)) inside = PETSC_FALSE;
+      else smallest = PetscMin(smallest, -nd.gap);
+    }
+    if (count && inside) {
+      *zone = z;
+      if (overlap) *overlap = smallest;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   ContactModelGetNodes - The contact nodes whose multipliers this rank owns.
 
   Not Collective

@@ -239,6 +239,7 @@ PetscErrorCode ContactSceneGetSummary(ContactScene scene, ContactSceneSummary *s
   }
   PetscCall(ContactModelGetUnmatchedNodes(impl.cm, &s->unmatched_nodes));
   PetscCall(ContactModelGetLeftOutNodes(impl.cm, &s->left_out_friction, &s->left_out_overlapping, &s->left_out_overlap));
+  PetscCall(ContactModelGetZoneInside(impl.cm, &s->zone_inside, &s->zone_inside_overlap));
   s->max_nu = -1;
   for (const SceneBody &b : impl.bodies) s->max_nu = PetscMax(s->max_nu, b.nu);
   if (cp) PetscCall(ContactModelGetContactForce(impl.cm, -1, s->contact_force, &s->normal_force));
@@ -401,6 +402,11 @@ PetscErrorCode ContactSceneSummaryView(const ContactSceneSummary *s, PetscViewer
                                      "note: %" PetscInt_FMT " nodes of the contact faces overlap the other side initially (by up to %g) but are not contact nodes (their Dirichlet conditions "
                                      "keep them out): the solution does not push them out\n",
                                      s->left_out_overlapping, (double)s->left_out_overlap));
+  if (s->zone_inside >= 0)
+    PetscCall(PetscViewerASCIIPrintf(viewer,
+                                     "note: every contact node of zone %" PetscInt_FMT " starts inside its obstacle (by %g at least), and the solution pushes them all out of it: "
+                                     "a punch pressed in on purpose, or an obstacle on the body's side by mistake (a plane's -scene_zone%" PetscInt_FMT "_normal must point toward the body)\n",
+                                     s->zone_inside, (double)s->zone_inside_overlap, s->zone_inside));
   /* P1 tetrahedra lock as nu -> 0.5: the displacements come out too small, and K_s and F get ill-conditioned
      (more products); the solve itself stays correct for the discrete problem */
   if (s->max_nu > 0.45)
@@ -548,6 +554,8 @@ PetscErrorCode ContactSceneSummaryToJSON(const ContactSceneSummary *s, char json
   Int(out, "left_out_friction", s->left_out_friction);
   Int(out, "left_out_overlapping", s->left_out_overlapping);
   Real(out, "left_out_overlap", s->left_out_overlap);
+  Int(out, "zone_inside", s->zone_inside);
+  Real(out, "zone_inside_overlap", s->zone_inside_overlap);
   Key(out, "contact_force");
   out += "[";
   for (int c = 0; c < 3; c++) {
