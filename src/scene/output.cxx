@@ -521,7 +521,7 @@ std::string WriteFailureCause(const std::string &file, int syserr)
 
   Input Parameters:
 + scene    - the scene, solved
-- basename - path without extension
+- basename - path without extension (a final .h5 or .xmf is dropped: "res.h5" writes res.h5 and res.xmf, as the driver's -output does)
 
   Options Database Key:
 . -output_test_failure - developer (fault injection, not listed by -help): fail after writing the temporary files (tests that a failed write leaves no file)
@@ -563,8 +563,14 @@ PetscErrorCode ContactSceneWriteOutput(ContactScene scene, const char basename[]
     PetscCall(PetscOptionsGetBool(((PetscObject)scene)->options, prefix, "-output_test_failure", &fail, NULL));
   }
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
-  h5     = std::string(basename) + ".h5";
-  xmf    = std::string(basename) + ".xmf";
+  std::string base(basename); /* a name of one of the two files: res.h5 would have written res.h5.h5 and res.h5.xmf */
+  for (const std::string ext : {".h5", ".xmf"})
+    if (base.size() > ext.size() && !base.compare(base.size() - ext.size(), ext.size(), ext)) {
+      base.resize(base.size() - ext.size());
+      break;
+    }
+  h5     = base + ".h5";
+  xmf    = base + ".xmf";
   h5tmp  = h5 + ".tmp";
   xmftmp = xmf + ".tmp";
   PetscCall(PetscLogEventBegin(CONTACTSCENE_Output, scene, 0, 0, 0));

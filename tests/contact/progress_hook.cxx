@@ -116,6 +116,12 @@ int main(int argc, char **argv)
     return 0;
   }
   PetscCall(ContactSceneSolve(scene));
+  { /* -write_output name: ContactSceneWriteOutput() from the library, as a program of the user's calls it */
+    char      name[PETSC_MAX_PATH_LEN];
+    PetscBool write = PETSC_FALSE;
+    PetscCall(PetscOptionsGetString(NULL, NULL, "-write_output", name, sizeof(name), &write));
+    if (write) PetscCall(ContactSceneWriteOutput(scene, name));
+  }
   PetscCall(ContactSceneGetSummary(scene, &summary));
   PetscCheck(seen.open < 0, PETSC_COMM_SELF, PETSC_ERR_PLIB, "phase %s never ended", ConeFETIPhases[seen.open]);
   /* the setup phases in the order they run; every phase at most once (the contact problem only with contact) */
