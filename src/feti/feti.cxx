@@ -610,9 +610,10 @@ static PetscErrorCode FETICreateKSP(FETI feti)
 . -feti_coarse_redundant_dim <10000> - the coarse dimension below which auto factors on every rank (a small factor per rank; no rank waits for the coarse solves of rank 0)
 . -feti_coarse_parallel_dim <50000> - the coarse dimension from which auto factors in parallel (a larger factor does not fit one rank's memory and time; docs/scale.md)
 . -feti_coarse_check_tol <1e-3> - at setup the factors of G G' must solve a pseudo-random system to this fraction after one refinement, else G G' is singular (a motion
-  nothing holds, which a Cholesky factorization lets through as a rounding-sized pivot) or hopelessly ill-conditioned; 0: no check
+  nothing holds, which a Cholesky factorization lets through as a rounding-sized pivot) or hopelessly ill-conditioned; 0: no refusal (the check's solves still run
+  when -feti_coarse_refine is -1, which they choose)
 . -feti_coarse_refine <-1>     - steps of iterative refinement in every coarse solve (each one more product with G' and G and one more solve); -1 (default): chosen at
-  setup from the check's residual without refinement, none up to 1e-12 (every scene of this repository), one up to 1e-8, two above (long chains of subdomains)
+  setup from the check's residual r0 without refinement: none up to 1e-12 (every scene of this repository), else the fewest k with (100 r0)^k r0 <= 1e-12, at most 10
 . -feti_rigid_rows <true>      - G = R'B' and G' = B R from each touched node's coordinates and each subdomain's 6 x k transform of its rigid-body modes, where every
   kernel is spanned by them (built from coordinates); false: from R's stored rows (k numbers per dof)
 - -feti_coarse_pc_factor_mat_solver_type ... - its options (single: on rank 0; redundant: -feti_coarse_redundant_...)
@@ -722,8 +723,9 @@ PetscErrorCode FETISetFromOptions(FETI feti)
   PetscCheck(impl.coarsechecktol >= 0 && impl.coarsechecktol < 1, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE, "-%sfeti_coarse_check_tol %g must be in [0, 1) (0: no check)",
              prefix ? prefix : "", (double)impl.coarsechecktol);
   PetscCall(PetscOptionsInt("-feti_coarse_refine",
-                            "Steps of iterative refinement in every coarse solve (G G')^-1 x, each one more product with G' and G; -1: chosen at setup from the coarse check's residual", "FETISetUp",
-                            impl.coarserefine, &impl.coarserefine, NULL));
+                            "Steps of iterative refinement in every coarse solve (G G')^-1 x, each one more product with G' and G; -1: chosen at setup from the coarse check's unrefined residual r0 "
+                            "(none up to 1e-12, else the fewest k with (100 r0)^k r0 <= 1e-12, at most 10)",
+                            "FETISetUp", impl.coarserefine, &impl.coarserefine, NULL));
   PetscCheck(impl.coarserefine >= -1 && impl.coarserefine <= 10, PetscObjectComm((PetscObject)feti), PETSC_ERR_ARG_OUTOFRANGE,
              "-%sfeti_coarse_refine %" PetscInt_FMT " must be in [-1, 10] (-1: chosen at setup)", prefix ? prefix : "", impl.coarserefine);
   PetscCall(PetscOptionsInt("-feti_coarse_parallel_dim", "Coarse dimension from which -feti_coarse_mode auto factors G G' in parallel (MUMPS) instead of on rank 0", "FETISetUp",
@@ -1299,9 +1301,10 @@ PetscErrorCode FETIView(FETI feti, PetscViewer viewer)
                                        impl.memblocks / 1048576.0, impl.membudget / 1048576.0));
     if (impl.ncoarse) {
       PetscCall(FETICoarseSolverView(impl.coarse, viewer));
-      if (impl.coarsesteps)
+      if (impl.coarsesteps && impl.coarseres0 >= 0)
         PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solves refined by %" PetscInt_FMT " step(s) each (-feti_coarse_refine %" PetscInt_FMT "; unrefined residual of the check %.1e)\n",
                                          impl.coarsesteps, impl.coarserefine, (double)impl.coarseres0));
+      else if (impl.coarsesteps) PetscCall(PetscViewerASCIIPrintf(viewer, "coarse solves refined by %" PetscInt_FMT " step(s) each (-feti_coarse_refine)\n", impl.coarsesteps));
     }
   }
   PetscCall(PetscViewerASCIIPopTab(viewer));
@@ -1541,8 +1544,8 @@ static PetscErrorCode CheckCoarseSolvable(FETI feti)
   PetscCall(FETIApplyGt(feti, b, w));
   PetscCall(FETIApplyG(feti, w, dx));
   PetscCall(VecNorm(dx, NORM_2, &abnorm));
-  PetscCall(PetscInfo(feti, "coarse problem: |b - G G' x| / |b| = %g for a pseudo-random b, %g after one refinement (above -feti_coarse_check_tol %g: singular); condition estimate %g\n",
-                      (double)(r0norm / bnorm), (double)(rnorm / bnorm), (double)impl.coarsechecktol, (double)(abnorm / bnorm * xnorm / bnorm)));
+  PetscCall(PetscInfo(feti, "coarse problem: |b - G G' x| / |b| = %g for a pseudo-random b, %g after one refinement (%s -feti_coarse_check_tol %g); condition estimate %g\n", (double)(r0norm / bnorm),
+                      (double)(rnorm / bnorm), impl.coarsechecktol > 0 ? "singular above" : "no refusal:", (double)impl.coarsechecktol, (double)(abnorm / bnorm * xnorm / bnorm)));
   for (Vec *v : {&b, &x, &dx, &r, &w}) PetscCall(VecDestroy(v));
   impl.coarseres0 = r0norm / bnorm;
   PetscCheck(!(impl.coarsechecktol > 0) || rnorm <= impl.coarsechecktol * bnorm, PetscObjectComm((PetscObject)feti), PETSC_ERR_CONV_FAILED,
@@ -1560,9 +1563,11 @@ static PetscErrorCode CheckCoarseSolvable(FETI feti)
    1e-8), and ended DIVERGED_BREAKDOWN from 96 slabs on. A step of iterative refinement with the residual formed
    through G' and G, r = x - G (G' y), brings it down to rounding of |G' y|, what the projector needs: with one step
    the bar converges in 8-9 iterations up to 512 slabs (unrefined residual 3e-7), with two at 1024 (2e-6), to the
-   deflections that follow the shorter bars'. The check's unrefined residual for a pseudo-random b, about 2e-16 times
-   G G''s condition, chooses the steps: none up to 1e-12 (every shipped scene: 6e-15 to 1.5e-13; the bar up to about
-   20 slabs), one up to 1e-8, two above. */
+   deflections that follow the shorter bars'. The check's unrefined residual r0 for a pseudo-random b, about 2e-16
+   times G G''s condition, chooses the steps: none up to 1e-12 (every shipped scene: 6e-15 to 1.5e-13; the bar up to
+   16 slabs), else the fewest k with (100 r0)^k r0 <= 1e-12 (a step multiplies the error by about 100 r0: one step up
+   to r0 = 1e-7, 2 at 1024 slabs, 4 at 2048, 7 at 4096), at most 10. Inside FETIApplyCoarseInverse() the
+   FETI_CoarseSolve event then holds these G and G' products too (-log_view). */
 #define FETI_COARSE_REFINED_RESIDUAL 1e-12
 #define FETI_COARSE_REFINE_MAX       10
 static PetscErrorCode SetUpCoarseRefinement(FETI feti)
