@@ -41,7 +41,7 @@
   Notes:
   Two products with F (the gradient and the solver's multiplier). `ContactProblemSolve()` calls it before it
   reports convergence: a solve whose solver test passed but whose KKT residual exceeds
-  -contact_acceptance_factor times -contact_rtol gets tighter warm solves (-contact_refine_max), and is reported as
+  the acceptance (-contact_acceptance_factor times -contact_rtol; without the option at most 0.1, or -contact_rtol) gets tighter warm solves (-contact_refine_max), and is reported as
   not converged if it still exceeds it after them.
 
   Level: intermediate

@@ -692,6 +692,7 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   ContactModelData            *d;
   std::map<PetscInt, unsigned> fixed;
   const char                  *prefix; /* the options the errors name are the user's, with the model's prefix */
+  PetscBool                    set;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cm, CONTACTMODEL_CLASSID, 1);
@@ -702,7 +703,8 @@ PetscErrorCode ContactModelSetUp(ContactModel cm)
   PetscCall(PetscOptionsReal("-contact_acceptance_factor",
                              "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol (by default also at most 0.1, or "
                              "-contact_rtol if that is larger; a factor given is taken as given)",
-                             "ContactModelSolve", d->acceptance_factor, &d->acceptance_factor, &d->acceptance_given));
+                             "ContactModelSolve", d->acceptance_factor, &d->acceptance_factor, &set));
+  if (set) d->acceptance_given = PETSC_TRUE; /* a later call without the option keeps it given */
   PetscCall(PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual (or, with -contact_kkt_check, the KKT residual) does not",
                             "ContactModelSolve", d->refine_max, &d->refine_max, NULL));
   PetscCall(PetscOptionsInt("-contact_friction_polygon",
@@ -860,6 +862,7 @@ PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol, const SolverT
     p.msa_rtol                = first ? t.msa_rtol : ContactScaledTolerance_Private(t.msa_rtol, rtol, t.rtol);
     p.fixed_point_rtol        = first ? t.fixed_point_rtol : ContactScaledTolerance_Private(t.fixed_point_rtol, rtol, t.rtol);
     p.acceptance_factor       = first ? t.acceptance_factor : t.acceptance_factor * t.rtol / rtol;
+    p.acceptance_rtol0        = first ? 0 : t.rtol; /* the cap as for the first solve (ContactAcceptance_Private()) */
     p.rtol                    = rtol;
     PetscCall(TaoSetTolerances(p.tao, 0.0, 0.0, rtol));
   } else {
@@ -1096,7 +1099,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
   PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_SOLVE, 0));
   PetscCall(GetSolverTolerance(cm, &rtol0));
   d->stats.pipeline   = d->pipeline;
-  d->stats.acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, rtol0);
+  d->stats.acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, rtol0, rtol0);
   if (d->cp) PetscCall(ContactProblemGetCoulombAlgorithm(d->cp, &d->stats.algorithm));
   PetscCall(WithoutLoad(cm, &noload));
   if (noload) {

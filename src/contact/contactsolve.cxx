@@ -425,6 +425,7 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_start_rtol <0.1>            - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`)
 . -contact_start_max_it <100>           - most CG steps of that start
 . -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum |l_n| presses
+. -contact_start_separated <0.15>       - below this share the solution without contact rows is tried too, and kept when it touches nothing (0: never)
 . -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; a `ContactModel` takes dirichlet when at most half its subdomains use dense K+ blocks in F;
                                           with one, the inner solvers default to the projected CG expansion; see `ContactProblemGetPC()`)
 . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
@@ -444,6 +445,7 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   ContactProblemData     *d;
   ContactCoulombAlgorithm built;
   const char             *prefix; /* the options the errors name are the user's, with the problem's prefix */
+  PetscBool               set;
 
   PetscFunctionBegin;
   PetscValidHeaderSpecific(cp, CONTACTPROBLEM_CLASSID, 1);
@@ -469,7 +471,8 @@ PetscErrorCode ContactProblemSetFromOptions(ContactProblem cp)
   PetscCall(PetscOptionsReal("-contact_acceptance_factor",
                              "Converged only when the KKT residual (ContactProblem) or every mechanical residual (ContactModel) is at most this times -contact_rtol (by default also at most 0.1, or "
                              "-contact_rtol if that is larger; a factor given is taken as given)",
-                             "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, &d->acceptance_given));
+                             "ContactProblemComputeKKTResidual", d->acceptance_factor, &d->acceptance_factor, &set));
+  if (set) d->acceptance_given = PETSC_TRUE; /* a later call without the option keeps it given */
   /* the model reads it too (for its mechanical residuals): the same text, so that -help lists one meaning */
   PetscCall(PetscOptionsInt("-contact_refine_max", "Tighter warm-started solves when the solver's test passes but a mechanical residual (or, with -contact_kkt_check, the KKT residual) does not",
                             "ContactProblemSolve", d->refine_max, &d->refine_max, NULL));
@@ -947,7 +950,7 @@ static PetscErrorCode WrapReason(ContactStatistics &st, const char *head, const 
 
   Options Database Keys:
 + -contact_kkt_check <true>       - recompute the KKT residual from the multipliers before saying converged (off in a `ContactModel`)
-. -contact_acceptance_factor <10> - the KKT residual must be at most this times -contact_rtol
+. -contact_acceptance_factor <10> - the KKT residual must be at most this times -contact_rtol (without the option also at most 0.1, or -contact_rtol)
 - -contact_refine_max <3>         - when the solver's own test passes but the KKT residual does not, solve again warm at a tighter
                                     tolerance, at most this many times (0: the first verdict stands)
 
@@ -965,10 +968,15 @@ static PetscErrorCode WrapReason(ContactStatistics &st, const char *head, const 
   start"). When less than -contact_start_compressive of its sum |l_n| is compressive (checked from its second
   step on: curved bodies, whose bonded zone reaches far beyond the contact, are mostly in tension), the start is
   abandoned and the given multipliers kept. Its products with F are counted in products_other.
+  When less than -contact_start_separated (0.15) of it presses, the solve also tries the solution with every contact
+  row left out (projected CG on the gluing rows, with their own coarse problem G D G'; FETI operators, no Tresca
+  zone): when that touches nothing it is the solution, and the solve starts from it and from its equality's
+  multiplier (one outer iteration confirms it, where the augmented Lagrangian alone needed tens to thousands: docs/contact.md,
+  "Zones that stay open"); otherwise it is dropped. Its products are counted in products_other too.
 
   Before it says converged, the solve recomputes the KKT residual from the multipliers
   (`ContactProblemComputeKKTResidual()`, two products with F, counted in products_other): above
-  -contact_acceptance_factor times -contact_rtol the solve has not converged (failed_check "dual_kkt" or
+  -contact_acceptance_factor times -contact_rtol (without the option: at most 0.1, or -contact_rtol if larger) the solve has not converged (failed_check "dual_kkt" or
   "dual_equality"), whatever the solver's own test said. That test is relative to |P(h - F l~)|, which holds
   every gap: a gap far larger than the forces need (a separated node 1e9 from contact) leaves it passed by
   multipliers far from the solution. So when the solver's test passes and the KKT check does not, the solve
@@ -1033,7 +1041,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
 
   /* every solve is judged against the first tolerances' acceptance (inside a model: the model's, whose factor it
      scales as it tightens -contact_rtol) */
-  acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, d->rtol);
+  acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, d->rtol, d->acceptance_rtol0 > 0 ? d->acceptance_rtol0 : d->rtol);
   tol        = first.rtol;
   /* only a failed KKT check gets tighter solves here: without the check nothing judges the answer but the solver's
      test, and a ContactModel runs them itself (refine_outside) */

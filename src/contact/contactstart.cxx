@@ -14,6 +14,8 @@
    +64% products on the hemisphere), so the start is abandoned when too little of it presses
    (-contact_start_compressive). Measurements: docs/scale.md, "Lever: a bonded start". */
 #include <conefeti/private/contactimpl.h>
+#include <conefeti/private/fetiimpl.h>
+#include <conefeti/private/operatortest.h>
 #include <conefeti/private/reproduciblesum.h>
 
 namespace {
@@ -47,6 +49,167 @@ PetscErrorCode CompressiveShare(ContactProblem cp, Vec lambda, PetscReal *share)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* The separated start: the solution with every contact row left out (its multipliers 0), when that solution touches
+   nothing. Where the loads close no contact zone it is the answer, but the augmented Lagrangian finds it slowly: the
+   normal multipliers sit at their bound 0 in every face, so G l = e rests on the gluing rows alone while the penalty
+   acts through all of G's rows (docs/contact.md, "Zones that stay open"). Here G l = e is met on the gluing rows
+   directly: with D the mask of the rows that are no contact rows and S = G D G' (factored once, as G G' is),
+   l = l~_D + y, l~_D = D G'S^-1 e, y by CG on P_D D F D P_D, P_D = I - D G'S^-1 G D. With w = F l - h and
+   a = S^-1 G D w, the gap of the primal solution at the rows is w - G'a (0 on the gluing rows, >= 0 on a normal
+   row that touches nothing). When every normal gap is >= 0, l is the solution of the whole problem, and nu = Q(w - G'a)
+   is the multiplier of its equality in smalxe's projector form (the projected gradient P(F l - h) + nu is then the
+   gap itself: 0 on the free rows, >= 0 on the normal ones at their bound): the solve starts from both and its first
+   outer iteration confirms them. Otherwise nothing changes. Frictionless and Coulomb rows only (a Tresca disk does
+   not shrink to 0 away from contact). Returns the products with F it took. */
+PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, PetscInt *products)
+{
+  ContactProblemData *d = cp->data;
+  FETI                feti;
+  FETICoarseSolver    cs;
+  Mat                 S = nullptr;
+  Vec                 D = nullptr, l = nullptr, r = nullptr, p = nullptr, w = nullptr, t = nullptr, c1 = nullptr, c2 = nullptr, h, e;
+  PetscBool           failed = PETSC_TRUE;
+  PetscReal           rr = 0, rr0 = 0, rrnew, pw, mingap = 0, en = 0, resid = 0;
+  PetscInt            its = 0;
+
+  PetscFunctionBegin;
+  *found    = PETSC_FALSE;
+  *products = 0;
+  PetscCall(FETIFromMat(d->F, &feti));
+  if (!feti || d->has_tresca) PetscFunctionReturn(PETSC_SUCCESS);
+  {
+    PetscInt ncoarse;
+    PetscCall(FETIGetSizes(feti, NULL, NULL, &ncoarse));
+    if (!ncoarse) PetscFunctionReturn(PETSC_SUCCESS); /* no floating subdomain: no equality for the gluing rows to carry */
+  }
+  PetscCall(FETIGetRHS(feti, &h, &e));
+  PetscCall(VecDuplicate(lambda, &D));
+  PetscCall(VecSet(D, 1.0));
+  {
+    PetscScalar *m;
+    PetscCall(VecGetArray(D, &m));
+    for (const std::vector<PetscInt> *rows : {&d->normal, &d->t1, &d->t2, &d->tang})
+      for (PetscInt row : *rows)
+        if (row >= 0) m[row - d->rstart] = 0;
+    PetscCall(VecRestoreArray(D, &m));
+  }
+  PetscCall(FETICreateCoarseMatrix(feti, D, &S));
+  PetscCall(FETICoarseSolverCreate(feti, S, cs, &failed));
+  PetscCall(MatDestroy(&S));
+  if (failed) { /* the gluing rows alone do not hold every body: contact is what holds it */
+    PetscCall(PetscInfo(cp, "Separated start: G D G' is singular (the supports do not hold every body without contact): not tried\n"));
+    PetscCall(VecDestroy(&D));
+    PetscCall(FETICoarseSolverDestroy(cs));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  for (Vec *v : {&l, &r, &p, &w, &t}) PetscCall(VecDuplicate(lambda, v));
+  PetscCall(VecDuplicate(e, &c1));
+  PetscCall(VecDuplicate(e, &c2));
+  /* whether S's factors solve S x = G D v for a pseudo-random v (a singular S that rounding let through does not: the
+     residual is then of the order of the right-hand side, docs/feti.md), then l~_D = D G'S^-1 e and whether that meets e */
+  {
+    PetscInt     lo, hi;
+    PetscScalar *va;
+    PetscReal    bn;
+    PetscCall(VecGetOwnershipRange(l, &lo, &hi));
+    PetscCall(VecGetArrayWrite(l, &va));
+    for (PetscInt i = lo; i < hi; i++) {
+      unsigned long long z = 0x9E3779B97F4A7C15ULL * (unsigned long long)(i + 1); /* splitmix64 of the global index */
+      z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+      z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+      z ^= z >> 31;
+      va[i - lo] = (PetscScalar)((double)(z >> 11) / 4503599627370496.0 - 1.0);
+    }
+    PetscCall(VecRestoreArrayWrite(l, &va));
+    PetscCall(VecPointwiseMult(l, D, l));
+    PetscCall(FETIApplyG(feti, l, c1));
+    PetscCall(FETICoarseSolverApply(cs, c1, c2));
+    PetscCall(FETIApplyGt(feti, c2, r));
+    PetscCall(VecPointwiseMult(r, D, r));
+    PetscCall(FETIApplyG(feti, r, c2));
+    PetscCall(VecAXPY(c2, -1.0, c1));
+    PetscCall(VecNorm(c2, NORM_2, &resid));
+    PetscCall(VecNorm(c1, NORM_2, &bn));
+    if (!(resid <= 1e-8 * bn)) {
+      PetscCall(PetscInfo(cp, "Separated start: G D G' solves only to %g (singular: the supports do not hold every body without contact): not tried\n", (double)(bn > 0 ? resid / bn : 0)));
+      goto done;
+    }
+  }
+  PetscCall(FETICoarseSolverApply(cs, e, c1));
+  PetscCall(FETIApplyGt(feti, c1, l));
+  PetscCall(VecPointwiseMult(l, D, l));
+  PetscCall(FETIApplyG(feti, l, c2));
+  PetscCall(VecAXPY(c2, -1.0, e));
+  PetscCall(VecNorm(c2, NORM_2, &resid));
+  PetscCall(VecNorm(e, NORM_2, &en));
+  if (!(resid <= 1e-8 * en) && en > 0) goto done;
+  {
+    /* y = P_D x (x masked): x - D G'S^-1 G D x */
+    auto project = [&](Vec x, Vec y) -> PetscErrorCode {
+      PetscFunctionBegin;
+      PetscCall(FETIApplyG(feti, x, c1));
+      PetscCall(FETICoarseSolverApply(cs, c1, c2));
+      PetscCall(FETIApplyGt(feti, c2, t));
+      PetscCall(VecPointwiseMult(t, D, t));
+      if (x == y) PetscCall(VecAXPY(y, -1.0, t));
+      else PetscCall(VecWAXPY(y, -1.0, t, x));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    };
+    PetscCall(MatMult(d->F, l, w));
+    ++*products;
+    PetscCall(VecAYPX(w, -1.0, h)); /* h - F l */
+    PetscCall(VecPointwiseMult(w, D, w));
+    PetscCall(project(w, r));
+    PetscCall(ReproducibleDot(r, r, &rr));
+    rr0 = rr;
+    PetscCall(VecCopy(r, p));
+    while (rr > 0 && rr > 1e-2 * d->rtol * d->rtol * rr0 && its < 2 * d->start_max_it) {
+      PetscCall(MatMult(d->F, p, w));
+      ++*products;
+      PetscCall(VecPointwiseMult(w, D, w));
+      PetscCall(project(w, w));
+      PetscCall(ReproducibleDot(p, w, &pw));
+      if (!(pw > 0)) break;
+      const PetscReal alpha = rr / pw;
+      PetscCall(ReproducibleAXPY(l, alpha, p));
+      PetscCall(ReproducibleAXPY(r, -alpha, w));
+      PetscCall(ReproducibleDot(r, r, &rrnew));
+      PetscCall(ReproducibleAYPX(p, rrnew / rr, r));
+      rr = rrnew;
+      its++;
+    }
+    /* the gaps: w = F l - h, a = S^-1 G D w, gap = w - G'a */
+    PetscCall(MatMult(d->F, l, w));
+    ++*products;
+    PetscCall(VecAXPY(w, -1.0, h));
+    PetscCall(VecPointwiseMult(t, D, w));
+    PetscCall(FETIApplyG(feti, t, c1));
+    PetscCall(FETICoarseSolverApply(cs, c1, c2));
+    PetscCall(FETIApplyGt(feti, c2, t));
+    PetscCall(VecAXPY(w, -1.0, t));
+    {
+      const PetscScalar *g;
+      mingap = PETSC_MAX_REAL;
+      PetscCall(VecGetArrayRead(w, &g));
+      for (PetscInt row : d->normal) mingap = PetscMin(mingap, PetscRealPart(g[row - d->rstart]));
+      PetscCall(VecRestoreArrayRead(w, &g));
+      PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &mingap, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)cp)));
+    }
+    if (its < 2 * d->start_max_it && mingap >= 0) {
+      PetscCall(VecCopy(l, lambda));
+      PetscCall(MatMult(d->Q, w, t)); /* nu = Q gap */
+      PetscCall(TaoSMALXESetStartMultiplier_Private(d->tao, t));
+      *found = PETSC_TRUE;
+    }
+  }
+done:
+  PetscCall(PetscInfo(cp, "Separated start: |G D l~_D - e| / |e| = %g, %" PetscInt_FMT " CG steps without the contact rows, residual %g of its start, smallest normal gap %g: %s\n",
+                      (double)(en > 0 ? resid / en : 0), its, (double)(rr0 > 0 ? PetscSqrtReal(rr / rr0) : 0), (double)mingap, *found ? "the solution touches nothing, kept" : "not kept"));
+  for (Vec *v : {&D, &l, &r, &p, &w, &t, &c1, &c2}) PetscCall(VecDestroy(v));
+  PetscCall(FETICoarseSolverDestroy(cs));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 /* -contact_start_rtol, -contact_start_max_it, -contact_start_compressive (read in ContactProblemSetFromOptions()'s block) */
@@ -62,6 +225,12 @@ PetscErrorCode ContactProblemStartOptions_Private(ContactProblem cp, CONEFETI_OP
   PetscCall(PetscOptionsInt("-contact_start_max_it", "Most CG steps of that start (-contact_start_rtol)", "ContactProblemSolve", d->start_max_it, &d->start_max_it, NULL));
   PetscCheck(d->start_rtol >= 0 && d->start_rtol < 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_start_rtol must be in [0, 1) (0: no start solve), got %g", prefix,
              (double)d->start_rtol);
+  PetscCall(
+      PetscOptionsReal("-contact_start_separated",
+                       "When less than this share of the bonded start's normal force presses, a cold solve first tries the solution without contact rows, kept when it touches nothing (0: never)",
+                       "ContactProblemSolve", d->start_separated, &d->start_separated, NULL));
+  PetscCheck(d->start_separated >= 0 && d->start_separated <= 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_start_separated must be in [0, 1], got %g", prefix,
+             (double)d->start_separated);
   PetscCall(PetscOptionsReal("-contact_start_compressive", "The start is abandoned (the given multipliers kept) when less than this share of its normal force sum |l_n| is compressive",
                              "ContactProblemSolve", d->start_compressive, &d->start_compressive, NULL));
   PetscCheck(d->start_compressive >= 0 && d->start_compressive <= 1, PetscObjectComm((PetscObject)cp), PETSC_ERR_ARG_OUTOFRANGE, "-%scontact_start_compressive must be in [0, 1], got %g", prefix,
@@ -119,6 +288,12 @@ PetscErrorCode ContactProblemStart_Private(ContactProblem cp, Vec lambda, PetscI
   if (share < d->start_compressive) PetscCall(VecCopy(lambda0, lambda));
   PetscCall(PetscInfo(cp, "Start: %" PetscInt_FMT " CG steps on the problem without the contact inequalities, residual %g of its start (-contact_start_rtol %g), compressive share of |l_n| %g: %s\n",
                       its, (double)(rr0 > 0 ? PetscSqrtReal(rr / rr0) : 0), (double)d->start_rtol, (double)share, share < d->start_compressive ? "abandoned (-contact_start_compressive)" : "kept"));
+  if (share < d->start_separated) { /* the bonded zone mostly pulls: perhaps no zone closes at all */
+    PetscBool found;
+    PetscInt  more;
+    PetscCall(SeparatedStart(cp, lambda, &found, &more));
+    *products += more;
+  }
   PetscCall(VecDestroy(&r));
   PetscCall(VecDestroy(&p));
   PetscCall(VecDestroy(&w));

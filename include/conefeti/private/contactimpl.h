@@ -38,16 +38,17 @@ static inline void ContactStatisticsAccumulate_Private(ContactStatistics &total,
   total.products_estimate += one.products_estimate;
 }
 
+/* The acceptance of a solve: -contact_acceptance_factor times its tolerance rtol, but by default not above 0.1 or, if
+   that is larger, rtol0, the first solve's tolerance (tighter solves are judged as the first one): with -contact_rtol
+   0.09 the factor 10 accepted the indentation scene 62% off as converged. A factor the user gave is taken as given. */
+#define CONTACT_ACCEPTANCE_LOOSEST 0.1
+static inline PetscReal ContactAcceptance_Private(PetscReal factor, PetscBool given, PetscReal rtol, PetscReal rtol0)
+{
+  return given ? factor * rtol : PetscMin(factor * rtol, PetscMax(rtol0, (PetscReal)CONTACT_ACCEPTANCE_LOOSEST));
+}
+
 /* a fixed-point tolerance the user gave (> 0), scaled with the tighter solve's relative tolerance rtol against the
    first one rtol0, at most 0.5; one not given (-1: it follows -contact_rtol) stays */
-/* The acceptance of a solve: -contact_acceptance_factor times its tolerance, but by default never looser than 0.1
-   (or the tolerance itself, if that is looser): with -contact_rtol 0.09 the factor 10 accepted the indentation scene
-   62% off as converged. A factor the user gave is taken as given. */
-#define CONTACT_ACCEPTANCE_LOOSEST 0.1
-static inline PetscReal ContactAcceptance_Private(PetscReal factor, PetscBool given, PetscReal rtol)
-{
-  return given ? factor * rtol : PetscMin(factor * rtol, PetscMax(rtol, (PetscReal)CONTACT_ACCEPTANCE_LOOSEST));
-}
 static inline PetscReal ContactScaledTolerance_Private(PetscReal given, PetscReal rtol, PetscReal rtol0) { return given > 0 ? PetscMin(given * rtol / rtol0, 0.5) : given; }
 
 /* the smallest -contact_rtol at which a ContactModel stores the subdomains' factors in float (they perturb F by
@@ -100,6 +101,7 @@ struct ContactProblemData {
   PetscBool follow_radii           = PETSC_TRUE;  /* Coulomb: a tangential pair on its old circle moves onto the new one when the radius grows */
   PetscReal acceptance_factor      = 10;          /* converged only with the KKT residual <= factor * rtol */
   PetscBool acceptance_given       = PETSC_FALSE; /* -contact_acceptance_factor was given: no cap (ContactAcceptance_Private()) */
+  PetscReal acceptance_rtol0       = 0;           /* inside a model's tighter solve: the first solve's tolerance, for the cap (0: rtol) */
   PetscReal pc_contact_scale       = 30;          /* -contact_pc_contact_scale: the contact rows get c/||F|| in the preconditioner (contactpc.cxx) */
   PetscBool pc_contact_rows_scaled = PETSC_TRUE;  /* -contact_pc_contact_rows_scaled */
   PetscBool kkt_check              = PETSC_TRUE;  /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
@@ -107,9 +109,10 @@ struct ContactProblemData {
   /* a ContactModel runs the tighter solves itself (ContactModelSolve(), judged by the mechanics and, if asked, this
      KKT check): the problem's own ones would nest inside the model's, each of its solves up to refine_max + 1 */
   PetscBool refine_outside    = PETSC_FALSE;
-  PetscReal start_rtol        = 0.1; /* -contact_start_rtol: a cold solve starts with CG on the bonded problem to this (0: off; contactstart.cxx) */
-  PetscInt  start_max_it      = 100; /* -contact_start_max_it */
-  PetscReal start_compressive = 0.6; /* -contact_start_compressive: the start is kept only if this share of its sum |l_n| presses */
+  PetscReal start_rtol        = 0.1;  /* -contact_start_rtol: a cold solve starts with CG on the bonded problem to this (0: off; contactstart.cxx) */
+  PetscInt  start_max_it      = 100;  /* -contact_start_max_it */
+  PetscReal start_compressive = 0.6;  /* -contact_start_compressive: the start is kept only if this share of its sum |l_n| presses */
+  PetscReal start_separated   = 0.15; /* -contact_start_separated: below this share the separated start is tried (contactstart.cxx) */
 
   /* -contact_pc_inner_projector: FETI's M as P M P (smalxe projects around it anyway; contactpc.cxx) */
   PetscBool pc_inner_projector = PETSC_FALSE;

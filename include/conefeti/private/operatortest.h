@@ -29,3 +29,4 @@ PETSC_INTERN PetscErrorCode MatDiagnoseOperators_Private(Mat, PetscReal, const c
 #include <petsctao.h>
 /* the names of smalxe's Hessian and projector in the errors of a failed solve ("the Hessian", "the projector Q") */
 PETSC_INTERN PetscErrorCode TaoSMALXESetOperatorNames_Private(Tao, const char[], const char[]);
+PETSC_INTERN PetscErrorCode TaoSMALXESetStartMultiplier_Private(Tao, Vec);

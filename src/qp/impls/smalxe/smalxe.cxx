@@ -71,11 +71,12 @@ struct TaoSMALXE {
   std::string  projector_name = "the projector Q";
 
   /* augmented Lagrangian state */
-  Vec              mu     = nullptr; /* general form: the multiplier (m-vector) */
-  Vec              nu     = nullptr; /* projector form: C'mu */
-  Vec              bx     = nullptr; /* linear term of the inner problem */
-  Vec              bconst = nullptr; /* projector form: P(b - A x~) */
-  Vec              g      = nullptr; /* gradient of L at the current x */
+  Vec              mu       = nullptr; /* general form: the multiplier (m-vector) */
+  Vec              nu       = nullptr; /* projector form: C'mu */
+  Vec              nu_start = nullptr; /* projector form: the next solve's first C'mu (TaoSMALXESetStartMultiplier_Private()), used once */
+  Vec              bx       = nullptr; /* linear term of the inner problem */
+  Vec              bconst   = nullptr; /* projector form: P(b - A x~) */
+  Vec              g        = nullptr; /* gradient of L at the current x */
   PetscReal        rho = 0, M = 0, eta = 0, feas = 0, gpnorm = 0, beff = 0;
   PetscReal        normA = 0, normC2 = 1, normH = 0;
   PetscReal        dnorm2 = 0, qxt = 0;            /* |d|^2 or |x~|^2, and q(x~): constants of L */
@@ -1164,7 +1165,10 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
       PetscCall(Norm(s->w, &unprojected));
       s->beff = PetscMax(s->beff, 1e-8 * unprojected);
     }
-    if (!RecycleMultiplier(tao, s)) PetscCall(VecSet(s->nu, 0.0));
+    if (s->nu_start) { /* given for this solve (a start that knows its multiplier): used once */
+      PetscCall(VecCopy(s->nu_start, s->nu));
+      PetscCall(VecDestroy(&s->nu_start));
+    } else if (!RecycleMultiplier(tao, s)) PetscCall(VecSet(s->nu, 0.0));
   } else {
     PetscCall(Norm(s->b, &s->beff));
     {
@@ -1477,7 +1481,7 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
 PetscErrorCode ResetWork(TaoSMALXE *s)
 {
   PetscFunctionBegin;
-  for (Vec *v : {&s->mu, &s->nu, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w, &s->pcq, &s->pcp}) PetscCall(VecDestroy(v));
+  for (Vec *v : {&s->mu, &s->nu, &s->nu_start, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w, &s->pcq, &s->pcp}) PetscCall(VecDestroy(v));
   PetscCall(AndersonDestroyHistory(s));
   PetscCall(MatDestroy(&s->H));
   if (s->Q_from_C) {
@@ -1803,6 +1807,26 @@ PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *t
 }
 
 } // namespace
+
+/* The projector form's multiplier C'mu = nu that the next solve starts from instead of 0 (or the recycled one), once:
+   a start that comes with its equality's multiplier (the contact layer's separated start, contactstart.cxx). nu must lie
+   in range(Q); it is copied. */
+PetscErrorCode TaoSMALXESetStartMultiplier_Private(Tao tao, Vec nu)
+{
+  PetscBool  is;
+  TaoSMALXE *s;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)tao, TAOSMALXE, &is));
+  if (!is) PetscFunctionReturn(PETSC_SUCCESS);
+  s = Get(tao);
+  PetscCall(VecDestroy(&s->nu_start));
+  if (nu) {
+    PetscCall(VecDuplicate(nu, &s->nu_start));
+    PetscCall(VecCopy(nu, s->nu_start));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 /* the names of the Hessian and the projector in the errors of failed solves: a ContactProblem's F and Q */
 PetscErrorCode TaoSMALXESetOperatorNames_Private(Tao tao, const char hessian[], const char projector[])
