@@ -583,7 +583,7 @@ def classify(rc, out, data, scene, accept_factor, drawn=()):
             return "FAIL-wrong", f"converged with residuals above the acceptance {acceptance:.2g}: {listed}"
         if scene["no_equilibrium"]:
             return "FAIL-wrong", "converged on a scene without equilibrium: " + scene["no_equilibrium"]
-        return "OK-converged", f"max {res.get('max', 0):.2g} <= {acceptance:.2g}; Iter {data.get('iter')}, n_A {data.get('n_A')}"
+        return "OK-converged", f"max {res.get('max', 0):.2g} <= {acceptance:.2g}; Iter {data.get('iter')}, n_A {data.get('n_A')}, other {data.get('n_A_other')}"
     if data.get("converged") is not False:
         return "FAIL-wrong", f"exit 2 but converged={data.get('converged')}"
     m = re.search(r"^NOT CONVERGED:.*$", out, re.MULTILINE)
