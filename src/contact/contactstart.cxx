@@ -69,7 +69,7 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
   Mat                 S = nullptr;
   Vec                 D = nullptr, l = nullptr, r = nullptr, p = nullptr, w = nullptr, t = nullptr, c1 = nullptr, c2 = nullptr, h, e;
   PetscBool           failed = PETSC_TRUE;
-  PetscReal           rr = 0, rr0 = 0, rrnew, pw, mingap = 0, en = 0, resid = 0;
+  PetscReal           rr = 0, rr0 = 0, rrnew, pw, mingap = 0, resid = 0;
   PetscInt            its = 0;
 
   PetscFunctionBegin;
@@ -120,44 +120,34 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
   for (Vec *v : {&l, &r, &p, &w, &t}) PetscCall(VecDuplicate(lambda, v));
   PetscCall(VecDuplicate(e, &c1));
   PetscCall(VecDuplicate(e, &c2));
-  /* whether S's factors solve S x = G D v for a pseudo-random v (a singular S that rounding let through does not: the
-     residual is then of the order of the right-hand side, docs/feti.md), then l~_D = D G'S^-1 e and whether that meets e */
   {
-    PetscInt     lo, hi;
-    PetscScalar *va;
-    PetscReal    bn;
-    PetscCall(VecGetOwnershipRange(l, &lo, &hi));
-    PetscCall(VecGetArrayWrite(l, &va));
-    for (PetscInt i = lo; i < hi; i++) {
-      unsigned long long z = 0x9E3779B97F4A7C15ULL * (unsigned long long)(i + 1); /* splitmix64 of the global index */
-      z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-      z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-      z ^= z >> 31;
-      va[i - lo] = (PetscScalar)((double)(z >> 11) / 4503599627370496.0 - 1.0);
-    }
-    PetscCall(VecRestoreArrayWrite(l, &va));
-    PetscCall(VecPointwiseMult(l, D, l));
-    PetscCall(FETIApplyG(feti, l, c1));
-    PetscCall(FETICoarseSolverApply(cs, c1, c2));
-    PetscCall(FETIApplyGt(feti, c2, r));
+    /* y = D G'S^-1 b and |G y - b| / |b|: how well S's factors solve for b */
+    auto solves = [&](Vec b, Vec y, PetscReal *rel) -> PetscErrorCode {
+      PetscReal bn;
+      PetscFunctionBegin;
+      PetscCall(FETICoarseSolverApply(cs, b, c2));
+      PetscCall(FETIApplyGt(feti, c2, y));
+      PetscCall(VecPointwiseMult(y, D, y));
+      PetscCall(FETIApplyG(feti, y, c2));
+      PetscCall(VecAXPY(c2, -1.0, b));
+      PetscCall(VecNorm(c2, NORM_2, rel));
+      PetscCall(VecNorm(b, NORM_2, &bn));
+      *rel = bn > 0 ? *rel / bn : 0;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    };
+    /* a singular S that rounding let through does not solve for b = G D v, v pseudo-random (the residual is then of the
+       order of b, docs/feti.md); then l~_D = D G'S^-1 e, which must meet e */
+    PetscCall(FETISetPseudoRandom_Private(r));
     PetscCall(VecPointwiseMult(r, D, r));
-    PetscCall(FETIApplyG(feti, r, c2));
-    PetscCall(VecAXPY(c2, -1.0, c1));
-    PetscCall(VecNorm(c2, NORM_2, &resid));
-    PetscCall(VecNorm(c1, NORM_2, &bn));
-    if (!(resid <= 1e-8 * bn)) {
-      PetscCall(PetscInfo(cp, "Separated start: G D G' solves only to %g (singular: the supports do not hold every body without contact): not tried\n", (double)(bn > 0 ? resid / bn : 0)));
+    PetscCall(FETIApplyG(feti, r, c1));
+    PetscCall(solves(c1, r, &resid));
+    if (!(resid <= 1e-8)) {
+      PetscCall(PetscInfo(cp, "Separated start: G D G' solves only to %g (singular: the supports do not hold every body without contact): not tried\n", (double)resid));
       goto done;
     }
+    PetscCall(solves(e, l, &resid));
+    if (!(resid <= 1e-8)) goto done;
   }
-  PetscCall(FETICoarseSolverApply(cs, e, c1));
-  PetscCall(FETIApplyGt(feti, c1, l));
-  PetscCall(VecPointwiseMult(l, D, l));
-  PetscCall(FETIApplyG(feti, l, c2));
-  PetscCall(VecAXPY(c2, -1.0, e));
-  PetscCall(VecNorm(c2, NORM_2, &resid));
-  PetscCall(VecNorm(e, NORM_2, &en));
-  if (!(resid <= 1e-8 * en) && en > 0) goto done;
   {
     /* y = P_D x (x masked): x - D G'S^-1 G D x */
     auto project = [&](Vec x, Vec y) -> PetscErrorCode {
@@ -218,8 +208,8 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
     }
   }
 done:
-  PetscCall(PetscInfo(cp, "Separated start: |G D l~_D - e| / |e| = %g, %" PetscInt_FMT " CG steps without the contact rows, residual %g of its start, smallest normal gap %g: %s\n",
-                      (double)(en > 0 ? resid / en : 0), its, (double)(rr0 > 0 ? PetscSqrtReal(rr / rr0) : 0), (double)mingap, *found ? "the solution touches nothing, kept" : "not kept"));
+  PetscCall(PetscInfo(cp, "Separated start: |G D l~_D - e| / |e| = %g, %" PetscInt_FMT " CG steps without the contact rows, residual %g of its start, smallest normal gap %g: %s\n", (double)resid, its,
+                      (double)(rr0 > 0 ? PetscSqrtReal(rr / rr0) : 0), (double)mingap, *found ? "the solution touches nothing, kept" : "not kept"));
   for (Vec *v : {&D, &l, &r, &p, &w, &t, &c1, &c2}) PetscCall(VecDestroy(v));
   PetscCall(FETICoarseSolverDestroy(cs));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -1505,11 +1505,9 @@ PetscErrorCode FETIGetSubdomainFixingDofs(FETI feti, PetscInt s, IS *is)
    (SetUpCoarseRefinement()). Two coarse solves and three products with G and G' at setup; no count of the solve changes. */
 static PetscErrorCode CheckCoarseSolvable(FETI feti)
 {
-  FETI_Impl   &impl = *feti->impl;
-  Vec          b, x, dx, r, w;
-  PetscInt     lo, hi;
-  PetscScalar *ba;
-  PetscReal    bnorm, rnorm, xnorm, abnorm, r0norm = 0;
+  FETI_Impl &impl = *feti->impl;
+  Vec        b, x, dx, r, w;
+  PetscReal  bnorm, rnorm, xnorm, abnorm, r0norm = 0;
 
   PetscFunctionBegin;
   PetscCall(VecDuplicate(impl.wc1, &b));
@@ -1517,17 +1515,7 @@ static PetscErrorCode CheckCoarseSolvable(FETI feti)
   PetscCall(VecDuplicate(impl.wc1, &dx));
   PetscCall(VecDuplicate(impl.wc1, &r));
   PetscCall(VecDuplicate(impl.wd1, &w));
-  PetscCall(VecGetOwnershipRange(b, &lo, &hi));
-  PetscCall(VecGetArrayWrite(b, &ba));
-  for (PetscInt i = lo; i < hi; i++) {
-    /* splitmix64 of the global index: entries in [-1, 1) */
-    unsigned long long z = 0x9E3779B97F4A7C15ULL * (unsigned long long)(i + 1);
-    z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    z ^= z >> 31;
-    ba[i - lo] = (PetscScalar)((double)(z >> 11) / 4503599627370496.0 - 1.0);
-  }
-  PetscCall(VecRestoreArrayWrite(b, &ba));
+  PetscCall(FETISetPseudoRandom_Private(b));
   PetscCall(VecSet(x, 0.0));
   PetscCall(VecCopy(b, r));
   for (int step = 0; step < 2; step++) { /* x += (G G')^-1 r, r = b - G G' x */

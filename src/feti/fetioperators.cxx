@@ -474,6 +474,27 @@ PetscErrorCode FETICreateCoarseMatrix(FETI feti, Vec w, Mat *M)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* v_i in [-1, 1) from splitmix64 of the global index i: a fixed right-hand side that is no combination of anything in
+   particular, the same on any number of ranks (the checks that factors of a coarse matrix solve) */
+PetscErrorCode FETISetPseudoRandom_Private(Vec v)
+{
+  PetscInt     lo, hi;
+  PetscScalar *a;
+
+  PetscFunctionBegin;
+  PetscCall(VecGetOwnershipRange(v, &lo, &hi));
+  PetscCall(VecGetArrayWrite(v, &a));
+  for (PetscInt i = lo; i < hi; i++) {
+    unsigned long long z = 0x9E3779B97F4A7C15ULL * (unsigned long long)(i + 1);
+    z                    = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z                    = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    z ^= z >> 31;
+    a[i - lo] = (PetscScalar)((double)(z >> 11) / 4503599627370496.0 - 1.0);
+  }
+  PetscCall(VecRestoreArrayWrite(v, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* y = Q x = Gt (G Gt)^-1 G x */
 static PetscErrorCode ApplyQ(FETI feti, Vec x, Vec y)
 {

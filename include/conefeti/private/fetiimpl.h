@@ -314,6 +314,7 @@ PETSC_INTERN PetscErrorCode FETIChooseKplusBlocks(FETI, const std::vector<PetscI
 
 /* fetirowsum.cxx */
 PETSC_INTERN PetscErrorCode FETICreateCoarseMatrix(FETI, Vec, Mat *);
+PETSC_INTERN PetscErrorCode FETISetPseudoRandom_Private(Vec);
 PETSC_INTERN PetscErrorCode FETIRowSumCreate(Mat, PetscBool, FETIRowSum &);
 PETSC_INTERN PetscErrorCode FETIRowSumApply(FETIRowSum &, Vec, Vec);
 PETSC_INTERN PetscErrorCode FETIRowSumApplyWithGhosts(FETIRowSum &, Vec, const PetscScalar *, Vec);
