@@ -29,6 +29,25 @@ PetscErrorCode Project(Mat Q, Vec x, Vec y, Vec work)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* One CG step of the two starts, given w = A p (A the projected operator): x += alpha p, r -= alpha w, p = r + beta p,
+   rr = |r|^2; stepped is false (and nothing changes) when p'w <= 0, where A is semidefinite only up to rounding */
+PetscErrorCode CGStep(Vec x, Vec r, Vec p, Vec w, PetscReal *rr, PetscBool *stepped)
+{
+  PetscReal pw, rrnew;
+
+  PetscFunctionBegin;
+  PetscCall(ReproducibleDot(p, w, &pw));
+  *stepped = pw > 0 ? PETSC_TRUE : PETSC_FALSE;
+  if (!*stepped) PetscFunctionReturn(PETSC_SUCCESS);
+  const PetscReal alpha = *rr / pw;
+  PetscCall(ReproducibleAXPY(x, alpha, p));
+  PetscCall(ReproducibleAXPY(r, -alpha, w));
+  PetscCall(ReproducibleDot(r, r, &rrnew));
+  PetscCall(ReproducibleAYPX(p, rrnew / *rr, r));
+  *rr = rrnew;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* the share of the normal multipliers' total |l_n| that is compressive (l_n > 0); 1 without normal multipliers */
 PetscErrorCode CompressiveShare(ContactProblem cp, Vec lambda, PetscReal *share)
 {
@@ -69,7 +88,8 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
   Mat                 S = nullptr;
   Vec                 D = nullptr, l = nullptr, r = nullptr, p = nullptr, w = nullptr, t = nullptr, c1 = nullptr, c2 = nullptr, h, e;
   PetscBool           failed = PETSC_TRUE;
-  PetscReal           rr = 0, rr0 = 0, rrnew, pw, mingap = 0, resid = 0;
+  PetscReal           rr = 0, rr0 = 0, mingap = 0, resid = 0;
+  PetscBool           stepped;
   PetscInt            its = 0;
 
   PetscFunctionBegin;
@@ -173,14 +193,8 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
       ++*products;
       PetscCall(VecPointwiseMult(w, D, w));
       PetscCall(project(w, w));
-      PetscCall(ReproducibleDot(p, w, &pw));
-      if (!(pw > 0)) break;
-      const PetscReal alpha = rr / pw;
-      PetscCall(ReproducibleAXPY(l, alpha, p));
-      PetscCall(ReproducibleAXPY(r, -alpha, w));
-      PetscCall(ReproducibleDot(r, r, &rrnew));
-      PetscCall(ReproducibleAYPX(p, rrnew / rr, r));
-      rr = rrnew;
+      PetscCall(CGStep(l, r, p, w, &rr, &stepped));
+      if (!stepped) break;
       its++;
     }
     /* the gaps: w = F l - h, a = S^-1 G D w, gap = w - G'a */
@@ -251,7 +265,8 @@ PetscErrorCode ContactProblemStart_Private(ContactProblem cp, Vec lambda, PetscI
 {
   ContactProblemData *d = cp->data;
   Vec                 r, p, w, t, q, lambda0;
-  PetscReal           rr, rr0, rrnew, pw, share = 1;
+  PetscReal           rr, rr0, share = 1;
+  PetscBool           stepped;
   PetscInt            its = 0;
 
   PetscFunctionBegin;
@@ -275,14 +290,8 @@ PetscErrorCode ContactProblemStart_Private(ContactProblem cp, Vec lambda, PetscI
     PetscCall(MatMult(d->F, p, t));
     ++*products;
     PetscCall(Project(d->Q, t, w, q)); /* w = P F p */
-    PetscCall(ReproducibleDot(p, w, &pw));
-    if (!(pw > 0)) break; /* F is semidefinite on range(P) only up to rounding */
-    const PetscReal alpha = rr / pw;
-    PetscCall(ReproducibleAXPY(lambda, alpha, p));
-    PetscCall(ReproducibleAXPY(r, -alpha, w));
-    PetscCall(ReproducibleDot(r, r, &rrnew));
-    PetscCall(ReproducibleAYPX(p, rrnew / rr, r));
-    rr = rrnew;
+    PetscCall(CGStep(lambda, r, p, w, &rr, &stepped));
+    if (!stepped) break;
     its++;
     if (its >= 2) { /* two steps tell (docs/scale.md): a bonded zone far from the contact zone is mostly in tension */
       PetscCall(CompressiveShare(cp, lambda, &share));
