@@ -166,7 +166,10 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
       goto done;
     }
     PetscCall(solves(e, l, &resid));
-    if (!(resid <= 1e-8)) goto done;
+    if (!(resid <= 1e-8)) {
+      PetscCall(PetscInfo(cp, "Separated start: l~_D meets G D l = e only to %g: not tried\n", (double)resid));
+      goto done;
+    }
   }
   {
     /* y = P_D x (x masked): x - D G'S^-1 G D x */
@@ -214,16 +217,17 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
       PetscCall(VecRestoreArrayRead(w, &g));
       PetscCall(MPIU_Allreduce(MPI_IN_PLACE, &mingap, 1, MPIU_REAL, MPIU_MIN, PetscObjectComm((PetscObject)cp)));
     }
-    if (its < 2 * d->start_max_it && mingap >= 0) {
+    /* kept only from a converged CG (a breakdown, p'w <= 0, or the step limit is no solution) */
+    if (rr <= 1e-2 * d->rtol * d->rtol * rr0 && mingap >= 0) {
       PetscCall(VecCopy(l, lambda));
       PetscCall(MatMult(d->Q, w, t)); /* nu = Q gap */
       PetscCall(TaoSMALXESetStartMultiplier_Private(d->tao, t));
       *found = PETSC_TRUE;
     }
   }
-done:
   PetscCall(PetscInfo(cp, "Separated start: |G D l~_D - e| / |e| = %g, %" PetscInt_FMT " CG steps without the contact rows, residual %g of its start, smallest normal gap %g: %s\n", (double)resid, its,
                       (double)(rr0 > 0 ? PetscSqrtReal(rr / rr0) : 0), (double)mingap, *found ? "the solution touches nothing, kept" : "not kept"));
+done:
   for (Vec *v : {&D, &l, &r, &p, &w, &t, &c1, &c2}) PetscCall(VecDestroy(v));
   PetscCall(FETICoarseSolverDestroy(cs));
   PetscFunctionReturn(PETSC_SUCCESS);
