@@ -425,7 +425,7 @@ PetscErrorCode ContactProblemUpdateRadii_Private(ContactProblem cp, Vec lambda, 
 . -contact_start_rtol <0.1>            - a cold solve first runs CG on the problem without the contact inequalities to this relative residual (0: off; see `ContactProblemSolve()`)
 . -contact_start_max_it <100>           - most CG steps of that start
 . -contact_start_compressive <0.6>      - the start is abandoned (the given multipliers kept) when less than this share of its sum |l_n| presses
-. -contact_start_separated <0.15>       - below this share the solution without contact rows is tried too, and kept when it touches nothing (0: never)
+. -contact_start_separated <0.6>        - below this share the solution without contact rows is tried too, and kept when it touches nothing (0: never)
 . -contact_pc_type <none,lumped,dirichlet> - the preconditioner of F in the inner CG steps (default none; a `ContactModel` takes dirichlet when at most half its subdomains use dense K+ blocks in F;
                                           with one, the inner solvers default to the projected CG expansion; see `ContactProblemGetPC()`)
 . -contact_tao_smalxe_anderson <depth>   - Anderson depth of the multiplier update (0: Dostal's plain update); 1 monolithic, 0 merged, 3 otherwise (`TaoSMALXESetAnderson()`)
@@ -968,7 +968,7 @@ static PetscErrorCode WrapReason(ContactStatistics &st, const char *head, const 
   start"). When less than -contact_start_compressive of its sum |l_n| is compressive (checked from its second
   step on: curved bodies, whose bonded zone reaches far beyond the contact, are mostly in tension), the start is
   abandoned and the given multipliers kept. Its products with F are counted in products_other.
-  When less than -contact_start_separated (0.15) of it presses, the solve also tries the solution with every contact
+  When less than -contact_start_separated (0.6: whenever the start is abandoned) of it presses, the solve also tries the solution with every contact
   row left out (projected CG on the gluing rows, with their own coarse problem G D G'; FETI operators, no Tresca
   zone): when that touches nothing it is the solution, and the solve starts from it and from its equality's
   multiplier (one outer iteration confirms it, where the augmented Lagrangian alone needed tens to thousands: docs/contact.md,

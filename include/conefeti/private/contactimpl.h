@@ -109,10 +109,10 @@ struct ContactProblemData {
   /* a ContactModel runs the tighter solves itself (ContactModelSolve(), judged by the mechanics and, if asked, this
      KKT check): the problem's own ones would nest inside the model's, each of its solves up to refine_max + 1 */
   PetscBool refine_outside    = PETSC_FALSE;
-  PetscReal start_rtol        = 0.1;  /* -contact_start_rtol: a cold solve starts with CG on the bonded problem to this (0: off; contactstart.cxx) */
-  PetscInt  start_max_it      = 100;  /* -contact_start_max_it */
-  PetscReal start_compressive = 0.6;  /* -contact_start_compressive: the start is kept only if this share of its sum |l_n| presses */
-  PetscReal start_separated   = 0.15; /* -contact_start_separated: below this share the separated start is tried (contactstart.cxx) */
+  PetscReal start_rtol        = 0.1; /* -contact_start_rtol: a cold solve starts with CG on the bonded problem to this (0: off; contactstart.cxx) */
+  PetscInt  start_max_it      = 100; /* -contact_start_max_it */
+  PetscReal start_compressive = 0.6; /* -contact_start_compressive: the start is kept only if this share of its sum |l_n| presses */
+  PetscReal start_separated   = 0.6; /* -contact_start_separated: below this share the separated start is tried (contactstart.cxx) */
 
   /* -contact_pc_inner_projector: FETI's M as P M P (smalxe projects around it anyway; contactpc.cxx) */
   PetscBool pc_inner_projector = PETSC_FALSE;
