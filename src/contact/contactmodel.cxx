@@ -831,7 +831,7 @@ PetscErrorCode GetSolverTolerance(ContactModel cm, PetscReal *rtol)
 
 /* The tolerances a solve starts with: the tighter solves scale them from these, and the solve ends with these exactly */
 struct SolverTolerances {
-  PetscReal rtol = 0, msa_rtol = 0, fixed_point_rtol = 0, acceptance_factor = 0;
+  PetscReal rtol = 0, msa_rtol = 0, fixed_point_rtol = 0;
 };
 
 PetscErrorCode GetSolverTolerances(ContactModel cm, SolverTolerances &t)
@@ -841,16 +841,15 @@ PetscErrorCode GetSolverTolerances(ContactModel cm, SolverTolerances &t)
   PetscFunctionBegin;
   PetscCall(GetSolverTolerance(cm, &t.rtol));
   if (d.cp) {
-    t.msa_rtol          = d.cp->data->msa_rtol;
-    t.fixed_point_rtol  = d.cp->data->fixed_point_rtol;
-    t.acceptance_factor = d.cp->data->acceptance_factor;
+    t.msa_rtol         = d.cp->data->msa_rtol;
+    t.fixed_point_rtol = d.cp->data->fixed_point_rtol;
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 /* Set the solver's relative tolerance to rtol, the first ones t scaled with it: the contact problem's fixed-point
-   tolerances when the user gave them, and the KKT check's acceptance factor (-contact_kkt_check) so that it keeps the
-   model's acceptance, as the mechanical residuals do (a tighter solve aims lower, it does not lower what is accepted) */
+   tolerances when the user gave them; and the KKT check (-contact_kkt_check) of a tighter solve is held to the first
+   solve's acceptance, as the mechanical residuals are (a tighter solve aims lower, it does not lower what is accepted) */
 PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol, const SolverTolerances &t)
 {
   ContactModelData &d = *cm->data;
@@ -861,8 +860,7 @@ PetscErrorCode SetSolverTolerance(ContactModel cm, PetscReal rtol, const SolverT
     const PetscBool     first = (PetscBool)(rtol == t.rtol);
     p.msa_rtol                = first ? t.msa_rtol : ContactScaledTolerance_Private(t.msa_rtol, rtol, t.rtol);
     p.fixed_point_rtol        = first ? t.fixed_point_rtol : ContactScaledTolerance_Private(t.fixed_point_rtol, rtol, t.rtol);
-    p.acceptance_factor       = first ? t.acceptance_factor : t.acceptance_factor * t.rtol / rtol;
-    p.acceptance_rtol0        = first ? 0 : t.rtol; /* the cap as for the first solve (ContactAcceptance_Private()) */
+    p.acceptance_outside      = first ? 0 : ContactAcceptance_Private(p.acceptance_factor, p.acceptance_given, t.rtol);
     p.rtol                    = rtol;
     PetscCall(TaoSetTolerances(p.tao, 0.0, 0.0, rtol));
   } else {
@@ -1099,7 +1097,7 @@ PetscErrorCode ContactModelSolve(ContactModel cm)
   PetscCall(ConeFETIProgressBegin_Private(d->progress, CONEFETI_PHASE_SOLVE, 0));
   PetscCall(GetSolverTolerance(cm, &rtol0));
   d->stats.pipeline   = d->pipeline;
-  d->stats.acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, rtol0, rtol0);
+  d->stats.acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, rtol0);
   if (d->cp) PetscCall(ContactProblemGetCoulombAlgorithm(d->cp, &d->stats.algorithm));
   PetscCall(WithoutLoad(cm, &noload));
   if (noload) {

@@ -1041,7 +1041,7 @@ PetscErrorCode ContactProblemSolve(ContactProblem cp, Vec lambda)
 
   /* every solve is judged against the first tolerances' acceptance (inside a model: the model's, whose factor it
      scales as it tightens -contact_rtol) */
-  acceptance = ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, d->rtol, d->acceptance_rtol0 > 0 ? d->acceptance_rtol0 : d->rtol);
+  acceptance = d->acceptance_outside > 0 ? d->acceptance_outside : ContactAcceptance_Private(d->acceptance_factor, d->acceptance_given, d->rtol);
   tol        = first.rtol;
   /* only a failed KKT check gets tighter solves here: without the check nothing judges the answer but the solver's
      test, and a ContactModel runs them itself (refine_outside) */

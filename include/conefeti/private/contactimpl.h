@@ -38,13 +38,13 @@ static inline void ContactStatisticsAccumulate_Private(ContactStatistics &total,
   total.products_estimate += one.products_estimate;
 }
 
-/* The acceptance of a solve: -contact_acceptance_factor times its tolerance rtol, but by default not above 0.1 or, if
-   that is larger, rtol0, the first solve's tolerance (tighter solves are judged as the first one): with -contact_rtol
-   0.09 the factor 10 accepted the indentation scene 62% off as converged. A factor the user gave is taken as given. */
+/* The acceptance of a solve at the tolerance rtol: -contact_acceptance_factor times rtol, but by default not above
+   0.1 or rtol, if that is larger: with -contact_rtol 0.09 the factor 10 accepted the indentation scene 62% off as
+   converged. A factor the user gave is taken as given. */
 #define CONTACT_ACCEPTANCE_LOOSEST 0.1
-static inline PetscReal ContactAcceptance_Private(PetscReal factor, PetscBool given, PetscReal rtol, PetscReal rtol0)
+static inline PetscReal ContactAcceptance_Private(PetscReal factor, PetscBool given, PetscReal rtol)
 {
-  return given ? factor * rtol : PetscMin(factor * rtol, PetscMax(rtol0, (PetscReal)CONTACT_ACCEPTANCE_LOOSEST));
+  return given ? factor * rtol : PetscMin(factor * rtol, PetscMax(rtol, (PetscReal)CONTACT_ACCEPTANCE_LOOSEST));
 }
 
 /* a fixed-point tolerance the user gave (> 0), scaled with the tighter solve's relative tolerance rtol against the
@@ -101,7 +101,7 @@ struct ContactProblemData {
   PetscBool follow_radii           = PETSC_TRUE;  /* Coulomb: a tangential pair on its old circle moves onto the new one when the radius grows */
   PetscReal acceptance_factor      = 10;          /* converged only with the KKT residual <= factor * rtol */
   PetscBool acceptance_given       = PETSC_FALSE; /* -contact_acceptance_factor was given: no cap (ContactAcceptance_Private()) */
-  PetscReal acceptance_rtol0       = 0;           /* inside a model's tighter solve: the first solve's tolerance, for the cap (0: rtol) */
+  PetscReal acceptance_outside     = 0;           /* inside a model's tighter solve: the model's acceptance (0: from rtol; SetSolverTolerance()) */
   PetscReal pc_contact_scale       = 30;          /* -contact_pc_contact_scale: the contact rows get c/||F|| in the preconditioner (contactpc.cxx) */
   PetscBool pc_contact_rows_scaled = PETSC_TRUE;  /* -contact_pc_contact_rows_scaled */
   PetscBool kkt_check              = PETSC_TRUE;  /* recompute the KKT residual before saying converged (a ContactModel judges by the mechanics instead) */
