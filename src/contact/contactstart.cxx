@@ -133,20 +133,24 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
   PetscCall(MatDestroy(&S));
   if (failed) { /* the gluing rows alone do not hold every body: contact is what holds it */
     PetscCall(PetscInfo(cp, "Separated start: G D G' is singular (the supports do not hold every body without contact): not tried\n"));
-    PetscCall(VecDestroy(&D));
-    PetscCall(FETICoarseSolverDestroy(cs));
-    PetscFunctionReturn(PETSC_SUCCESS);
+    goto done;
   }
   for (Vec *v : {&l, &r, &p, &w, &t}) PetscCall(VecDuplicate(lambda, v));
   PetscCall(VecDuplicate(e, &c1));
   PetscCall(VecDuplicate(e, &c2));
   {
+    /* y = G'S^-1 b (c2 holds S^-1 b) */
+    auto lift = [&](Vec b, Vec y) -> PetscErrorCode {
+      PetscFunctionBegin;
+      PetscCall(FETICoarseSolverApply(cs, b, c2));
+      PetscCall(FETIApplyGt(feti, c2, y));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    };
     /* y = D G'S^-1 b and |G y - b| / |b|: how well S's factors solve for b */
     auto solves = [&](Vec b, Vec y, PetscReal *rel) -> PetscErrorCode {
       PetscReal bn;
       PetscFunctionBegin;
-      PetscCall(FETICoarseSolverApply(cs, b, c2));
-      PetscCall(FETIApplyGt(feti, c2, y));
+      PetscCall(lift(b, y));
       PetscCall(VecPointwiseMult(y, D, y));
       PetscCall(FETIApplyG(feti, y, c2));
       PetscCall(VecAXPY(c2, -1.0, b));
@@ -170,14 +174,11 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
       PetscCall(PetscInfo(cp, "Separated start: l~_D meets G D l = e only to %g: not tried\n", (double)resid));
       goto done;
     }
-  }
-  {
     /* y = P_D x (x masked): x - D G'S^-1 G D x */
     auto project = [&](Vec x, Vec y) -> PetscErrorCode {
       PetscFunctionBegin;
       PetscCall(FETIApplyG(feti, x, c1));
-      PetscCall(FETICoarseSolverApply(cs, c1, c2));
-      PetscCall(FETIApplyGt(feti, c2, t));
+      PetscCall(lift(c1, t));
       PetscCall(VecPointwiseMult(t, D, t));
       if (x == y) PetscCall(VecAXPY(y, -1.0, t));
       else PetscCall(VecWAXPY(y, -1.0, t, x));
@@ -206,8 +207,7 @@ PetscErrorCode SeparatedStart(ContactProblem cp, Vec lambda, PetscBool *found, P
     PetscCall(VecAXPY(w, -1.0, h));
     PetscCall(VecPointwiseMult(t, D, w));
     PetscCall(FETIApplyG(feti, t, c1));
-    PetscCall(FETICoarseSolverApply(cs, c1, c2));
-    PetscCall(FETIApplyGt(feti, c2, t));
+    PetscCall(lift(c1, t));
     PetscCall(VecAXPY(w, -1.0, t));
     {
       const PetscScalar *g;
