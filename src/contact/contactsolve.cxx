@@ -685,9 +685,21 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
                             "not converged: %" PetscInt_FMT " outer iterations, the inner solves at their limit of %" PetscInt_FMT
                             " steps in the last ones without 1%% progress (raise -%scontact_tao_smalxe_%s_max_it; -%scontact_tao_smalxe_inner_limit_its 0 goes on)",
                             its, maxit, prefix, inner, prefix));
-  } else if (reason == TAO_DIVERGED_MAXITS)
-    PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
-  else if (reason == TAO_DIVERGED_NAN)
+  } else if (reason == TAO_DIVERGED_MAXITS) {
+    PetscReal gp, feas, tol_g, tol_e;
+    PetscCall(TaoGetSolutionStatus(d->tao, NULL, NULL, &gp, &feas, NULL, NULL));
+    PetscCall(TaoSMALXEGetOuterTolerances(d->tao, &tol_g, &tol_e));
+    /* a long loop (the scenes that converge take a few dozen outer iterations at most) that ends with |G l - e| the
+       further from its tolerance: the multiplier of the equality converges slowly, which a larger penalty speeds up
+       (a bar of 48 one-cell cubes whose tip touches: 1000 outer iterations not enough, 161 at rho 10; docs/contact.md,
+       "Nearly open zones"). A short limit set by the user says nothing about the rate */
+    if (its >= 100 && tol_e > 0 && tol_g > 0 && feas > tol_e && feas / tol_e >= gp / tol_g)
+      PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
+                              "not converged: %" PetscInt_FMT " outer iterations, |G l - e| still %.3g times its tolerance (|gP| %.3g times its): the multiplier of G l = e "
+                              "converges slowly, as where a contact zone nearly stays open; a larger penalty speeds it up (-%scontact_tao_smalxe_rho 10), or raise -%scontact_tao_max_it",
+                              its, (double)(feas / tol_e), (double)(gp / tol_g), prefix, prefix));
+    else PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
+  } else if (reason == TAO_DIVERGED_NAN)
     PetscCall(PetscSNPrintf(
         d->stats.reason, sizeof(d->stats.reason),
         "not converged: a quantity of the solve is not a finite number (DIVERGED_NAN) after %" PetscInt_FMT " outer iterations: an overflow from loads or gaps near the largest real?", its));
