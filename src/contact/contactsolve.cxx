@@ -691,13 +691,15 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
     PetscCall(TaoSMALXEGetOuterTolerances(d->tao, &tol_g, &tol_e));
     /* a long loop (the scenes that converge take a few dozen outer iterations at most) that ends with |G l - e| the
        further from its tolerance: the multiplier of the equality converges slowly, which a larger penalty speeds up
-       (a bar of 48 one-cell cubes whose tip touches: 1000 outer iterations not enough, 161 at rho 10; docs/contact.md,
-       "Nearly open zones"). A short limit set by the user says nothing about the rate */
+       (smalxe multiplies rho by -tao_smalxe_slow_rho_factor after -tao_smalxe_slow_its outer iterations; without that,
+       a bar of 48 one-cell cubes whose tip touches needs more than 1000 outer iterations, 161 at rho 10 from the start;
+       docs/contact.md, "Nearly open zones"). A short limit set by the user says nothing about the rate */
     if (its >= 100 && tol_e > 0 && tol_g > 0 && feas > tol_e && feas / tol_e >= gp / tol_g)
       PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
                               "not converged: %" PetscInt_FMT " outer iterations, |G l - e| still %.3g times its tolerance (|gP| %.3g times its): the multiplier of G l = e "
-                              "converges slowly, as where a contact zone nearly stays open; a larger penalty speeds it up (-%scontact_tao_smalxe_rho 10), or raise -%scontact_tao_max_it",
-                              its, (double)(feas / tol_e), (double)(gp / tol_g), prefix, prefix));
+                              "converges slowly, as where a contact zone nearly stays open; a larger penalty speeds it up (-%scontact_tao_smalxe_rho 10 from the start, or a larger "
+                              "-%scontact_tao_smalxe_slow_rho_factor), or raise -%scontact_tao_max_it",
+                              its, (double)(feas / tol_e), (double)(gp / tol_g), prefix, prefix, prefix));
     else PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
   } else if (reason == TAO_DIVERGED_NAN)
     PetscCall(PetscSNPrintf(
