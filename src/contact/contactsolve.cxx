@@ -697,9 +697,9 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
     if (its >= 100 && tol_e > 0 && tol_g > 0 && feas > tol_e && feas / tol_e >= gp / tol_g)
       PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
                               "not converged: %" PetscInt_FMT " outer iterations, |G l - e| still %.3g times its tolerance (|gP| %.3g times its): the multiplier of G l = e "
-                              "converges slowly, as where a contact zone nearly stays open; a larger penalty speeds it up (-%scontact_tao_smalxe_rho 10 from the start, or a larger "
+                              "converges slowly, as where a contact zone nearly stays open%s; a larger penalty speeds it up (-%scontact_tao_smalxe_rho 10 from the start, or a larger "
                               "-%scontact_tao_smalxe_slow_rho_factor), or raise -%scontact_tao_max_it",
-                              its, (double)(feas / tol_e), (double)(gp / tol_g), prefix, prefix, prefix));
+                              its, (double)(feas / tol_e), (double)(gp / tol_g), d->has_coulomb ? " (or where the radii F l_n lock the loop: large F)" : "", prefix, prefix, prefix));
     else PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
   } else if (reason == TAO_DIVERGED_NAN)
     PetscCall(PetscSNPrintf(
