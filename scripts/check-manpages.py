@@ -23,10 +23,10 @@ def check(path):
     bad = []
     inpage = inlist = False
     for no, line in enumerate(path.read_text(errors="replace").splitlines(), 1):
-        if line.startswith("/*@"):
+        if line.startswith(("/*@", "/*MC")):
             inpage, inlist = True, False
             continue
-        if inpage and "@*/" in line:
+        if inpage and ("@*/" in line or "M*/" in line):
             inpage = inlist = False
             continue
         if not inpage:

@@ -686,21 +686,24 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
                             " steps in the last ones without 1%% progress (raise -%scontact_tao_smalxe_%s_max_it; -%scontact_tao_smalxe_inner_limit_its 0 goes on)",
                             its, maxit, prefix, inner, prefix));
   } else if (reason == TAO_DIVERGED_MAXITS) {
-    PetscReal gp, feas, tol_g, tol_e;
+    PetscReal gp, feas, tol_g, tol_e, factor;
+    PetscInt  fired, slow_its;
     PetscCall(TaoGetSolutionStatus(d->tao, NULL, NULL, &gp, &feas, NULL, NULL));
     PetscCall(TaoSMALXEGetOuterTolerances(d->tao, &tol_g, &tol_e));
-    /* a long loop (the scenes that converge take a few dozen outer iterations at most) that ends with |G l - e| the
-       further from its tolerance: the multiplier of the equality converges slowly, which a larger penalty speeds up
-       (smalxe multiplies rho by -tao_smalxe_slow_rho_factor after -tao_smalxe_slow_its outer iterations; without that,
-       a bar of 48 one-cell cubes whose tip touches needs more than 1000 outer iterations, 161 at rho 10 from the start;
-       docs/contact.md, "Nearly open zones"). A short limit set by the user says nothing about the rate */
-    if (its >= 100 && tol_e > 0 && tol_g > 0 && feas > tol_e && feas / tol_e >= gp / tol_g)
+    PetscCall(TaoSMALXEGetSlowLoop_Private(d->tao, &fired, &slow_its, &factor));
+    /* a long loop (the scenes that converge take a few dozen outer iterations at most; as long as smalxe's slow-loop rule
+       waits, -tao_smalxe_slow_its) that ends with |G l - e| the further from its tolerance: the multiplier of the
+       equality converges slowly, which a larger penalty speeds up (docs/contact.md, "Nearly open zones": without the
+       rule a bar of 48 one-cell cubes whose tip touches needs more than 1000 outer iterations, 161 at rho 10 from the
+       start). A short limit set by the user says nothing about the rate */
+    if (its >= (slow_its > 0 ? slow_its : 100) && tol_e > 0 && tol_g > 0 && feas > tol_e && feas / tol_e >= gp / tol_g) {
+      char rule[96] = "";
+      if (fired) PetscCall(PetscSNPrintf(rule, sizeof(rule), " (rho already times %g after %" PetscInt_FMT ")", (double)factor, fired));
       PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
-                              "not converged: %" PetscInt_FMT " outer iterations, |G l - e| still %.3g times its tolerance (|gP| %.3g times its): the multiplier of G l = e "
-                              "converges slowly, as where a contact zone nearly stays open%s; a larger penalty speeds it up (-%scontact_tao_smalxe_rho 10 from the start, or a larger "
-                              "-%scontact_tao_smalxe_slow_rho_factor), or raise -%scontact_tao_max_it",
-                              its, (double)(feas / tol_e), (double)(gp / tol_g), d->has_coulomb ? " (or where the radii F l_n lock the loop: large F)" : "", prefix, prefix, prefix));
-    else PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
+                              "not converged: %" PetscInt_FMT " outer iterations, |G l - e| still %.3g times its tolerance (|gP| %.3g): the equality's multiplier converges slowly, as "
+                              "where a zone nearly stays open%s%s; try -%scontact_tao_smalxe_rho 10 or more, or raise -%scontact_tao_max_it",
+                              its, (double)(feas / tol_e), (double)(gp / tol_g), d->has_coulomb ? " or Coulomb radii lock the loop (large F)" : "", rule, prefix, prefix));
+    } else PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "not converged: %" PetscInt_FMT " outer iterations (raise -%scontact_tao_max_it)", its, prefix));
   } else if (reason == TAO_DIVERGED_NAN)
     PetscCall(PetscSNPrintf(
         d->stats.reason, sizeof(d->stats.reason),
@@ -843,14 +846,15 @@ static PetscErrorCode SolveOnce(ContactProblem cp, Vec lambda)
     }
     d->stats.fixed_point = change;
     PetscCall(TaoSetRecycleHistory(d->tao, recycle));
+    /* a Tresca solve that stopped is described at the tolerance it ran with (its residuals' ratios to it) */
+    if (reason <= 0) PetscCall(DescribeReason(cp, reason, its + 1));
     PetscCall(TaoSetTolerances(d->tao, 0.0, 0.0, d->rtol));
     PetscCall(CollectStatistics(cp, outer, al));
-    if (reason <= 0) PetscCall(DescribeReason(cp, reason, its + 1));
-    else if (change <= msa_rtol && largest <= msa_rtol) {
+    if (reason > 0 && change <= msa_rtol && largest <= msa_rtol) {
       d->stats.converged = PETSC_TRUE;
       PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "converged: %" PetscInt_FMT " successive approximations, slip bounds change %.2e (largest %.2e of the largest force) <= %.2e",
                               outer, (double)change, (double)largest, (double)msa_rtol));
-    } else
+    } else if (reason > 0)
       PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason),
                               "not converged: the successive approximations did not settle in %" PetscInt_FMT
                               " steps (slip bounds still change by %.2e, largest %.2e of the largest force; friction coefficient too large for a contractive fixed point?)",

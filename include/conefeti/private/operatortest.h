@@ -30,3 +30,4 @@ PETSC_INTERN PetscErrorCode MatDiagnoseOperators_Private(Mat, PetscReal, const c
 /* the names of smalxe's Hessian and projector in the errors of a failed solve ("the Hessian", "the projector Q") */
 PETSC_INTERN PetscErrorCode TaoSMALXESetOperatorNames_Private(Tao, const char[], const char[]);
 PETSC_INTERN PetscErrorCode TaoSMALXESetStartMultiplier_Private(Tao, Vec);
+PETSC_INTERN PetscErrorCode TaoSMALXEGetSlowLoop_Private(Tao, PetscInt *, PetscInt *, PetscReal *);

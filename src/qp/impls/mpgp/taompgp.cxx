@@ -751,8 +751,7 @@ PetscErrorCode TaoQPConfirmGradient_Private(Tao tao, PetscReal *gpnorm, PetscBoo
 . -tao_mprgp_expansion_lagged <false> - projected CG expansions first try the last expansion's length, without a product of their own (`TaoQPSetExpansionLagged()`)
 . -tao_mprgp_expansion_lookahead <0> - projected CG expansions project the point this many more CG steps down the face, past the set (kept when q is no higher than at the feasible half step)
 . -tao_mprgp_expansion_gradient <false> - projected CG expansions try P(y - alpha g(y)), y the CG point, instead of P(y)
-. -tao_mprgp_pc_type <icc or none> - preconditioner of the CG steps, restricted to the free entries (preconditioning in face; default from the Hessian: icc when assembled, bjacobi with icc on several
-ranks, else none)
+. -tao_mprgp_pc_type <icc or none> - preconditioner of the CG steps on the free entries (in face; default from the Hessian: icc when assembled, bjacobi + icc on several ranks, else none)
 - -tao_mprgp_counters_view       - print the counters as one JSON line after each solve
 
   Notes:

@@ -121,8 +121,8 @@ struct TaoSMALXE {
   PetscBool              stagnated      = PETSC_FALSE;
   PetscBool              stalled        = PETSC_FALSE; /* |Cx - d| made no progress while the multiplier settled */
   /* a stall first raises rho (by beta) this many times, each followed by a full stall window, before it stops */
-  PetscInt  stall_rho_growths = 1, stall_rho_done = 0, stall_base = 0;
-  PetscInt  slow_its = 100, slow_done = 0; /* a long loop whose |Cx - d| lags: rho times slow_factor, once per solve (OuterConvergenceTest()) */
+  PetscInt stall_rho_growths = 1, stall_rho_done = 0, stall_base = 0;
+  PetscInt slow_its = 100, slow_done = 0; /* a long loop whose |Cx - d| lags: rho times slow_factor, once per solve (OuterConvergenceTest()); slow_done: after how many outer iterations (0: not yet) */
   PetscReal slow_factor = 10;
   /* inner solves at their iteration limit: the block that ran into it in each outer iteration (-1: none), the one
      that made the loop stop (-1: it did not stop for it), and the window of that stop */
@@ -527,6 +527,8 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
   PetscReal  tol_g, tol_e;
   PetscInt   k = (PetscInt)s->feas_history.size() - 1;
 
+  bool grew = false; /* rho grown by the stall test in this outer iteration */
+
   PetscFunctionBegin;
   if (tao->reason != TAO_CONTINUE_ITERATING) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(Tolerances(tao, s, &tol_g, &tol_e));
@@ -567,6 +569,7 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
       PetscCall(UpdateNormH(s));
       s->stall_rho_done++;
       s->stall_base = k;
+      grew          = true;
       PetscCall(PetscInfo(tao,
                           "TAO smalxe: stuck at |gP| = %g (tol %g), |Cx - d| = %g (tol %g) for %" PetscInt_FMT " outer iterations: rho %g -> %g (-tao_smalxe_stall_rho_growths %" PetscInt_FMT ")\n",
                           (double)tao->residual, (double)tol_g, (double)tao->cnorm, (double)tol_e, s->stagnation_its, (double)rho0, (double)s->rho, s->stall_rho_growths));
@@ -578,23 +581,25 @@ PetscErrorCode OuterConvergenceTest(Tao tao, void *)
       PetscCall(TaoSetConvergedReason(tao, TAO_DIVERGED_USER));
     }
   }
-  if (tao->reason == TAO_CONTINUE_ITERATING && s->slow_its > 0 && s->slow_factor > 1 && !s->slow_done && k >= s->slow_its && s->projector && s->update == SMALXE_UPDATE_M && tao->cnorm > tol_e &&
-      tao->cnorm / tol_e >= tao->residual / tol_g) {
+  if (tao->reason == TAO_CONTINUE_ITERATING && s->slow_its > 0 && s->slow_factor > 1 && !s->slow_done && !grew && k + 1 >= s->slow_its && s->projector && s->update == SMALXE_UPDATE_M &&
+      tao->cnorm > tol_e && tao->cnorm / tol_e >= tao->residual / tol_g && !PetscIsInfOrNanReal(s->rho * s->slow_factor)) {
     /* a long loop (the shipped scenes take at most a few dozen outer iterations) whose |Cx - d| is the residual further
        from its tolerance: the multiplier of the equality converges slowly, at a rate of about 1/(1 + rho sigma) with
        sigma the share of Q's curvature that the face leaves (docs/contact.md, "Nearly open zones"). A larger rho speeds
        it up, for dearer inner solves, which a long loop can afford: a bar of 48 one-cell cubes whose tip touches
-       converged in 182 outer iterations instead of not in 1000; on 942 random scenes of scripts/fuzz-scenes.py it
-       acted on 18, of which 4 converged that had not, and the others took 21% (boxes) and 1.6% (meshes) fewer
-       products (docs/contact.md, "Stopping") */
+       converged in 174 outer iterations instead of not in 1000; on 942 random scenes of scripts/fuzz-scenes.py it
+       acted on 19, of which 4 converged that had not, and the others took 22% (boxes) and 1.8% (meshes) fewer
+       products (docs/contact.md, "Stopping"). Not in an outer iteration where a stall just grew rho (the two at once
+       would multiply it by beta times the factor) */
     const PetscReal rho0 = s->rho;
     s->rho *= s->slow_factor;
     PetscCall(UpdateNormH(s));
-    s->slow_done = 1;
+    s->slow_done = k + 1; /* the outer iterations run */
     /* the stall test waits a full window again, unless a stall already grew rho: a loop stuck since then (the radii of
-       a large F locking it) ends as 'stalled' when it did before, rather than a window later */
+       a large F locking it) ends as 'stalled' about when it did before (the brick with F = 8: after 131 outer iterations
+       instead of 121), rather than a full window later */
     if (!s->stall_rho_done) s->stall_base = k;
-    PetscCall(PetscInfo(tao, "TAO smalxe: %" PetscInt_FMT " outer iterations, |Cx - d| = %g still %g times its tolerance (|gP| %g times its): rho %g -> %g (-tao_smalxe_slow_its)\n", k,
+    PetscCall(PetscInfo(tao, "TAO smalxe: %" PetscInt_FMT " outer iterations, |Cx - d| = %g still %g times its tolerance (|gP| %g times its): rho %g -> %g (-tao_smalxe_slow_its)\n", k + 1,
                         (double)tao->cnorm, (double)(tao->cnorm / tol_e), (double)(tao->residual / tol_g), (double)rho0, (double)s->rho));
   }
   if (tao->reason == TAO_CONTINUE_ITERATING && s->inner_limit_its > 0 && k >= 2 * s->inner_limit_its && (tao->cnorm > tol_e || tao->residual > tol_g)) {
@@ -1316,7 +1321,8 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
       s->rho = rho_later;
       PetscCall(UpdateNormH(s));
     }
-    if (k > 0) PetscCall(BalancePenalty(tao, s, gp, e, rho_later));
+    /* the balancing's ceiling is the default penalty, times the slow-loop rule's factor once that rule raised it */
+    if (k > 0) PetscCall(BalancePenalty(tao, s, gp, e, s->slow_done ? s->slow_factor * rho_later : rho_later));
   }
   if (s->counters_view) {
     PetscViewer viewer;
@@ -1383,11 +1389,11 @@ PetscErrorCode TaoSetFromOptions_SMALXE(Tao tao, CONEFETI_OPTIONS_ITEMS PetscOpt
   PetscCall(PetscOptionsInt("-tao_smalxe_stagnation_its",
                             "Stop when |Cx - d| makes less than 1% progress in this many outer iterations: infeasible if the multiplier grew by a quarter meanwhile, stalled if it settled (0: never)",
                             "TaoSMALXEGetStagnated", s->stagnation_its, &s->stagnation_its, NULL));
-  PetscCall(PetscOptionsInt(
-      "-tao_smalxe_slow_its",
-      "Projector form: after this many outer iterations, if |Cx - d| is the residual further from its tolerance, rho is multiplied by -tao_smalxe_slow_rho_factor, once per solve (0: never)",
-      "TaoSMALXE", s->slow_its, &s->slow_its, NULL));
-  PetscCall(PetscOptionsReal("-tao_smalxe_slow_rho_factor", "The factor of -tao_smalxe_slow_its (1: rho unchanged)", "TaoSMALXE", s->slow_factor, &s->slow_factor, NULL));
+  PetscCall(PetscOptionsInt("-tao_smalxe_slow_its",
+                            "Projector form, with -tao_smalxe_update M: after this many outer iterations, the first time |Cx - d| is the residual further from its tolerance, rho is multiplied by "
+                            "-tao_smalxe_slow_rho_factor (once per solve; 0: never)",
+                            "TaoSMALXE", s->slow_its, &s->slow_its, NULL));
+  PetscCall(PetscOptionsReal("-tao_smalxe_slow_rho_factor", "The factor (>= 1) by which -tao_smalxe_slow_its multiplies rho (1: off)", "TaoSMALXE", s->slow_factor, &s->slow_factor, NULL));
   PetscCheck(s->slow_its >= 0, comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_slow_its must be >= 0 (0: never), got %" PetscInt_FMT, p, s->slow_its);
   PetscCheck(s->slow_factor >= 1 && !PetscIsInfOrNanReal(s->slow_factor), comm, PETSC_ERR_ARG_OUTOFRANGE, "-%stao_smalxe_slow_rho_factor must be finite and >= 1, got %g", p, (double)s->slow_factor);
   PetscCall(PetscOptionsInt("-tao_smalxe_stall_rho_growths",
@@ -1484,7 +1490,8 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
     PetscCall(PetscViewerASCIIPrintf(viewer, "inner CG steps preconditioned in face by I - rho/(||PAP|| + rho) Q, unless the inner solver has a PC of its own\n"));
   if (BalanceFactor(s) > 1) PetscCall(PetscViewerASCIIPrintf(viewer, "rho balanced between |gP| and |Cx - d| (factor %g): %" PetscInt_FMT " changes\n", (double)BalanceFactor(s), s->rho_changes));
   if (s->slow_done)
-    PetscCall(PetscViewerASCIIPrintf(viewer, "a slow loop: rho multiplied by %g after %" PetscInt_FMT " outer iterations (-tao_smalxe_slow_its)\n", (double)s->slow_factor, s->slow_its));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "a slow loop: rho multiplied by %g after %" PetscInt_FMT " outer iterations (-tao_smalxe_slow_its %" PetscInt_FMT ")\n", (double)s->slow_factor,
+                                     s->slow_done, s->slow_its));
   if (tao->recycle) PetscCall(PetscViewerASCIIPrintf(viewer, "recycles the multiplier: a solve starts from the previous solve's multiplier\n"));
   if (s->stops_confirmed)
     PetscCall(PetscViewerASCIIPrintf(viewer, "stops confirmed on the inner solver's exact gradient: %" PetscInt_FMT " (one product each), %" PetscInt_FMT " refused\n", s->stops_confirmed,
@@ -1859,6 +1866,22 @@ PetscErrorCode TaoSMALXESetStartMultiplier_Private(Tao tao, Vec nu)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* the slow-loop rule (-tao_smalxe_slow_its) of the last solve: the outer iterations after which it raised rho (0: it did
+   not), and its settings; any may be NULL */
+PetscErrorCode TaoSMALXEGetSlowLoop_Private(Tao tao, PetscInt *fired, PetscInt *its, PetscReal *factor)
+{
+  PetscBool  is;
+  TaoSMALXE *s;
+
+  PetscFunctionBegin;
+  PetscCall(PetscObjectTypeCompare((PetscObject)tao, TAOSMALXE, &is));
+  s = is ? Get(tao) : nullptr; /* another type: no such rule */
+  if (fired) *fired = s ? s->slow_done : 0;
+  if (its) *its = s ? s->slow_its : 0;
+  if (factor) *factor = s ? s->slow_factor : 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 /* the names of the Hessian and the projector in the errors of failed solves: a ContactProblem's F and Q */
 PetscErrorCode TaoSMALXESetOperatorNames_Private(Tao tao, const char hessian[], const char projector[])
 {
@@ -1894,15 +1917,18 @@ PetscErrorCode TaoSMALXESetOperatorNames_Private(Tao tao, const char hessian[], 
 . -tao_smalxe_norm_margin      - safety margin on the estimate (negative: the method's default, 0.01 slepc, 0.05 power)
 . -tao_smalxe_stagnation_its <30> - stop when |Cx - d| falls by less than 1% in this many outer iterations (equality infeasible over the set)
 . -tao_smalxe_stall_rho_growths <1> - a stall with |Cx - d| above 10 times its tolerance first multiplies rho by beta this many times, each followed by a full window (update M only)
-. -tao_smalxe_slow_its <100> - projector form: after this many outer iterations with |Cx - d| the residual further from its tolerance, multiply rho by the next option's factor, once per solve (0:
-never; update M only) . -tao_smalxe_slow_rho_factor <10> - that factor . -tao_smalxe_inner_limit_its <5> - stop when inner solves reach their iteration limit this many outer iterations in a row
-without 1% progress . -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance, times rho/rho_default below 1 (0: only the adaptive precision) .
--tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`) . -tao_smalxe_anderson_start <3>
-- first outer iteration (counted from 0, at least 1) whose update is accelerated . -tao_smalxe_rho_balance <-1> - with blocks: residual balancing of rho by this factor (0: off; -1: 2 with blocks, 0
-without) . -tao_smalxe_exact_stop <true> - confirm a stop on the inner solver's exact gradient (see `TaoSMALXESetExactStop()`) . -tao_smalxe_penalty_pc <true> - projector form: precondition the inner
-CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`) . -tao_smalxe_pc_q_scale <1>   - with a preconditioner of A (`TaoSMALXESetProjectedPreconditioner()`): the inner CG
-steps use P M P + (this/rho) Q . -tao_smalxe_counters_view    - print the counters as one JSON line after each solve . -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner
-solves)
+. -tao_smalxe_slow_its <100> - projector form, update M: after this many outer iterations, the first time |Cx - d| lags |gP| (relative), rho times the next factor (0: never)
+. -tao_smalxe_slow_rho_factor <10> - that factor (>= 1; 1: off)
+. -tao_smalxe_inner_limit_its <5> - stop when inner solves reach their iteration limit this many outer iterations in a row without 1% progress
+. -tao_smalxe_inner_floor <0.5> - inner solves also stop at this fraction of the final |gP| tolerance, times rho/rho_default below 1 (0: only the adaptive precision)
+. -tao_smalxe_anderson <-1>    - Anderson acceleration of the multiplier update with this depth (0: plain update; -1: 3, or 0 with blocks; see `TaoSMALXESetAnderson()`)
+. -tao_smalxe_anderson_start <3> - first outer iteration (counted from 0, at least 1) whose update is accelerated
+. -tao_smalxe_rho_balance <-1> - with blocks: residual balancing of rho by this factor (0: off; -1: 2 with blocks, 0 without)
+. -tao_smalxe_exact_stop <true> - confirm a stop on the inner solver's exact gradient (see `TaoSMALXESetExactStop()`)
+. -tao_smalxe_penalty_pc <true> - projector form: precondition the inner CG steps by I - rho/(||PAP|| + rho) Q (see `TaoSMALXESetPenaltyPreconditioner()`)
+. -tao_smalxe_pc_q_scale <1>   - with a preconditioner of A (`TaoSMALXESetProjectedPreconditioner()`): the inner CG steps use P M P + (this/rho) Q
+. -tao_smalxe_counters_view    - print the counters as one JSON line after each solve
+. -tao_smalxe_subsolver_tao_*  - options of the nested solver (monolithic inner solves)
 - -tao_smalxe_block<k>_tao_*   - options of block k's nested solver
 
   Notes:
