@@ -649,14 +649,16 @@ static PetscErrorCode DescribeReason(ContactProblem cp, TaoConvergedReason reaso
   PetscCall(TaoSMALXEGetInnerLimited(d->tao, &limited));
   d->stats.converged = reason > 0 ? PETSC_TRUE : PETSC_FALSE;
   if (reason > 0) PetscCall(PetscSNPrintf(d->stats.reason, sizeof(d->stats.reason), "converged (%s) in %" PetscInt_FMT " outer iterations", TaoConvergedReasons[reason], its));
-  else if (stagnated)
+  else if (stagnated) {
+    PetscReal feas; /* from the loop itself: msa describes its stopped Tresca solve before collecting the statistics */
+    PetscCall(TaoSMALXEGetFeasibility(d->tao, &feas));
     PetscCall(PetscSNPrintf(
         d->stats.reason, sizeof(d->stats.reason),
         d->has_coulomb
             ? "no equilibrium found: |G l - e| stagnates at %.3g while the multiplier grows; the loads exceed what supports and friction carry, or the Coulomb radii F l_n lock the loop (large F)"
             : "no equilibrium: the equality (rigid-body equilibrium) cannot be met with admissible contact forces (|G l - e| stagnates at %.3g); the loads exceed what supports and friction can carry",
-        (double)d->stats.feasibility));
-  else if (stalled) {
+        (double)feas));
+  } else if (stalled) {
     PetscReal gp, feas;
     PetscCall(TaoGetSolutionStatus(d->tao, NULL, NULL, &gp, &feas, NULL, NULL));
     /* the cause the loop's structure points to: merged's Gauss-Seidel sweep, whose blocks the penalty
