@@ -161,6 +161,7 @@ PETSC_EXTERN PetscErrorCode TaoSMALXEGetBlockSubsolver(Tao, PetscInt, Tao *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetPreSolve(Tao, PetscErrorCode (*)(Tao, PetscInt, Vec, void *), void *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetEqualityMultiplier(Tao, Vec);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetFeasibility(Tao, PetscReal *);
+PETSC_EXTERN PetscErrorCode TaoSMALXEGetMultiplierGrowth(Tao, Vec, PetscInt *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetOuterTolerances(Tao, PetscReal *, PetscReal *);
 PETSC_EXTERN PetscErrorCode TaoSMALXESetConsistencyCheck(Tao, PetscErrorCode (*)(Tao, Vec, PetscBool *, void *), void *);
 PETSC_EXTERN PetscErrorCode TaoSMALXEGetStagnated(Tao, PetscBool *);

@@ -960,7 +960,21 @@ PetscErrorCode CorrectNoEquilibrium(ContactModel cm)
   PetscCall(TaoSMALXEGetStagnated(tao, &stagnated));
   if (!stagnated) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(FEMComputeFreeRigidMotions(d.fem, 0, NULL, &nfree, NULL));
-  if (nfree) PetscFunctionReturn(PETSC_SUCCESS);
+  if (nfree) {
+    /* only contact holds some body: the claim may be true, and the growth of the multiplier says along which motion the
+       load drives the bodies; the sentence gets it when it is a rigid motion the load works along */
+    const char *lead = "; the multiplier grows along a rigid motion: ";
+    std::string motion;
+    size_t      len;
+    PetscCall(PetscStrlen(d.stats.reason, &len));
+    const size_t room = sizeof(d.stats.reason) - 1 - len - std::strlen(lead);
+    if (len + std::strlen(lead) + 80 < sizeof(d.stats.reason)) PetscCall(ContactDescribeStagnatedMotion_Private(cm, d.fem, d.feti, tao, d.alpha, d.u, room, motion));
+    if (!motion.empty() && motion.size() <= room) {
+      const std::string whole = d.stats.reason + std::string(lead) + motion;
+      PetscCall(PetscStrncpy(d.stats.reason, whole.c_str(), sizeof(d.stats.reason)));
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(PetscObjectGetOptionsPrefix((PetscObject)d.cp, &prefix));
   if (d.pipeline == CONTACT_PIPELINE_COULOMB)
     PetscCall(PetscSNPrintf(cure, sizeof(cure), "the Coulomb radii F l_n lock the loop (large F; try a smaller F or another -%scontact_coulomb_algorithm)", prefix ? prefix : ""));

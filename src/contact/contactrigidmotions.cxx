@@ -25,6 +25,8 @@ namespace {
 constexpr PetscReal kWorkTol = 1e-9;
 /* entries below this (relative) are roundoff in a motion's description */
 constexpr PetscReal kClean = 1e-9;
+/* and below this in a motion found from a multiplier's growth over a few dozen outer iterations */
+constexpr PetscReal kNoise = 5e-2;
 
 struct BodyFrame {
   PetscInt         nnodes = 0, offset = 0;
@@ -35,10 +37,10 @@ struct BodyFrame {
 
 PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 
-std::string Num(PetscReal v)
+std::string Num(PetscReal v, int digits = 6)
 {
   char buf[32];
-  std::snprintf(buf, sizeof(buf), "%g", (double)v);
+  std::snprintf(buf, sizeof(buf), "%.*g", digits, (double)v);
   return buf;
 }
 
@@ -86,17 +88,17 @@ Motion MakeMotion(const BodyFrame &f, const PetscReal v[6])
   return m;
 }
 
-/* "slide along x", "turn about an axis through (0.5, 0.5, 0) along z" */
-std::string Describe(const Motion &m)
+/* "slide along x", "turn about an axis through (0.5, 0.5, 0) along z" (a motion found numerically: 3 digits) */
+std::string Describe(const Motion &m, int digits = 6)
 {
   if (!m.turn) return "slide along " + Direction(m.axis);
-  std::string s = "turn about an axis through (" + Num(m.point[0]) + ", " + Num(m.point[1]) + ", " + Num(m.point[2]) + ") along " + Direction(m.axis);
-  if (m.pitch != 0) s += " while sliding along it by " + Num(m.pitch) + " per radian";
+  std::string s = "turn about an axis through (" + Num(m.point[0], digits) + ", " + Num(m.point[1], digits) + ", " + Num(m.point[2], digits) + ") along " + Direction(m.axis);
+  if (m.pitch != 0) s += " while sliding along it by " + Num(m.pitch, digits) + " per radian";
   return s;
 }
 
 /* the same motion of space? (t at the origin and w agree) */
-PetscBool SameMotion(const Motion &a, const BodyFrame &fa, const Motion &b, const BodyFrame &fb)
+PetscBool SameMotion(const Motion &a, const BodyFrame &fa, const Motion &b, const BodyFrame &fb, PetscReal tol = 1e-6)
 {
   PetscReal scale = 0, diff = 0;
   for (int i = 0; i < 3; i++) {
@@ -107,7 +109,7 @@ PetscBool SameMotion(const Motion &a, const BodyFrame &fa, const Motion &b, cons
     diff              = PetscMax(diff, PetscMax(std::fabs(ta - tb), L * std::fabs(a.w[i] - b.w[i])));
     scale             = PetscMax(scale, PetscMax(PetscMax(std::fabs(ta), std::fabs(tb)), L * PetscMax(std::fabs(a.w[i]), std::fabs(b.w[i]))));
   }
-  return diff <= 1e-6 * scale ? PETSC_TRUE : PETSC_FALSE;
+  return diff <= tol * scale ? PETSC_TRUE : PETSC_FALSE;
 }
 
 std::string BodyList(const std::vector<PetscInt> &bodies)
@@ -146,19 +148,26 @@ struct Checker {
   }
 
   /* who moves ("body 0", "bodies 0 and 1 together") and how ("slide along x"), and the first moved body's motion */
-  void Phrase(const std::vector<PetscReal> &v, std::string &who, std::string &how, Motion *first) const
+  void Phrase(const std::vector<PetscReal> &v, std::string &who, std::string &how, Motion *first, PetscBool numeric = PETSC_FALSE) const
   {
     const std::vector<PetscInt> bodies = Bodies(v);
     std::vector<Motion>         ms;
     for (PetscInt b : bodies) ms.push_back(MakeMotion(frames[b], &v[6 * b]));
-    *first         = ms[0];
-    PetscBool same = PETSC_TRUE;
-    for (size_t i = 1; i < ms.size(); i++) same = (same && SameMotion(ms[0], frames[bodies[0]], ms[i], frames[bodies[i]])) ? PETSC_TRUE : PETSC_FALSE;
+    if (numeric) /* points on a grid of about a hundredth of the body's size */
+      for (size_t i = 0; i < ms.size(); i++)
+        if (ms[i].turn) {
+          const PetscReal grid = std::pow(10.0, std::floor(std::log10(1e-2 * frames[bodies[i]].L)));
+          for (PetscReal &p : ms[i].point) p = grid * std::round(p / grid) + 0.0;
+        }
+    const int digits = numeric ? 3 : 6;
+    *first           = ms[0];
+    PetscBool same   = PETSC_TRUE;
+    for (size_t i = 1; i < ms.size(); i++) same = (same && SameMotion(ms[0], frames[bodies[0]], ms[i], frames[bodies[i]], numeric ? 5e-2 : 1e-6)) ? PETSC_TRUE : PETSC_FALSE;
     who = BodyList(bodies) + (bodies.size() > 1 ? " together" : "");
-    if (same) how = Describe(ms[0]);
+    if (same) how = Describe(ms[0], digits);
     else {
       how = "move (";
-      for (size_t i = 0; i < ms.size(); i++) how += (i ? "; body " : "body ") + std::to_string(bodies[i]) + ": " + Describe(ms[i]);
+      for (size_t i = 0; i < ms.size(); i++) how += (i ? "; body " : "body ") + std::to_string(bodies[i]) + ": " + Describe(ms[i], digits);
       how += ")";
     }
   }
@@ -210,6 +219,42 @@ struct Checker {
   }
 };
 
+/* The frame (centroid, size) and the nodes of every body */
+PetscErrorCode GetFrames(FEM fem, std::vector<BodyFrame> &frames)
+{
+  PetscInt nb;
+
+  PetscFunctionBegin;
+  PetscCall(FEMGetNumBodies(fem, &nb));
+  PetscCallCXX(frames.assign(nb, BodyFrame{}));
+  for (PetscInt b = 0; b < nb; b++) {
+    BodyFrame &f = frames[b];
+    PetscCall(FEMGetBodyNodes(fem, b, &f.nnodes, &f.X));
+    PetscCall(FEMGetBodyNodeOffset(fem, b, &f.offset));
+    PetscCall(FEMComputeRigidMotionFrame(fem, b, f.c, &f.L));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* The load as work per unit of each motion coordinate (force, and moment about the centroid / L), and the sum of
+   the bodies' load magnitudes */
+PetscErrorCode GetLoadWork(FEM fem, const std::vector<BodyFrame> &frames, std::vector<PetscReal> &g, PetscReal *magnitude)
+{
+  PetscFunctionBegin;
+  PetscCallCXX(g.assign(6 * frames.size(), 0.0));
+  *magnitude = 0;
+  for (size_t b = 0; b < frames.size(); b++) {
+    PetscReal F[3], Mo[3], mag;
+    PetscCall(FEMComputeLoadResultant(fem, (PetscInt)b, frames[b].c, F, Mo, &mag));
+    for (int q = 0; q < 3; q++) {
+      g[6 * b + q]     = F[q];
+      g[6 * b + 3 + q] = Mo[q] / frames[b].L;
+    }
+    *magnitude += mag;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 /* Stop with an error naming the body and the motion when a rigid motion of the bodies is resisted by no
@@ -233,13 +278,7 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
   const PetscInt         n = 6 * nb;
   std::vector<PetscReal> M(free_motions, free_motions + (size_t)k * n); /* the free motions in motion coordinates, in echelon form */
   PetscCall(PetscFree(free_motions));
-  PetscCallCXX(ck.frames.resize(nb));
-  for (PetscInt b = 0; b < nb; b++) {
-    BodyFrame &f = ck.frames[b];
-    PetscCall(FEMGetBodyNodes(fem, b, &f.nnodes, &f.X));
-    PetscCall(FEMGetBodyNodeOffset(fem, b, &f.offset));
-    PetscCall(FEMComputeRigidMotionFrame(fem, b, f.c, &f.L));
-  }
+  PetscCall(GetFrames(fem, ck.frames));
   PetscCall(FEMGetGlobalDirichletDofs(fem, &is));
   PetscCall(ISAllGather(is, &all));
   PetscCall(ISDestroy(&is));
@@ -253,18 +292,9 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
     if (b >= 0) ck.frames[b].dirichlet = PETSC_TRUE;
   }
 
-  /* the load as work per unit of each motion coordinate: force, and moment about the centroid / L */
-  std::vector<PetscReal> g(n);
-  PetscReal              magnitude = 0;
-  for (PetscInt b = 0; b < nb; b++) {
-    PetscReal F[3], Mo[3], mag;
-    PetscCall(FEMComputeLoadResultant(fem, b, ck.frames[b].c, F, Mo, &mag));
-    for (int q = 0; q < 3; q++) {
-      g[6 * b + q]     = F[q];
-      g[6 * b + 3 + q] = Mo[q] / ck.frames[b].L;
-    }
-    magnitude += mag;
-  }
+  std::vector<PetscReal> g;
+  PetscReal              magnitude;
+  PetscCall(GetLoadWork(fem, ck.frames, g, &magnitude));
   /* every free motion, grouped by who moves ("body 0: slide along x, slide along y"), each shown along the
      positive axis (its sign is arbitrary; +z rather than -z); the first one the load works along (echelon
      order: slides before turns) is the one the message names */
@@ -324,4 +354,171 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
   }
   if (msg.size() > 1900) msg = msg.substr(0, 1890) + " ...";
   SETERRQ(comm, PETSC_ERR_NOT_CONVERGED, "%s", msg.c_str());
+}
+
+/* The rigid motion of the bodies along which the multiplier of G l = e grew where the contact solve stagnated
+   (TaoSMALXEGetMultiplierGrowth()): the motion the load drives and the contact zones do not stop, told as the
+   setup's check tells a free motion. Its rigid-body amplitudes, alpha = -(G G')^-1 G w, give the displacement
+   R alpha; fitted per body by a rigid motion, it must be one (a body's subdomains move together: the gluing rows
+   are equalities, so their multipliers' growth cannot pull the subdomains apart) and the load must work along it,
+   else the phrase stays empty and the solver's sentence goes without it. The growth comes from a finite number of
+   outer iterations, so the motion is rounded: parts below 1e-3 of a body's largest coordinate, and bodies below
+   1e-2 of the largest, are dropped, and points have 3 digits. A phrase longer than maxlen (several bodies that move
+   apart) only names the bodies; -info gives it whole. */
+PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, FETI feti, Tao tao, Vec alpha, Vec u, size_t maxlen, std::string &phrase)
+{
+  MPI_Comm               comm = PetscObjectComm((PetscObject)cm);
+  Vec                    w, x, up, ug, X;
+  Mat                    R;
+  PetscInt               its, nb, lo, hi;
+  std::vector<BodyFrame> frames;
+  const PetscScalar     *ua, *xa;
+
+  PetscFunctionBegin;
+  phrase.clear();
+  PetscCall(TaoGetSolution(tao, &x));
+  PetscCall(VecDuplicate(x, &w));
+  PetscCall(TaoSMALXEGetMultiplierGrowth(tao, w, &its));
+  if (!its) {
+    PetscCall(VecDestroy(&w));
+    PetscCall(PetscInfo(cm, "no growth of the equality's multiplier kept (a loop shorter than -tao_smalxe_stagnation_its)\n"));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(VecDuplicate(alpha, &x));
+  PetscCall(FETIComputeAlphaFromEquality(feti, w, x));
+  PetscCall(VecDestroy(&w));
+  PetscCall(FETIGetKernel(feti, &R));
+  PetscCall(VecDuplicate(u, &up));
+  PetscCall(MatMult(R, x, up));
+  PetscCall(VecDestroy(&x));
+  PetscCall(FEMCreateGlobalCoordinates(fem, &X));
+  PetscCall(VecDuplicate(X, &ug));
+  PetscCall(FEMPrimalToGlobal(fem, up, ug));
+  PetscCall(VecDestroy(&up));
+
+  /* per body the normal equations of the fit u(x) ~ sum_q v_q r_q(x), r_q the body's 6 motions (translations e_q,
+     turns e_q x (x - c) / L), and |u|^2 for the fit's residual: summed over the owned nodes, then over the ranks */
+  PetscCall(GetFrames(fem, frames));
+  nb = (PetscInt)frames.size();
+  std::vector<PetscReal> sums((size_t)nb * 43, 0.0); /* per body: N (36), rhs (6), |u|^2 */
+  PetscCall(VecGetOwnershipRange(ug, &lo, &hi));
+  PetscCall(VecGetArrayRead(ug, &ua));
+  PetscCall(VecGetArrayRead(X, &xa));
+  for (PetscInt i = 0; i < (hi - lo) / 3; i++) {
+    const PetscInt node = lo / 3 + i;
+    PetscInt       b    = 0;
+    while (b < nb && !(node >= frames[b].offset && node < frames[b].offset + frames[b].nnodes)) b++;
+    if (b == nb) continue;
+    const BodyFrame &f = frames[b];
+    PetscReal        r[6][3], y[3];
+    for (int k = 0; k < 3; k++) y[k] = (PetscRealPart(xa[3 * i + k]) - f.c[k]) / f.L;
+    for (int q = 0; q < 3; q++) {
+      /* e_q, and e_q x y */
+      for (int k = 0; k < 3; k++) r[q][k] = q == k ? 1 : 0;
+      r[3 + q][q]           = 0;
+      r[3 + q][(q + 1) % 3] = -y[(q + 2) % 3];
+      r[3 + q][(q + 2) % 3] = y[(q + 1) % 3];
+    }
+    PetscReal *S = &sums[(size_t)b * 43];
+    for (int p = 0; p < 6; p++) {
+      for (int q = 0; q < 6; q++) S[6 * p + q] += r[p][0] * r[q][0] + r[p][1] * r[q][1] + r[p][2] * r[q][2];
+      for (int k = 0; k < 3; k++) S[36 + p] += r[p][k] * PetscRealPart(ua[3 * i + k]);
+    }
+    for (int k = 0; k < 3; k++) S[42] += PetscSqr(PetscRealPart(ua[3 * i + k]));
+  }
+  PetscCall(VecRestoreArrayRead(X, &xa));
+  PetscCall(VecRestoreArrayRead(ug, &ua));
+  PetscCall(VecDestroy(&X));
+  PetscCall(VecDestroy(&ug));
+  PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, sums.data(), (PetscMPIInt)sums.size(), MPIU_REAL, MPIU_SUM, comm));
+
+  /* solve each 6 x 6 system (SPD for a body with three nodes off a line) by Cholesky; a body that the growth does
+     not move rigidly (a residual above a tenth of the largest body's |u|) makes the motion no rigid one: no phrase */
+  std::vector<PetscReal> v((size_t)6 * nb, 0.0);
+  PetscReal              umax = 0;
+  for (PetscInt b = 0; b < nb; b++) umax = PetscMax(umax, sums[(size_t)b * 43 + 42]);
+  for (PetscInt b = 0; b < nb; b++) {
+    PetscReal *S = &sums[(size_t)b * 43], Lc[6][6] = {{0}}, z[6], *vb = &v[(size_t)6 * b];
+    if (!(S[42] > 0)) continue;
+    bool spd = true;
+    for (int i = 0; i < 6 && spd; i++)
+      for (int j = 0; j <= i; j++) {
+        PetscReal t = S[6 * i + j];
+        for (int k = 0; k < j; k++) t -= Lc[i][k] * Lc[j][k];
+        if (i == j) {
+          if (!(t > 1e-12 * S[0])) spd = false;
+          else Lc[i][i] = PetscSqrtReal(t);
+        } else Lc[i][j] = t / Lc[j][j];
+      }
+    if (!spd) {
+      PetscCall(PetscInfo(cm, "body %" PetscInt_FMT ": its nodes do not determine a rigid motion\n", b));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    for (int i = 0; i < 6; i++) {
+      z[i] = S[36 + i];
+      for (int k = 0; k < i; k++) z[i] -= Lc[i][k] * z[k];
+      z[i] /= Lc[i][i];
+    }
+    for (int i = 5; i >= 0; i--) {
+      vb[i] = z[i];
+      for (int k = i + 1; k < 6; k++) vb[i] -= Lc[k][i] * vb[k];
+      vb[i] /= Lc[i][i];
+    }
+    PetscReal fitted = 0; /* |R v|^2 = v'rhs at the least-squares v; the residual is |u|^2 - that */
+    for (int i = 0; i < 6; i++) fitted += vb[i] * S[36 + i];
+    PetscCall(PetscInfo(cm, "body %" PetscInt_FMT ": the multiplier's growth over %" PetscInt_FMT " outer iterations moves it by a rigid motion up to %g of the largest body's displacement\n", b, its,
+                        (double)PetscSqrtReal(PetscMax(S[42] - fitted, 0) / umax)));
+    if (S[42] - fitted > 1e-2 * umax) PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  /* drop the growth's noise: bodies that hardly move, a turn too slow to matter beside the slide, the parts of the
+     axis (or of the slide's direction) and the slide along the axis below kNoise */
+  PetscReal vmax = 0;
+  for (PetscReal a : v) vmax = PetscMax(vmax, std::fabs(a));
+  if (!(vmax > 0)) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt b = 0; b < nb; b++) {
+    PetscReal *t = &v[6 * b], *w = &v[6 * b + 3], bmax = 0;
+    for (int q = 0; q < 6; q++) bmax = PetscMax(bmax, std::fabs(v[6 * b + q]));
+    if (bmax < 1e-2 * vmax) {
+      for (int q = 0; q < 6; q++) v[6 * b + q] = 0;
+      continue;
+    }
+    const PetscReal nt = Norm3(t), nw = Norm3(w); /* w is turn times L: comparable with t */
+    if (nw < kNoise * nt) w[0] = w[1] = w[2] = 0;
+    PetscReal *dir = Norm3(w) > 0 ? w : t, nd = Norm3(dir);
+    for (int k = 0; k < 3; k++)
+      if (std::fabs(dir[k]) < kNoise * nd) dir[k] = 0;
+    if (Norm3(w) > 0) {
+      const PetscReal n2 = w[0] * w[0] + w[1] * w[1] + w[2] * w[2], along = (t[0] * w[0] + t[1] * w[1] + t[2] * w[2]) / n2;
+      if (std::fabs(along) * PetscSqrtReal(n2) < kNoise * PetscMax(nt, PetscSqrtReal(n2)))
+        for (int k = 0; k < 3; k++) t[k] -= along * w[k];
+    }
+  }
+
+  /* the load must work along it: the direction it drives */
+  std::vector<PetscReal> g;
+  PetscReal              magnitude, work = 0;
+  PetscCall(GetLoadWork(fem, frames, g, &magnitude));
+  for (size_t l = 0; l < v.size(); l++) work += g[l] * v[l];
+  vmax = 0;
+  for (PetscReal a : v) vmax = PetscMax(vmax, std::fabs(a));
+  if (!(work > kWorkTol * magnitude * vmax)) {
+    PetscCall(PetscInfo(cm, "the load does no positive work along the multiplier's growth (%g)\n", (double)work));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  const std::vector<ContactZone>   none;
+  const std::vector<FEMHoldingRow> norows;
+  Checker                          ck{fem, none, norows, frames, {}};
+  std::string                      who, how;
+  Motion                           m;
+  char                             amount[96];
+  ck.Phrase(v, who, how, &m, PETSC_TRUE);
+  work /= m.turn ? Norm3(m.w) : Norm3(m.t);
+  if (how.rfind("move (", 0) == 0) std::snprintf(amount, sizeof(amount), "the load works along it"); /* bodies that move apart: no one axis */
+  else if (m.turn) std::snprintf(amount, sizeof(amount), "the load's moment about that axis: %.3g N m", (double)work);
+  else std::snprintf(amount, sizeof(amount), "the load along it: %.3g N", (double)work);
+  phrase = who + " would " + how + " (" + amount + ")";
+  PetscCall(PetscInfo(cm, "the multiplier's growth is a rigid motion: %s\n", phrase.c_str()));
+  if (phrase.size() > maxlen) phrase = who + " would move (the load works along that motion; -info :contact gives each body's)";
+  PetscFunctionReturn(PETSC_SUCCESS);
 }

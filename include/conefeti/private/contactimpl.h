@@ -5,6 +5,7 @@
 #include <conefeti/compat.h>
 #include <conefeti/private/progress.h>
 #include <petsc/private/petscimpl.h>
+#include <string>
 #include <vector>
 
 struct _ContactProblemOps {
@@ -149,4 +150,9 @@ PETSC_INTERN PetscReal ContactPolygonGauge(PetscInt, const PetscReal[2], PetscRe
    that can hold bodies: normal rows, and tangential rows that can carry a force (friction coefficient or slip
    bound > 0), each as appended to B. */
 PETSC_INTERN PetscErrorCode ContactCheckRigidMotions_Private(ContactModel, FEM, const std::vector<ContactZone> &, const std::vector<FEMHoldingRow> &);
+/* Where the contact solve stagnated: the rigid motion of the bodies along which the multiplier of G l = e grew, as
+   "body 1 would turn about an axis through (3, 0.5, 0) along -x (the load's moment about that axis: 2e+07 N m)", or
+   an empty phrase when the growth is no rigid motion the load drives (contactrigidmotions.cxx); alpha and u are
+   templates of FETI's coarse and primal vectors; a phrase longer than the given length only names the bodies */
+PETSC_INTERN PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel, FEM, FETI, Tao, Vec, Vec, size_t, std::string &);
 PETSC_INTERN PetscLogEvent  CONTACT_Solve;

@@ -31,6 +31,7 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
@@ -119,7 +120,12 @@ struct TaoSMALXE {
   std::vector<PetscReal> gp_history;                 /* |gP| per outer iteration */
   PetscInt               stagnation_its = 30;
   PetscBool              stagnated      = PETSC_FALSE;
-  PetscBool              stalled        = PETSC_FALSE; /* |Cx - d| made no progress while the multiplier settled */
+  /* the multiplier (nu, or mu in the general form) at the two last outer iterations that are multiples of stagnation_its,
+     newest second: where the loop stagnates, its growth since then is the direction in which C x = d cannot be met
+     (TaoSMALXEGetMultiplierGrowth()) */
+  Vec       growth_snap[2] = {nullptr, nullptr};
+  PetscInt  growth_k[2]    = {-1, -1};
+  PetscBool stalled        = PETSC_FALSE; /* |Cx - d| made no progress while the multiplier settled */
   /* a stall first raises rho (by beta) this many times, each followed by a full stall window, before it stops */
   PetscInt stall_rho_growths = 1, stall_rho_done = 0, stall_base = 0;
   PetscInt slow_its = 100, slow_done = 0; /* a long loop whose |Cx - d| lags: rho times slow_factor, once per solve (OuterConvergenceTest()); slow_done: after how many outer iterations (0: not yet) */
@@ -442,6 +448,22 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
    undoes the warm start: a sequence of nearby problems (the Tresca solves of successive
    approximations, load steps) then pays the whole outer loop each time. Called before the histories are
    cleared: mult_history.back() is |multiplier| at the end of the previous solve (none: no solve yet). */
+/* Keep the multiplier of outer iteration k when k is a multiple of stagnation_its, in the older slot's vector (two
+   copies at most, made only in loops that long) */
+PetscErrorCode SnapshotMultiplier(TaoSMALXE *s, PetscInt k)
+{
+  Vec mult = s->projector ? s->nu : s->mu;
+
+  PetscFunctionBegin;
+  if (s->stagnation_its <= 0 || k % s->stagnation_its) PetscFunctionReturn(PETSC_SUCCESS);
+  std::swap(s->growth_snap[0], s->growth_snap[1]);
+  std::swap(s->growth_k[0], s->growth_k[1]);
+  if (!s->growth_snap[1]) PetscCall(VecDuplicate(mult, &s->growth_snap[1]));
+  PetscCall(VecCopy(mult, s->growth_snap[1]));
+  s->growth_k[1] = k;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 bool RecycleMultiplier(Tao tao, TaoSMALXE *s) { return tao->recycle && !s->mult_history.empty() && !PetscIsInfOrNanReal(s->mult_history.back()); }
 
 /* |Cx - d| is measured against ||C|| |b| over ||H|| at the default penalty (rho = ||A|| / ||C||^2, so ||H|| is
@@ -1217,6 +1239,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
   s->counters.solves++;
   s->feas_history.clear();
   s->mult_history.clear();
+  s->growth_k[0] = s->growth_k[1] = -1;
   s->gp_history.clear();
   s->limited_history.clear();
   s->stagnated      = PETSC_FALSE;
@@ -1275,6 +1298,7 @@ PetscErrorCode TaoSolve_SMALXE(Tao tao)
       PetscCall(Norm(s->projector ? s->nu : s->mu, &mn));
       PetscCallCXX(s->mult_history.push_back(mn));
     }
+    PetscCall(SnapshotMultiplier(s, k));
     PetscCall(PetscLogEventEnd(QP_MultiplierUpdate, 0, 0, 0, 0));
     PetscUseTypeMethod(tao, convergencetest, tao->cnvP);
     if (tao->reason > 0 && s->exact_stop && Monolithic(s)) {
@@ -1519,7 +1543,9 @@ PetscErrorCode TaoView_SMALXE(Tao tao, PetscViewer viewer)
 PetscErrorCode ResetWork(TaoSMALXE *s)
 {
   PetscFunctionBegin;
-  for (Vec *v : {&s->mu, &s->nu, &s->nu_start, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w, &s->pcq, &s->pcp}) PetscCall(VecDestroy(v));
+  for (Vec *v : {&s->mu, &s->nu, &s->nu_start, &s->bx, &s->bconst, &s->g, &s->hq, &s->hp, &s->hr, &s->r, &s->bin, &s->bout, &s->wf, &s->w, &s->pcq, &s->pcp, &s->growth_snap[0], &s->growth_snap[1]})
+    PetscCall(VecDestroy(v));
+  s->growth_k[0] = s->growth_k[1] = -1;
   PetscCall(AndersonDestroyHistory(s));
   PetscCall(MatDestroy(&s->H));
   if (s->Q_from_C) {
@@ -1546,6 +1572,7 @@ const char *const kComposed[] = {"TaoQPSetConstraints_C",
                                  "TaoSMALXESetPreSolve_C",
                                  "TaoSMALXEGetEqualityMultiplier_C",
                                  "TaoSMALXEGetFeasibility_C",
+                                 "TaoSMALXEGetMultiplierGrowth_C",
                                  "TaoSMALXESetConsistencyCheck_C",
                                  "TaoSMALXEGetOuterTolerances_C",
                                  "TaoSMALXEGetStagnated_C",
@@ -1833,6 +1860,33 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* C'(mu_k - mu_j) over the last j <= k - max(1, stagnation_its / 2) with a snapshot: how the multiplier grew lately */
+PetscErrorCode GetMultiplierGrowth_SMALXE(Tao tao, Vec w, PetscInt *its)
+{
+  TaoSMALXE     *s = Get(tao);
+  const PetscInt k = (PetscInt)s->mult_history.size() - 1, gap = PetscMax(1, s->stagnation_its / 2);
+  PetscInt       j = -1;
+
+  PetscFunctionBegin;
+  *its = 0;
+  for (int i = 1; i >= 0 && j < 0; i--)
+    if (s->growth_k[i] >= 0 && k - s->growth_k[i] >= gap) j = i;
+  if (j < 0) {
+    PetscCall(VecSet(w, 0.0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  *its = k - s->growth_k[j];
+  if (s->projector) PetscCall(VecWAXPY(w, -1.0, s->growth_snap[j], s->nu));
+  else {
+    Vec dm;
+    PetscCall(VecDuplicate(s->mu, &dm));
+    PetscCall(VecWAXPY(dm, -1.0, s->growth_snap[j], s->mu));
+    PetscCall(MatMultTranspose(s->C, dm, w));
+    PetscCall(VecDestroy(&dm));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode GetOuterTolerances_SMALXE(Tao tao, PetscReal *tol_g, PetscReal *tol_e)
 {
   PetscReal g, e;
@@ -2002,6 +2056,7 @@ PETSC_INTERN PetscErrorCode TaoCreate_SMALXE(Tao tao)
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetPreSolve_C", SetPreSolve_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetEqualityMultiplier_C", GetEqualityMultiplier_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetFeasibility_C", GetFeasibility_SMALXE));
+  PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetMultiplierGrowth_C", GetMultiplierGrowth_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetOuterTolerances_C", GetOuterTolerances_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXESetConsistencyCheck_C", SetConsistencyCheck_SMALXE));
   PetscCall(PetscObjectComposeFunction((PetscObject)tao, "TaoSMALXEGetStagnated_C", GetStagnated_SMALXE));

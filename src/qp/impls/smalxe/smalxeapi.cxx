@@ -217,6 +217,42 @@ PetscErrorCode TaoSMALXEGetFeasibility(Tao tao, PetscReal *e)
 }
 
 /*@C
+  TaoSMALXEGetMultiplierGrowth - How the multiplier of C x = d grew over the last outer iterations, C'(mu_k - mu_j):
+  where the loop stagnates because C x = d cannot be met over the set, the direction in which it cannot.
+
+  Collective
+
+  Input Parameter:
+. tao - the solver, after a solve
+
+  Output Parameters:
++ w   - vector of the solution's layout: C'(mu_k - mu_j), with k the last outer iteration and j the latest multiple
+        of -tao_smalxe_stagnation_its at least half of it before k (0 when there is none)
+- its - k - j, the outer iterations the growth spans (0: no such j, a loop shorter than that or the test off)
+
+  Notes:
+  An equality that cannot be met makes the multiplier grow without bound, by about the same step in every outer
+  iteration: by Farkas' lemma, along a direction y with C'y pointing out of the set (every x of the set has
+  y'(C x - d) < 0). Its growth over many outer iterations, unlike the multiplier itself, is free of the part that
+  converges. In FETI terms (w = G'mu) it gives the rigid-body motion that the load drives and the constraints do not
+  stop (`FETIComputeAlphaFromEquality()`). Two copies of the multiplier are kept, taken only when the loop reaches
+  -tao_smalxe_stagnation_its outer iterations.
+
+  Level: advanced
+
+.seealso: `TAOSMALXE`, `TaoSMALXEGetStagnated()`, `TaoSMALXEGetEqualityMultiplier()`
+@*/
+PetscErrorCode TaoSMALXEGetMultiplierGrowth(Tao tao, Vec w, PetscInt *its)
+{
+  PetscFunctionBegin;
+  PetscValidHeaderSpecific(tao, TAO_CLASSID, 1);
+  PetscValidHeaderSpecific(w, VEC_CLASSID, 2);
+  PetscValidIntPointer(its, 3);
+  PetscUseMethod(tao, "TaoSMALXEGetMultiplierGrowth_C", (Tao, Vec, PetscInt *), (tao, w, its));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/*@C
   TaoSMALXEGetOuterTolerances - The absolute tolerances the outer loop stops on in the current (or last) solve:
   |gP| <= tol_g and |C x - d| <= tol_e.
 
