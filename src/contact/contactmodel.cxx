@@ -965,10 +965,13 @@ PetscErrorCode CorrectNoEquilibrium(ContactModel cm)
        load drives the bodies; the sentence gets it when it is a rigid motion the load works along */
     const char *lead = "; the multiplier grows along a rigid motion: ";
     std::string motion;
-    size_t      len;
+    size_t      len, room = 0;
     PetscCall(PetscStrlen(d.stats.reason, &len));
-    const size_t room = sizeof(d.stats.reason) - 1 - len - std::strlen(lead);
-    if (len + std::strlen(lead) + 80 < sizeof(d.stats.reason)) PetscCall(ContactDescribeStagnatedMotion_Private(cm, d.fem, d.feti, tao, d.alpha, d.u, room, motion));
+    /* room for the phrase, or for its short form (about 100 characters) */
+    if (len + std::strlen(lead) + 120 < sizeof(d.stats.reason)) {
+      room = sizeof(d.stats.reason) - 1 - len - std::strlen(lead);
+      PetscCall(ContactDescribeStagnatedMotion_Private(cm, d.fem, d.feti, tao, d.alpha, d.u, room, motion));
+    }
     if (!motion.empty() && motion.size() <= room) {
       const std::string whole = d.stats.reason + std::string(lead) + motion;
       PetscCall(PetscStrncpy(d.stats.reason, whole.c_str(), sizeof(d.stats.reason)));

@@ -27,6 +27,8 @@ constexpr PetscReal kWorkTol = 1e-9;
 constexpr PetscReal kClean = 1e-9;
 /* and below this in a motion found from a multiplier's growth over a few dozen outer iterations */
 constexpr PetscReal kNoise = 5e-2;
+/* a turn about an axis farther than 1/kFarAxis body radii from the body is told as a slide */
+constexpr PetscReal kFarAxis = 0.2;
 
 struct BodyFrame {
   PetscInt         nnodes = 0, offset = 0;
@@ -153,17 +155,19 @@ struct Checker {
     const std::vector<PetscInt> bodies = Bodies(v);
     std::vector<Motion>         ms;
     for (PetscInt b : bodies) ms.push_back(MakeMotion(frames[b], &v[6 * b]));
-    if (numeric) /* points on a grid of about a hundredth of the body's size */
+    if (numeric) /* points on a grid of a power of ten, at least a hundredth of the body's size */
       for (size_t i = 0; i < ms.size(); i++)
         if (ms[i].turn) {
-          const PetscReal grid = std::pow(10.0, std::floor(std::log10(1e-2 * frames[bodies[i]].L)));
+          const PetscReal grid = std::pow(10.0, std::ceil(std::log10(1e-2 * frames[bodies[i]].L)));
           for (PetscReal &p : ms[i].point) p = grid * std::round(p / grid) + 0.0;
         }
     const int digits = numeric ? 3 : 6;
     *first           = ms[0];
     PetscBool same   = PETSC_TRUE;
     for (size_t i = 1; i < ms.size(); i++) same = (same && SameMotion(ms[0], frames[bodies[0]], ms[i], frames[bodies[i]], numeric ? 5e-2 : 1e-6)) ? PETSC_TRUE : PETSC_FALSE;
-    who = BodyList(bodies) + (bodies.size() > 1 ? " together" : "");
+    /* "together": one motion, or (at setup) one free motion that needs them all; bodies that a multiplier's growth
+       moves each its own way are not together */
+    who = BodyList(bodies) + (bodies.size() > 1 && (same || !numeric) ? " together" : "");
     if (same) how = Describe(ms[0], digits);
     else {
       how = "move (";
@@ -362,9 +366,11 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
    R alpha; fitted per body by a rigid motion, it must be one (a body's subdomains move together: the gluing rows
    are equalities, so their multipliers' growth cannot pull the subdomains apart) and the load must work along it,
    else the phrase stays empty and the solver's sentence goes without it. The growth comes from a finite number of
-   outer iterations, so the motion is rounded: parts below 1e-3 of a body's largest coordinate, and bodies below
-   1e-2 of the largest, are dropped, and points have 3 digits. A phrase longer than maxlen (several bodies that move
-   apart) only names the bodies; -info gives it whole. */
+   outer iterations, so the motion is rounded: bodies below 1e-2 of the largest motion are dropped, and so are the
+   parts of the axis (or of a slide's direction) and the slide along the axis below kNoise; a turn about an axis
+   farther than 5 body radii is a slide; points lie on a grid (a power of ten, at least a hundredth of the body's
+   size) and have 3 digits. A phrase longer than maxlen (several bodies that move apart) only names the bodies;
+   -info gives it whole. */
 PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, FETI feti, Tao tao, Vec alpha, Vec u, size_t maxlen, std::string &phrase)
 {
   MPI_Comm               comm = PetscObjectComm((PetscObject)cm);
@@ -385,6 +391,7 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(VecDuplicate(alpha, &x));
+  PetscCall(VecSet(x, 0.0));
   PetscCall(FETIComputeAlphaFromEquality(feti, w, x));
   PetscCall(VecDestroy(&w));
   PetscCall(FETIGetKernel(feti, &R));
@@ -434,7 +441,7 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
 
   /* solve each 6 x 6 system (SPD for a body with three nodes off a line) by Cholesky; a body that the growth does
      not move rigidly (a residual above a tenth of the largest body's |u|) makes the motion no rigid one: no phrase */
-  std::vector<PetscReal> v((size_t)6 * nb, 0.0);
+  std::vector<PetscReal> v((size_t)6 * nb, 0.0), misfit(nb, 0.0); /* misfit: |u - R v|^2 / |u|^2 of each body */
   PetscReal              umax = 0;
   for (PetscInt b = 0; b < nb; b++) umax = PetscMax(umax, sums[(size_t)b * 43 + 42]);
   for (PetscInt b = 0; b < nb; b++) {
@@ -466,8 +473,9 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
     }
     PetscReal fitted = 0; /* |R v|^2 = v'rhs at the least-squares v; the residual is |u|^2 - that */
     for (int i = 0; i < 6; i++) fitted += vb[i] * S[36 + i];
-    PetscCall(PetscInfo(cm, "body %" PetscInt_FMT ": the multiplier's growth over %" PetscInt_FMT " outer iterations moves it by a rigid motion up to %g of the largest body's displacement\n", b, its,
-                        (double)PetscSqrtReal(PetscMax(S[42] - fitted, 0) / umax)));
+    misfit[b] = PetscMax(S[42] - fitted, 0) / S[42];
+    PetscCall(PetscInfo(cm, "body %" PetscInt_FMT ": a rigid fit of the multiplier's growth over %" PetscInt_FMT " outer iterations leaves %g of the largest body's displacement (%g of its own)\n", b,
+                        its, (double)PetscSqrtReal(misfit[b] * S[42] / umax), (double)PetscSqrtReal(misfit[b])));
     if (S[42] - fitted > 1e-2 * umax) PetscFunctionReturn(PETSC_SUCCESS);
   }
   /* drop the growth's noise: bodies that hardly move, a turn too slow to matter beside the slide, the parts of the
@@ -482,8 +490,12 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
       for (int q = 0; q < 6; q++) v[6 * b + q] = 0;
       continue;
     }
-    const PetscReal nt = Norm3(t), nw = Norm3(w); /* w is turn times L: comparable with t */
-    if (nw < kNoise * nt) w[0] = w[1] = w[2] = 0;
+    if (misfit[b] > 1e-2) { /* a body the phrase would name must move rigidly itself, within a tenth */
+      PetscCall(PetscInfo(cm, "body %" PetscInt_FMT " moves, but not rigidly\n", b));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    const PetscReal nt = Norm3(t), nw = Norm3(w); /* w is turn times L: comparable with t; nt / nw is the axis' distance in radii */
+    if (nw < kFarAxis * nt) w[0] = w[1] = w[2] = 0;
     PetscReal *dir = Norm3(w) > 0 ? w : t, nd = Norm3(dir);
     for (int k = 0; k < 3; k++)
       if (std::fabs(dir[k]) < kNoise * nd) dir[k] = 0;

@@ -120,9 +120,9 @@ struct TaoSMALXE {
   std::vector<PetscReal> gp_history;                 /* |gP| per outer iteration */
   PetscInt               stagnation_its = 30;
   PetscBool              stagnated      = PETSC_FALSE;
-  /* the multiplier (nu, or mu in the general form) at the two last outer iterations that are multiples of stagnation_its,
-     newest second: where the loop stagnates, its growth since then is the direction in which C x = d cannot be met
-     (TaoSMALXEGetMultiplierGrowth()) */
+  /* the multiplier (nu, or mu in the general form) at the two last outer iterations k > 0 that are multiples of
+     stagnation_its / 2, newest second: where the loop stagnates, its growth since the older one is the direction in
+     which C x = d cannot be met (TaoSMALXEGetMultiplierGrowth()) */
   Vec       growth_snap[2] = {nullptr, nullptr};
   PetscInt  growth_k[2]    = {-1, -1};
   PetscBool stalled        = PETSC_FALSE; /* |Cx - d| made no progress while the multiplier settled */
@@ -448,14 +448,19 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
    undoes the warm start: a sequence of nearby problems (the Tresca solves of successive
    approximations, load steps) then pays the whole outer loop each time. Called before the histories are
    cleared: mult_history.back() is |multiplier| at the end of the previous solve (none: no solve yet). */
-/* Keep the multiplier of outer iteration k when k is a multiple of stagnation_its, in the older slot's vector (two
-   copies at most, made only in loops that long) */
+/* The spacing of the multiplier's snapshots: half the stagnation window, so that the growth spans h to 2h outer
+   iterations when the window ends (and does not reach back to the start, whose multiplier still holds most of the
+   part that converges) */
+PetscInt GrowthSpacing(const TaoSMALXE *s) { return PetscMax(1, s->stagnation_its / 2); }
+
+/* Keep the multiplier of outer iteration k > 0 when k is a multiple of GrowthSpacing(), in the older slot's vector
+   (two copies at most, made only in loops that long) */
 PetscErrorCode SnapshotMultiplier(TaoSMALXE *s, PetscInt k)
 {
   Vec mult = s->projector ? s->nu : s->mu;
 
   PetscFunctionBegin;
-  if (s->stagnation_its <= 0 || k % s->stagnation_its) PetscFunctionReturn(PETSC_SUCCESS);
+  if (s->stagnation_its <= 0 || k == 0 || k % GrowthSpacing(s)) PetscFunctionReturn(PETSC_SUCCESS);
   std::swap(s->growth_snap[0], s->growth_snap[1]);
   std::swap(s->growth_k[0], s->growth_k[1]);
   if (!s->growth_snap[1]) PetscCall(VecDuplicate(mult, &s->growth_snap[1]));
@@ -1860,11 +1865,12 @@ PetscErrorCode GetFeasibility_SMALXE(Tao tao, PetscReal *e)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* C'(mu_k - mu_j) over the last j <= k - max(1, stagnation_its / 2) with a snapshot: how the multiplier grew lately */
+/* C'(mu_k - mu_j) over the last j <= k - GrowthSpacing() with a snapshot (h to 2h outer iterations): how the multiplier
+   grew lately */
 PetscErrorCode GetMultiplierGrowth_SMALXE(Tao tao, Vec w, PetscInt *its)
 {
   TaoSMALXE     *s = Get(tao);
-  const PetscInt k = (PetscInt)s->mult_history.size() - 1, gap = PetscMax(1, s->stagnation_its / 2);
+  const PetscInt k = (PetscInt)s->mult_history.size() - 1, gap = GrowthSpacing(s);
   PetscInt       j = -1;
 
   PetscFunctionBegin;

@@ -226,17 +226,19 @@ PetscErrorCode TaoSMALXEGetFeasibility(Tao tao, PetscReal *e)
 . tao - the solver, after a solve
 
   Output Parameters:
-+ w   - vector of the solution's layout: C'(mu_k - mu_j), with k the last outer iteration and j the latest multiple
-        of -tao_smalxe_stagnation_its at least half of it before k (0 when there is none)
-- its - k - j, the outer iterations the growth spans (0: no such j, a loop shorter than that or the test off)
++ w   - vector of the solution's layout: C'(mu_k - mu_j), with k the last outer iteration and j the latest outer
+        iteration j > 0, a multiple of h = -tao_smalxe_stagnation_its / 2 (at least 1), with k - j >= h; the zero vector
+        when the solve had no such j
+- its - k - j, the outer iterations the growth spans (h to 2h - 1), or 0 when the solve had no such j (fewer than
+        2h outer iterations, or -tao_smalxe_stagnation_its 0)
 
   Notes:
   An equality that cannot be met makes the multiplier grow without bound, by about the same step in every outer
   iteration: by Farkas' lemma, along a direction y with C'y pointing out of the set (every x of the set has
-  y'(C x - d) < 0). Its growth over many outer iterations, unlike the multiplier itself, is free of the part that
-  converges. In FETI terms (w = G'mu) it gives the rigid-body motion that the load drives and the constraints do not
-  stop (`FETIComputeAlphaFromEquality()`). Two copies of the multiplier are kept, taken only when the loop reaches
-  -tao_smalxe_stagnation_its outer iterations.
+  y'(C x - d) < 0). Its growth over the last outer iterations is nearly free of the part that converges, unlike the
+  multiplier itself (or its growth since the start). In FETI terms (w = G'mu) it gives the rigid-body motion that the
+  load drives and the constraints do not stop (`FETIComputeAlphaFromEquality()`). Two copies of the multiplier are
+  kept, made only in solves of at least h outer iterations.
 
   Level: advanced
 
@@ -386,7 +388,7 @@ PetscErrorCode TaoSMALXEGetInnerLimited(Tao tao, PetscInt *block)
 
   Level: intermediate
 
-.seealso: `TAOSMALXE`, `TaoSMALXEGetFeasibility()`
+.seealso: `TAOSMALXE`, `TaoSMALXEGetFeasibility()`, `TaoSMALXEGetMultiplierGrowth()`
 @*/
 PetscErrorCode TaoSMALXEGetStagnated(Tao tao, PetscBool *flag)
 {
