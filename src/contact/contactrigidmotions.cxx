@@ -15,6 +15,7 @@
    direction only: a body pulled off its support has a resisted but unbalanced motion, which the solver
    diagnoses (no equilibrium, contactsolve.cxx). */
 #include <conefeti/private/contactimpl.h>
+#include <petscblaslapack.h>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -373,12 +374,15 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
    -info gives it whole. */
 PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, FETI feti, Tao tao, Vec alpha, Vec u, size_t maxlen, std::string &phrase)
 {
-  MPI_Comm               comm = PetscObjectComm((PetscObject)cm);
-  Vec                    w, x, up, ug, X;
-  Mat                    R;
-  PetscInt               its, nb, lo, hi;
-  std::vector<BodyFrame> frames;
-  const PetscScalar     *ua, *xa;
+  MPI_Comm           comm = PetscObjectComm((PetscObject)cm);
+  Vec                w, x, up, ug, X;
+  Mat                R;
+  PetscInt           its, nb, lo, hi;
+  const PetscScalar *ua, *xa;
+  /* the setup check's phrasing, without zones or holding rows (nothing here says why a motion is free) */
+  const std::vector<ContactZone>   none;
+  const std::vector<FEMHoldingRow> norows;
+  Checker                          ck{fem, none, norows, {}, {}};
 
   PetscFunctionBegin;
   phrase.clear();
@@ -405,17 +409,16 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
 
   /* per body the normal equations of the fit u(x) ~ sum_q v_q r_q(x), r_q the body's 6 motions (translations e_q,
      turns e_q x (x - c) / L), and |u|^2 for the fit's residual: summed over the owned nodes, then over the ranks */
-  PetscCall(GetFrames(fem, frames));
-  nb = (PetscInt)frames.size();
+  PetscCall(GetFrames(fem, ck.frames));
+  const std::vector<BodyFrame> &frames = ck.frames;
+  nb                                   = (PetscInt)frames.size();
   std::vector<PetscReal> sums((size_t)nb * 43, 0.0); /* per body: N (36), rhs (6), |u|^2 */
   PetscCall(VecGetOwnershipRange(ug, &lo, &hi));
   PetscCall(VecGetArrayRead(ug, &ua));
   PetscCall(VecGetArrayRead(X, &xa));
   for (PetscInt i = 0; i < (hi - lo) / 3; i++) {
-    const PetscInt node = lo / 3 + i;
-    PetscInt       b    = 0;
-    while (b < nb && !(node >= frames[b].offset && node < frames[b].offset + frames[b].nnodes)) b++;
-    if (b == nb) continue;
+    const PetscInt b = ck.BodyOfNode(lo / 3 + i);
+    if (b < 0) continue;
     const BodyFrame &f = frames[b];
     PetscReal        r[6][3], y[3];
     for (int k = 0; k < 3; k++) y[k] = (PetscRealPart(xa[3 * i + k]) - f.c[k]) / f.L;
@@ -439,38 +442,28 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
   PetscCall(VecDestroy(&ug));
   PetscCallMPI(MPIU_Allreduce(MPI_IN_PLACE, sums.data(), (PetscMPIInt)sums.size(), MPIU_REAL, MPIU_SUM, comm));
 
-  /* solve each 6 x 6 system (SPD for a body with three nodes off a line) by Cholesky; a body that the growth does
-     not move rigidly (a residual above a tenth of the largest body's |u|) makes the motion no rigid one: no phrase */
+  /* solve each 6 x 6 system (SPD for a body with three nodes off a line; a pivot below 1e-12 of the first counts as
+     singular) by LAPACK's Cholesky; a body that the growth does not move rigidly (a residual above a tenth of the
+     largest body's |u|) makes the motion no rigid one: no phrase */
   std::vector<PetscReal> v((size_t)6 * nb, 0.0), misfit(nb, 0.0); /* misfit: |u - R v|^2 / |u|^2 of each body */
   PetscReal              umax = 0;
   for (PetscInt b = 0; b < nb; b++) umax = PetscMax(umax, sums[(size_t)b * 43 + 42]);
   for (PetscInt b = 0; b < nb; b++) {
-    PetscReal *S = &sums[(size_t)b * 43], Lc[6][6] = {{0}}, z[6], *vb = &v[(size_t)6 * b];
+    PetscReal   *S = &sums[(size_t)b * 43], *vb = &v[(size_t)6 * b];
+    PetscScalar  N[36], rhs[6];
+    PetscBLASInt six = 6, one = 1, info;
     if (!(S[42] > 0)) continue;
-    bool spd = true;
-    for (int i = 0; i < 6 && spd; i++)
-      for (int j = 0; j <= i; j++) {
-        PetscReal t = S[6 * i + j];
-        for (int k = 0; k < j; k++) t -= Lc[i][k] * Lc[j][k];
-        if (i == j) {
-          if (!(t > 1e-12 * S[0])) spd = false;
-          else Lc[i][i] = PetscSqrtReal(t);
-        } else Lc[i][j] = t / Lc[j][j];
-      }
+    for (int q = 0; q < 36; q++) N[q] = S[q];
+    for (int q = 0; q < 6; q++) rhs[q] = S[36 + q];
+    PetscCallBLAS("LAPACKpotrf", LAPACKpotrf_("L", &six, N, &six, &info));
+    bool spd = info == 0;
+    for (int q = 0; q < 6 && spd; q++) spd = PetscSqr(PetscRealPart(N[7 * q])) > 1e-12 * S[0];
     if (!spd) {
       PetscCall(PetscInfo(cm, "body %" PetscInt_FMT ": its nodes do not determine a rigid motion\n", b));
       PetscFunctionReturn(PETSC_SUCCESS);
     }
-    for (int i = 0; i < 6; i++) {
-      z[i] = S[36 + i];
-      for (int k = 0; k < i; k++) z[i] -= Lc[i][k] * z[k];
-      z[i] /= Lc[i][i];
-    }
-    for (int i = 5; i >= 0; i--) {
-      vb[i] = z[i];
-      for (int k = i + 1; k < 6; k++) vb[i] -= Lc[k][i] * vb[k];
-      vb[i] /= Lc[i][i];
-    }
+    PetscCallBLAS("LAPACKpotrs", LAPACKpotrs_("L", &six, &one, N, &six, rhs, &six, &info));
+    for (int q = 0; q < 6; q++) vb[q] = PetscRealPart(rhs[q]);
     PetscReal fitted = 0; /* |R v|^2 = v'rhs at the least-squares v; the residual is |u|^2 - that */
     for (int i = 0; i < 6; i++) fitted += vb[i] * S[36 + i];
     misfit[b] = PetscMax(S[42] - fitted, 0) / S[42];
@@ -518,12 +511,9 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  const std::vector<ContactZone>   none;
-  const std::vector<FEMHoldingRow> norows;
-  Checker                          ck{fem, none, norows, frames, {}};
-  std::string                      who, how;
-  Motion                           m;
-  char                             amount[96];
+  std::string who, how;
+  Motion      m;
+  char        amount[96];
   ck.Phrase(v, who, how, &m, PETSC_TRUE);
   work /= m.turn ? Norm3(m.w) : Norm3(m.t);
   if (how.rfind("move (", 0) == 0) std::snprintf(amount, sizeof(amount), "the load works along it"); /* bodies that move apart: no one axis */

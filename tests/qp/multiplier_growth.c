@@ -4,6 +4,7 @@
    (h = half the stagnation window). A second solve stopped after 5 outer iterations has no such span: its 0, w = 0.
    -projector uses the projector form (Q = C'C, C with one unit row). Prints one RESULT line per solve. */
 #include <conefeti.h>
+#include "quadratic.h"
 
 static PetscErrorCode Report(Tao tao, Vec w, PetscInt solve)
 {
@@ -39,15 +40,8 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-projector", &projector, NULL));
-  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 1, NULL, &A));
+  PetscCall(CreateTridiagonal(PETSC_COMM_WORLD, n, 2.0, &A));
   PetscCall(MatGetOwnershipRange(A, &rs, &re));
-  for (PetscInt i = rs; i < re; i++) {
-    if (i > 0) PetscCall(MatSetValue(A, i, i - 1, -1.0, INSERT_VALUES));
-    if (i < n - 1) PetscCall(MatSetValue(A, i, i + 1, -1.0, INSERT_VALUES));
-    PetscCall(MatSetValue(A, i, i, 2.0, INSERT_VALUES));
-  }
-  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreateVecs(A, &x, &b));
   PetscCall(VecDuplicate(x, &lb));
   PetscCall(VecDuplicate(x, &w));

@@ -1,6 +1,7 @@
 /* smalxe with TaoSMALXESetBlocks and a user SeparableSet: a lower bound changed in place between two
    solves reaches the blocks (their sets are copies of parts of the set, made again when it changed) */
 #include <conefeti.h>
+#include "quadratic.h"
 int main(int argc, char **argv)
 {
   Mat          A, C;
@@ -11,15 +12,8 @@ int main(int argc, char **argv)
   PetscInt     n = 40, rs, re;
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(ConeFETIInitializePackage());
-  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 1, NULL, &A));
+  PetscCall(CreateTridiagonal(PETSC_COMM_WORLD, n, 2.0, &A));
   PetscCall(MatGetOwnershipRange(A, &rs, &re));
-  for (PetscInt i = rs; i < re; i++) {
-    if (i > 0) PetscCall(MatSetValue(A, i, i - 1, -1.0, INSERT_VALUES));
-    if (i < n - 1) PetscCall(MatSetValue(A, i, i + 1, -1.0, INSERT_VALUES));
-    PetscCall(MatSetValue(A, i, i, 2.0, INSERT_VALUES));
-  }
-  PetscCall(MatAssemblyBegin(A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreateVecs(A, &x, &b));
   PetscCall(VecDuplicate(x, &lb));
   PetscCall(VecSet(b, -1.0));

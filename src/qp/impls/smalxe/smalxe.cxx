@@ -442,12 +442,6 @@ PetscErrorCode UpdateMultiplier(TaoSMALXE *s, PetscInt k, PetscReal e)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-/* With TaoSetRecycleHistory() a solve starts from the multiplier of the previous one (the iterate is
-   the user's warm start anyway). Without it, the multiplier starts at 0 and the first inner solve drives
-   a warm-started iterate back to the solution of the problem without the equality's forces, which
-   undoes the warm start: a sequence of nearby problems (the Tresca solves of successive
-   approximations, load steps) then pays the whole outer loop each time. Called before the histories are
-   cleared: mult_history.back() is |multiplier| at the end of the previous solve (none: no solve yet). */
 /* The spacing of the multiplier's snapshots: half the stagnation window, so that the growth spans h to 2h outer
    iterations when the window ends (and does not reach back to the start, whose multiplier still holds most of the
    part that converges) */
@@ -469,6 +463,12 @@ PetscErrorCode SnapshotMultiplier(TaoSMALXE *s, PetscInt k)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* With TaoSetRecycleHistory() a solve starts from the multiplier of the previous one (the iterate is
+   the user's warm start anyway). Without it, the multiplier starts at 0 and the first inner solve drives
+   a warm-started iterate back to the solution of the problem without the equality's forces, which
+   undoes the warm start: a sequence of nearby problems (the Tresca solves of successive
+   approximations, load steps) then pays the whole outer loop each time. Called before the histories are
+   cleared: mult_history.back() is |multiplier| at the end of the previous solve (none: no solve yet). */
 bool RecycleMultiplier(Tao tao, TaoSMALXE *s) { return tao->recycle && !s->mult_history.empty() && !PetscIsInfOrNanReal(s->mult_history.back()); }
 
 /* |Cx - d| is measured against ||C|| |b| over ||H|| at the default penalty (rho = ||A|| / ||C||^2, so ||H|| is
