@@ -687,7 +687,7 @@ def main():
     t0 = time.time()
     passed = failed = 0
     classes = {}
-    suspects = 0
+    suspects = motions = proofs = 0
     groups = {}  # failure signature -> scene indices
     i = a.first
     while count is None or i < a.first + count:
@@ -715,6 +715,12 @@ def main():
             cls, detail = classify(rc, out, parse_json(out), scene, a.accept_factor, drawn)
         classes[cls] = classes.get(cls, 0) + 1
         suspects += detail.startswith("SUSPECT")
+        # a stagnated solve's sentence names the motion the load drives, and says when that motion proves that no
+        # equilibrium exists (src/contact/contactrigidmotions.cxx); counted, since the log cuts the sentence short
+        verdict = re.search(r"^NOT CONVERGED:.*$", out or "", re.MULTILINE)
+        if verdict and "the multiplier grows along a rigid motion" in verdict.group(0):
+            motions += 1
+            proofs += "which proves it" in verdict.group(0)
         print(f"[{i}] np{scene['ranks']} {shown_scene}: {cls} ({dt:.1f} s) {detail}", flush=True)
         if cls.startswith("FAIL"):
             failed += 1
@@ -729,6 +735,8 @@ def main():
     if a.dry_run:
         return 0
     print("classes: " + ", ".join(f"{k} {v}" for k, v in sorted(classes.items())) + (f" ({suspects} SUSPECT)" if suspects else "") + f"; seed {a.seed}, {time.time() - t0:.0f} s")
+    if motions:
+        print(f"no equilibrium: {motions} sentences name the motion the load drives, {proofs} of them prove it")
     for sig, idx in sorted(groups.items(), key=lambda kv: -len(kv[1])):
         print(f"  {len(idx):3d} x {sig}: scenes {' '.join(map(str, idx))}")
     print(f"{passed} passed, {failed} failed")

@@ -943,7 +943,8 @@ PetscErrorCode WithoutLoad(ContactModel cm, PetscBool *none)
    (FEMComputeFreeRigidMotions() without contact rows finds no free motion), G l = e is met by the gluing and support
    forces with no contact force at all, so an equilibrium exists and the stagnation is the solver's (with Coulomb
    friction: radii F l_n that lock the loop, e.g. F = 10 on the paper's brick with the merged algorithm). The
-   reason then says that instead of a false statement about the mechanics. Computed only after such a verdict. */
+   reason then says that instead of a false statement about the mechanics. Otherwise it names the motion the load
+   drives, and says when that motion proves the claim (contactrigidmotions.cxx). Computed only after such a verdict. */
 PetscErrorCode CorrectNoEquilibrium(ContactModel cm)
 {
   ContactModelData &d = *cm->data;
@@ -964,16 +965,35 @@ PetscErrorCode CorrectNoEquilibrium(ContactModel cm)
     /* only contact holds some body: the claim may be true, and the growth of the multiplier says along which motion the
        load drives the bodies; the sentence gets it when it is a rigid motion the load works along */
     const char *lead = "; the multiplier grows along a rigid motion: ";
-    std::string motion;
+    std::string motion, proof;
     size_t      len, room = 0;
     PetscCall(PetscStrlen(d.stats.reason, &len));
     /* room for the phrase, or for its short form (about 100 characters) */
     if (len + std::strlen(lead) + 120 < sizeof(d.stats.reason)) {
       room = sizeof(d.stats.reason) - 1 - len - std::strlen(lead);
-      PetscCall(ContactDescribeStagnatedMotion_Private(cm, d.fem, d.feti, tao, d.alpha, d.u, room, motion));
+      PetscCall(ContactDescribeStagnatedMotion_Private(cm, d.fem, d.feti, tao, d.alpha, d.u, room, motion, proof));
     }
     if (!motion.empty() && motion.size() <= room) {
-      const std::string whole = d.stats.reason + std::string(lead) + motion;
+      std::string reason = d.stats.reason;
+      if (!proof.empty()) {
+        /* the motion proves that there is no equilibrium: the Coulomb sentence loses the other cause it gives (radii
+           that lock the loop), and every sentence says why */
+        const char *found = "no equilibrium found: ";
+        if (reason.rfind(found, 0) == 0) {
+          PetscReal feasibility;
+          char      proven[160];
+          PetscCall(TaoSMALXEGetFeasibility(tao, &feasibility));
+          PetscCall(
+              PetscSNPrintf(proven, sizeof(proven), "no equilibrium: |G l - e| stagnates at %.3g while the multiplier grows; the loads exceed what supports and friction carry", (double)feasibility));
+          reason = proven;
+        }
+        const std::string longer = reason + lead + motion + ", which proves it: " + proof;
+        if (longer.size() >= sizeof(d.stats.reason)) { /* no room: the sentence as the solver gave it, with the motion */
+          reason = d.stats.reason;
+          proof.clear();
+        }
+      }
+      const std::string whole = reason + lead + motion + (proof.empty() ? "" : ", which proves it: " + proof);
       PetscCall(PetscStrncpy(d.stats.reason, whole.c_str(), sizeof(d.stats.reason)));
     }
     PetscFunctionReturn(PETSC_SUCCESS);

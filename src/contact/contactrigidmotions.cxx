@@ -13,8 +13,9 @@
    force (friction coefficient or slip bound > 0). This file only tells the user which bodies move, how,
    why nothing holds them and whether the load works along the motion. Contact normal rows resist in one
    direction only: a body pulled off its support has a resisted but unbalanced motion, which the solver
-   diagnoses (no equilibrium, contactsolve.cxx). */
-#include <conefeti/private/contactimpl.h>
+   diagnoses (no equilibrium, contactsolve.cxx); for that verdict this file names the motion from the growth
+   of the equality's multiplier, and says whether it proves that no equilibrium exists. */
+#include <conefeti/private/contactmodelimpl.h>
 #include <petscblaslapack.h>
 #include <cmath>
 #include <cstdio>
@@ -91,6 +92,18 @@ Motion MakeMotion(const BodyFrame &f, const PetscReal v[6])
   return m;
 }
 
+/* The displacement of motion m at x: a slide's t, or a turn about the axis through m.point (as told: on its grid)
+   with the slide along it */
+void Displace(const Motion &m, const PetscReal x[3], PetscReal u[3])
+{
+  if (!m.turn) {
+    for (int i = 0; i < 3; i++) u[i] = m.t[i];
+    return;
+  }
+  const PetscReal y[3] = {x[0] - m.point[0], x[1] - m.point[1], x[2] - m.point[2]};
+  for (int i = 0; i < 3; i++) u[i] = m.pitch * m.w[i] + m.w[(i + 1) % 3] * y[(i + 2) % 3] - m.w[(i + 2) % 3] * y[(i + 1) % 3];
+}
+
 /* "slide along x", "turn about an axis through (0.5, 0.5, 0) along z" (a motion found numerically: 3 digits) */
 std::string Describe(const Motion &m, int digits = 6)
 {
@@ -150,8 +163,10 @@ struct Checker {
     return bodies;
   }
 
-  /* who moves ("body 0", "bodies 0 and 1 together") and how ("slide along x"), and the first moved body's motion */
-  void Phrase(const std::vector<PetscReal> &v, std::string &who, std::string &how, Motion *first, PetscBool numeric = PETSC_FALSE) const
+  /* who moves ("body 0", "bodies 0 and 1 together") and how ("slide along x"), and the first moved body's motion;
+     told, if asked: the bodies that move and each one's motion as the phrase tells it (numeric: its axis' point on
+     the grid) */
+  void Phrase(const std::vector<PetscReal> &v, std::string &who, std::string &how, Motion *first, PetscBool numeric = PETSC_FALSE, std::vector<std::pair<PetscInt, Motion>> *told = nullptr) const
   {
     const std::vector<PetscInt> bodies = Bodies(v);
     std::vector<Motion>         ms;
@@ -166,6 +181,9 @@ struct Checker {
     *first           = ms[0];
     PetscBool same   = PETSC_TRUE;
     for (size_t i = 1; i < ms.size(); i++) same = (same && SameMotion(ms[0], frames[bodies[0]], ms[i], frames[bodies[i]], numeric ? 5e-2 : 1e-6)) ? PETSC_TRUE : PETSC_FALSE;
+    /* bodies told to move together move by the first one's motion (a motion of space: Displace() needs no frame) */
+    if (told)
+      for (size_t i = 0; i < ms.size(); i++) told->emplace_back(bodies[i], same ? ms[0] : ms[i]);
     /* "together": one motion, or (at setup) one free motion that needs them all; bodies that a multiplier's growth
        moves each its own way are not together */
     who = BodyList(bodies) + (bodies.size() > 1 && (same || !numeric) ? " together" : "");
@@ -260,30 +278,14 @@ PetscErrorCode GetLoadWork(FEM fem, const std::vector<BodyFrame> &frames, std::v
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-} // namespace
-
-/* Stop with an error naming the body and the motion when a rigid motion of the bodies is resisted by no
-   Dirichlet condition and no contact row: no equilibrium when the load works along it, no unique
-   displacement otherwise (an engineer wants to be told, not handed one of infinitely many answers). */
-PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const std::vector<ContactZone> &zones, const std::vector<FEMHoldingRow> &rows)
+/* Every Dirichlet dof (global numbering) in ck.dirichlet, and which bodies have one */
+PetscErrorCode GatherDirichletDofs(FEM fem, Checker &ck)
 {
-  MPI_Comm        comm = PetscObjectComm((PetscObject)cm);
-  PetscInt        nb, ndir, k;
-  PetscReal      *free_motions;
   IS              is, all;
+  PetscInt        ndir;
   const PetscInt *idx;
-  Checker         ck{fem, zones, rows, {}, {}};
 
   PetscFunctionBegin;
-  PetscCall(FEMComputeFreeRigidMotions(fem, (PetscInt)rows.size(), rows.data(), &k, &free_motions));
-  if (!k) PetscFunctionReturn(PETSC_SUCCESS);
-  /* a free motion: what follows only words the error, so its cost (gathering the Dirichlet dofs again) is paid
-     on a run that stops */
-  PetscCall(FEMGetNumBodies(fem, &nb));
-  const PetscInt         n = 6 * nb;
-  std::vector<PetscReal> M(free_motions, free_motions + (size_t)k * n); /* the free motions in motion coordinates, in echelon form */
-  PetscCall(PetscFree(free_motions));
-  PetscCall(GetFrames(fem, ck.frames));
   PetscCall(FEMGetGlobalDirichletDofs(fem, &is));
   PetscCall(ISAllGather(is, &all));
   PetscCall(ISDestroy(&is));
@@ -296,6 +298,92 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
     const PetscInt b = ck.BodyOfNode(g / 3);
     if (b >= 0) ck.frames[b].dirichlet = PETSC_TRUE;
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+/* Whether the motion told (each moving body's rigid motion) proves that no equilibrium exists. An equilibrium
+   has contact forces l in the admissible set (l_n >= 0; Coulomb: |l_t| <= F l_n; Tresca: |l_t| <= s) with
+   G l = e, that is l'B R a = f'R a for every rigid motion R a of the subdomains: the contact forces would do
+   the load's work along the motion. So a motion that moves no support, and along which the admissible contact
+   forces can do at most D < the load's work (Farkas' lemma), rules out any equilibrium. Along a jump v of a
+   node's rows (v_n > 0 closes the gap), the most work of its admissible forces is 0 when v_n <= 0 and, for
+   Coulomb, v_n + F |v_t| <= 0 (otherwise unbounded: no proof), plus s |v_t| for Tresca. A friction polygon
+   (-contact_friction_polygon) is inscribed in its disk (contactpolygon.cxx), so the disk's bounds hold for it too.
+   The checks hold to 1e-8 of the motion's largest displacement, the told axis' point being rounded to its grid (a
+   node on the tipping edge moves by rounding only), and the load must outwork D by 1e-6 of the most it could do
+   (its magnitude times that displacement): a load through the edge has an equilibrium, and a moment of roundoff
+   about the rounded axis proves nothing. work: the load's along the motion told; resisted: D; violation: the
+   largest violation of a check, relative to the largest displacement (PETSC_MAX_REAL when nothing moves). */
+PetscBool ProvesNoEquilibrium(const Checker &ck, const ContactModelData &d, const std::vector<std::pair<PetscInt, Motion>> &told, const std::vector<PetscReal> &g, PetscReal magnitude, PetscReal *work,
+                              PetscReal *resisted, PetscReal *violation)
+{
+  std::vector<const Motion *> of(ck.frames.size(), nullptr);
+  PetscReal                   scale = 0, worst = 0; /* worst: the largest violation of a check, in displacement */
+  *work = *resisted = 0;
+  *violation        = PETSC_MAX_REAL;
+  for (const auto &bm : told) {
+    const BodyFrame &f = ck.frames[bm.first];
+    PetscReal        uc[3];
+    of[bm.first] = &bm.second;
+    Displace(bm.second, f.c, uc);
+    for (int q = 0; q < 3; q++) *work += g[6 * bm.first + q] * uc[q] + g[6 * bm.first + 3 + q] * f.L * (bm.second.turn ? bm.second.w[q] : 0);
+    scale = PetscMax(scale, Norm3(uc) + (bm.second.turn ? Norm3(bm.second.w) * f.L : 0));
+  }
+  if (!(scale > 0)) return PETSC_FALSE;
+  auto at = [&](PetscInt b, const PetscReal *x, PetscReal u[3]) {
+    u[0] = u[1] = u[2] = 0;
+    if (b >= 0 && of[b]) Displace(*of[b], x, u);
+  };
+  for (PetscInt gd : ck.dirichlet) { /* a support must not move */
+    const PetscInt b = ck.BodyOfNode(gd / 3);
+    PetscReal      u[3];
+    if (b < 0 || !of[b]) continue;
+    at(b, &ck.frames[b].X[3 * (gd / 3 - ck.frames[b].offset)], u);
+    worst = PetscMax(worst, std::fabs(u[gd % 3]));
+  }
+  /* the whole jump, also in components a row leaves out for the node's Dirichlet conditions: the supports' check
+     above makes the motion vanish there */
+  for (const ContactNodeInfo &k : d.nodes) {
+    PetscReal j[3], u[3];
+    at(k.body, &ck.frames[k.body].X[3 * k.node], j);
+    for (PetscInt v = 0; v < k.nmaster; v++) {
+      at(k.other_body, &ck.frames[k.other_body].X[3 * k.master[v]], u);
+      for (int q = 0; q < 3; q++) j[q] -= k.weight[v] * u[q];
+    }
+    const PetscReal vn = j[0] * k.n[0] + j[1] * k.n[1] + j[2] * k.n[2];
+    const PetscReal v1 = j[0] * k.t1[0] + j[1] * k.t1[1] + j[2] * k.t1[2], v2 = j[0] * k.t2[0] + j[1] * k.t2[1] + j[2] * k.t2[2], vt = PetscSqrtReal(v1 * v1 + v2 * v2);
+    worst = PetscMax(worst, vn);
+    if (k.law == CONTACT_FRICTIONLESS || !(k.coef > 0)) continue;
+    if (k.law == CONTACT_COULOMB) worst = PetscMax(worst, vn + k.coef * vt);
+    else *resisted += k.coef * vt;
+  }
+  *violation = worst / scale;
+  return *violation <= 1e-8 && *work - *resisted > 1e-6 * magnitude * scale ? PETSC_TRUE : PETSC_FALSE;
+}
+
+} // namespace
+
+/* Stop with an error naming the body and the motion when a rigid motion of the bodies is resisted by no
+   Dirichlet condition and no contact row: no equilibrium when the load works along it, no unique
+   displacement otherwise (an engineer wants to be told, not handed one of infinitely many answers). */
+PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const std::vector<ContactZone> &zones, const std::vector<FEMHoldingRow> &rows)
+{
+  MPI_Comm   comm = PetscObjectComm((PetscObject)cm);
+  PetscInt   nb, k;
+  PetscReal *free_motions;
+  Checker    ck{fem, zones, rows, {}, {}};
+
+  PetscFunctionBegin;
+  PetscCall(FEMComputeFreeRigidMotions(fem, (PetscInt)rows.size(), rows.data(), &k, &free_motions));
+  if (!k) PetscFunctionReturn(PETSC_SUCCESS);
+  /* a free motion: what follows only words the error, so its cost (gathering the Dirichlet dofs again) is paid
+     on a run that stops */
+  PetscCall(FEMGetNumBodies(fem, &nb));
+  const PetscInt         n = 6 * nb;
+  std::vector<PetscReal> M(free_motions, free_motions + (size_t)k * n); /* the free motions in motion coordinates, in echelon form */
+  PetscCall(PetscFree(free_motions));
+  PetscCall(GetFrames(fem, ck.frames));
+  PetscCall(GatherDirichletDofs(fem, ck));
 
   std::vector<PetscReal> g;
   PetscReal              magnitude;
@@ -371,8 +459,9 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
    parts of the axis (or of a slide's direction) and the slide along the axis below kNoise; a turn about an axis
    farther than 5 body radii is a slide; points lie on a grid (a power of ten, at least a hundredth of the body's
    size) and have 3 digits. A phrase longer than maxlen (several bodies that move apart) only names the bodies;
-   -info gives it whole. */
-PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, FETI feti, Tao tao, Vec alpha, Vec u, size_t maxlen, std::string &phrase)
+   -info gives it whole. proof: why the motion told proves that no equilibrium exists (ProvesNoEquilibrium()), or
+   empty. */
+PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, FETI feti, Tao tao, Vec alpha, Vec u, size_t maxlen, std::string &phrase, std::string &proof)
 {
   MPI_Comm           comm = PetscObjectComm((PetscObject)cm);
   Vec                w, x, up, ug, X;
@@ -386,6 +475,7 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
 
   PetscFunctionBegin;
   phrase.clear();
+  proof.clear();
   PetscCall(TaoGetSolution(tao, &x));
   PetscCall(VecDuplicate(x, &w));
   PetscCall(TaoSMALXEGetMultiplierGrowth(tao, w, &its));
@@ -511,14 +601,32 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  std::string who, how;
-  Motion      m;
-  char        amount[96];
-  ck.Phrase(v, who, how, &m, PETSC_TRUE);
-  work /= m.turn ? Norm3(m.w) : Norm3(m.t);
-  if (how.rfind("move (", 0) == 0) std::snprintf(amount, sizeof(amount), "the load works along it"); /* bodies that move apart: no one axis */
+  std::string                              who, how;
+  Motion                                   m;
+  char                                     amount[96];
+  std::vector<std::pair<PetscInt, Motion>> told;
+  PetscReal                                toldwork, bound, violation;
+  ck.Phrase(v, who, how, &m, PETSC_TRUE, &told);
+  const PetscReal unit  = m.turn ? Norm3(m.w) : Norm3(m.t);                       /* per unit of the motion: a force along a slide, a moment about a turn's axis */
+  const PetscBool apart = how.rfind("move (", 0) == 0 ? PETSC_TRUE : PETSC_FALSE; /* bodies that move apart: no one axis, no one number */
+  const char     *units = m.turn ? "N m" : "N";
+  /* the motion as told, checked against every contact node and support */
+  PetscCall(GatherDirichletDofs(fem, ck));
+  const PetscBool proves = ProvesNoEquilibrium(ck, *cm->data, told, g, magnitude, &toldwork, &bound, &violation);
+  PetscCall(PetscInfo(cm, "the motion told %s that no equilibrium exists: its largest violation of a check %g (of its largest displacement), the load's work along it %g, the slip bounds' most %g\n",
+                      proves ? "proves" : "does not prove", (double)violation, (double)(toldwork / unit), (double)(bound / unit)));
+  /* the load's work along the motion told (the one the proof compares), unless rounding made it no work */
+  work = (toldwork > 0 ? toldwork : work) / unit;
+  if (apart) std::snprintf(amount, sizeof(amount), "the load works along it");
   else if (m.turn) std::snprintf(amount, sizeof(amount), "the load's moment about that axis: %.3g N m", (double)work);
   else std::snprintf(amount, sizeof(amount), "the load along it: %.3g N", (double)work);
+  if (proves) {
+    char resist[128];
+    if (!(bound > 1e-8 * toldwork)) std::snprintf(resist, sizeof(resist), "no admissible contact force resists that motion");
+    else if (apart) std::snprintf(resist, sizeof(resist), "along that motion the slip bounds resist by less than the load works");
+    else std::snprintf(resist, sizeof(resist), "along that motion the slip bounds resist with at most %.3g %s", (double)(bound / unit), units);
+    proof = resist;
+  }
   phrase = who + " would " + how + " (" + amount + ")";
   PetscCall(PetscInfo(cm, "the multiplier's growth is a rigid motion: %s\n", phrase.c_str()));
   if (phrase.size() > maxlen) phrase = who + " would move (the load works along that motion; -info :contact gives each body's)";
