@@ -87,15 +87,8 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-vol2", &vol2, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-load", &load, NULL));
   PetscCall(PetscOptionsGetBool(NULL, NULL, "-resolve", &resolve, NULL));
-  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 1, NULL, &app.q.A));
+  PetscCall(CreateTridiagonal(PETSC_COMM_WORLD, n, 2.0, &app.q.A));
   PetscCall(MatGetOwnershipRange(app.q.A, &rs, &re));
-  for (PetscInt i = rs; i < re; i++) {
-    if (i > 0) PetscCall(MatSetValue(app.q.A, i, i - 1, -1.0, INSERT_VALUES));
-    if (i < n - 1) PetscCall(MatSetValue(app.q.A, i, i + 1, -1.0, INSERT_VALUES));
-    PetscCall(MatSetValue(app.q.A, i, i, 2.0, INSERT_VALUES));
-  }
-  PetscCall(MatAssemblyBegin(app.q.A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(app.q.A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreateVecs(app.q.A, &x, &app.q.b));
   PetscCall(VecDuplicate(x, &lb));
   PetscCall(VecDuplicate(x, &ub));

@@ -22,15 +22,8 @@ int main(int argc, char **argv)
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-shift", &shift, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-rhs", &rhs, NULL));
   PetscCall(PetscOptionsGetReal(NULL, NULL, "-bound", &bound, NULL));
-  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 1, NULL, &app.A));
+  PetscCall(CreateTridiagonal(PETSC_COMM_WORLD, n, 2.0 + shift, &app.A));
   PetscCall(MatGetOwnershipRange(app.A, &rstart, &rend));
-  for (PetscInt i = rstart; i < rend; i++) {
-    if (i > 0) PetscCall(MatSetValue(app.A, i, i - 1, -1.0, INSERT_VALUES));
-    if (i < n - 1) PetscCall(MatSetValue(app.A, i, i + 1, -1.0, INSERT_VALUES));
-    PetscCall(MatSetValue(app.A, i, i, 2.0 + shift, INSERT_VALUES));
-  }
-  PetscCall(MatAssemblyBegin(app.A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(app.A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatCreateVecs(app.A, &x, &app.b));
   PetscCall(VecDuplicate(x, &lb));
   PetscCall(VecDuplicate(x, &ub));

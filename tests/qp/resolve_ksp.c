@@ -5,22 +5,7 @@
    -case 3: KSPMPRGPSetBounds; then KSPSetOperators with a bigger matrix (new size) and solve
    -case 4: KSPMPRGPSetBounds before KSPSetType (type from options, default cg) */
 #include <conefeti.h>
-
-static PetscErrorCode Lap(PetscInt n, Mat *A)
-{
-  PetscInt rs, re;
-  PetscFunctionBeginUser;
-  PetscCall(MatCreateAIJ(PETSC_COMM_WORLD, PETSC_DECIDE, PETSC_DECIDE, n, n, 3, NULL, 1, NULL, A));
-  PetscCall(MatGetOwnershipRange(*A, &rs, &re));
-  for (PetscInt i = rs; i < re; i++) {
-    if (i > 0) PetscCall(MatSetValue(*A, i, i - 1, -1.0, INSERT_VALUES));
-    if (i < n - 1) PetscCall(MatSetValue(*A, i, i + 1, -1.0, INSERT_VALUES));
-    PetscCall(MatSetValue(*A, i, i, 2.0, INSERT_VALUES));
-  }
-  PetscCall(MatAssemblyBegin(*A, MAT_FINAL_ASSEMBLY));
-  PetscCall(MatAssemblyEnd(*A, MAT_FINAL_ASSEMBLY));
-  PetscFunctionReturn(0);
-}
+#include "quadratic.h"
 
 static PetscErrorCode Rep(KSP ksp, Vec x, Vec lb, const char *tag)
 {
@@ -50,7 +35,7 @@ int main(int argc, char **argv)
   PetscCall(PetscInitialize(&argc, &argv, NULL, NULL));
   PetscCall(ConeFETIInitializePackage());
   PetscCall(PetscOptionsGetInt(NULL, NULL, "-case", &c, NULL));
-  PetscCall(Lap(n, &A));
+  PetscCall(CreateTridiagonal(PETSC_COMM_WORLD, n, 2.0, &A));
   PetscCall(MatCreateVecs(A, &x, &b));
   PetscCall(VecDuplicate(x, &lb));
   PetscCall(VecSet(b, -0.01));
@@ -80,7 +65,7 @@ int main(int argc, char **argv)
   if (c == 3) {
     Mat A2;
     Vec x2, b2, lb2;
-    PetscCall(Lap(2 * n, &A2));
+    PetscCall(CreateTridiagonal(PETSC_COMM_WORLD, 2 * n, 2.0, &A2));
     PetscCall(MatCreateVecs(A2, &x2, &b2));
     PetscCall(VecDuplicate(x2, &lb2));
     PetscCall(VecSet(b2, -0.01));
