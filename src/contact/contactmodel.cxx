@@ -965,33 +965,35 @@ PetscErrorCode CorrectNoEquilibrium(ContactModel cm)
     /* only contact holds some body: the claim may be true, and the growth of the multiplier says along which motion the
        load drives the bodies; the sentence gets it when it is a rigid motion the load works along */
     const char *lead = "; the multiplier grows along a rigid motion: ";
-    std::string motion, proof;
+    std::string motion, brief, proof;
     size_t      len, room = 0;
     PetscCall(PetscStrlen(d.stats.reason, &len));
     /* room for the phrase, or for its short form (about 100 characters) */
     if (len + std::strlen(lead) + 120 < sizeof(d.stats.reason)) {
       room = sizeof(d.stats.reason) - 1 - len - std::strlen(lead);
-      PetscCall(ContactDescribeStagnatedMotion_Private(cm, d.fem, d.feti, tao, d.alpha, d.u, room, motion, proof));
+      PetscCall(ContactDescribeStagnatedMotion_Private(cm, d.fem, d.feti, tao, d.alpha, d.u, room, motion, brief, proof));
     }
     if (!motion.empty() && motion.size() <= room) {
       std::string reason = d.stats.reason;
       if (!proof.empty()) {
         /* the motion proves that there is no equilibrium: the Coulomb sentence loses the other cause it gives (radii
-           that lock the loop), and every sentence says why */
-        const char *found = "no equilibrium found: ";
+           that lock the loop), and every sentence says why, with the motion's brief form when the whole one leaves no
+           room for the proof */
+        const char *found  = "no equilibrium found: ";
+        std::string proven = reason;
         if (reason.rfind(found, 0) == 0) {
           PetscReal feasibility;
-          char      proven[160];
+          char      buf[160];
           PetscCall(TaoSMALXEGetFeasibility(tao, &feasibility));
-          PetscCall(
-              PetscSNPrintf(proven, sizeof(proven), "no equilibrium: |G l - e| stagnates at %.3g while the multiplier grows; the loads exceed what supports and friction carry", (double)feasibility));
+          PetscCall(PetscSNPrintf(buf, sizeof(buf), "no equilibrium: |G l - e| stagnates at %.3g while the multiplier grows; the loads exceed what supports and friction carry", (double)feasibility));
+          proven = buf;
+        }
+        auto fits = [&](const std::string &m) { return (proven + lead + m + ", which proves it: " + proof).size() < sizeof(d.stats.reason); };
+        if (fits(motion)) reason = proven;
+        else if (fits(brief)) {
           reason = proven;
-        }
-        const std::string longer = reason + lead + motion + ", which proves it: " + proof;
-        if (longer.size() >= sizeof(d.stats.reason)) { /* no room: the sentence as the solver gave it, with the motion */
-          reason = d.stats.reason;
-          proof.clear();
-        }
+          motion = brief;
+        } else proof.clear(); /* no room: the sentence as the solver gave it, with the motion */
       }
       const std::string whole = reason + lead + motion + (proof.empty() ? "" : ", which proves it: " + proof);
       PetscCall(PetscStrncpy(d.stats.reason, whole.c_str(), sizeof(d.stats.reason)));

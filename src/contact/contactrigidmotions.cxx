@@ -17,6 +17,7 @@
    of the equality's multiplier, and says whether it proves that no equilibrium exists. */
 #include <conefeti/private/contactmodelimpl.h>
 #include <petscblaslapack.h>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -135,6 +136,15 @@ std::string BodyList(const std::vector<PetscInt> &bodies)
   return s;
 }
 
+/* how the bodies move: one motion ("slide along x"), or each its own ("move (body 1: ...; body 2: ...)") */
+std::string How(const std::vector<PetscInt> &bodies, const std::vector<Motion> &ms, PetscBool same, int digits)
+{
+  if (same) return Describe(ms[0], digits);
+  std::string how = "move (";
+  for (size_t i = 0; i < ms.size(); i++) how += (i ? "; body " : "body ") + std::to_string(bodies[i]) + ": " + Describe(ms[i], digits);
+  return how + ")";
+}
+
 struct Checker {
   FEM                               fem;
   const std::vector<ContactZone>   &zones;
@@ -187,12 +197,7 @@ struct Checker {
     /* "together": one motion, or (at setup) one free motion that needs them all; bodies that a multiplier's growth
        moves each its own way are not together */
     who = BodyList(bodies) + (bodies.size() > 1 && (same || !numeric) ? " together" : "");
-    if (same) how = Describe(ms[0], digits);
-    else {
-      how = "move (";
-      for (size_t i = 0; i < ms.size(); i++) how += (i ? "; body " : "body ") + std::to_string(bodies[i]) + ": " + Describe(ms[i], digits);
-      how += ")";
-    }
+    how = How(bodies, ms, same, digits);
   }
 
   /* why nothing resists the motion on these bodies, and how to hold them */
@@ -361,6 +366,192 @@ PetscBool ProvesNoEquilibrium(const Checker &ck, const ContactModelData &d, cons
   return *violation <= 1e-8 && *work - *resisted > 1e-6 * magnitude * scale ? PETSC_TRUE : PETSC_FALSE;
 }
 
+/* The motion told, polished until it proves that no equilibrium exists, when a motion near it does. A motion found
+   from a multiplier's growth and rounded to be told misses the edge its bodies tip over by the growth's noise and
+   by the rounding of its axis' point (an edge at y = 0.0625 told at 0.06), so the nodes on that edge close by a
+   little and the check fails although the turn about the edge itself passes. So, a few passes: every contact node
+   whose check the motion breaks (its jump closes, or leaves the polar of its Coulomb cone) keeps its jump at zero
+   from then on (the normal component; the whole jump at a Coulomb node), the moving bodies' supports stay put, and
+   the motion becomes the nearest one that does so (the least change of its coordinates: per group of bodies that
+   move as one, the translation at the first body's centroid and the turn times its size; rows scaled to unit
+   length, rows of roundoff left out). A support the rounded motion moves starts the first pass too. Polishing only
+   proposes: ProvesNoEquilibrium() decides. On success told holds the polished motions
+   (the same bodies, none of them at rest) and *passes the passes taken; on failure told is left as it was. */
+PetscErrorCode PolishProof(ContactModel cm, const Checker &ck, const ContactModelData &d, PetscBool together, const std::vector<PetscReal> &g, PetscReal magnitude,
+                           std::vector<std::pair<PetscInt, Motion>> &told, PetscInt *passes, PetscReal *work, PetscReal *resisted, PetscReal *violation)
+{
+  constexpr int                                       kPasses = 5;
+  const size_t                                        ng      = together ? 1 : told.size();
+  const PetscInt                                      n       = 6 * (PetscInt)ng;
+  std::vector<PetscInt>                               group(ck.frames.size(), -1), nz;
+  std::vector<char>                                   active(d.nodes.size(), 0);
+  std::vector<PetscReal>                              x(n), r(n), lambda(n);
+  std::vector<PetscScalar>                            M((size_t)n * n), Ms((size_t)n * n, 0.0); /* Ms: the supports' rows */
+  std::vector<std::pair<PetscInt, const PetscReal *>> supports;                                 /* each support dof of a moving body: the body and the node */
+  std::vector<int>                                    component;
+  PetscReal                                           size = 0; /* the sum of the terms' sizes in the row being built: below 1e-12 of it, a row is roundoff */
+
+  PetscFunctionBegin;
+  *passes = 0;
+  if (told.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  for (size_t i = 0; i < told.size(); i++) group[told[i].first] = together ? 0 : (PetscInt)i;
+  auto frame = [&](size_t q) -> const BodyFrame & { return ck.frames[told[q].first]; };
+  for (size_t q = 0; q < ng; q++) {
+    const Motion &m = told[q].second;
+    Displace(m, frame(q).c, &x[6 * q]);
+    for (int k = 0; k < 3; k++) x[6 * q + 3 + k] = m.turn ? m.w[k] * frame(q).L : 0;
+  }
+  /* r += factor * (dir . u_b(X)) as a function of the coordinates: dir . (t + (s / L) x y) = dir . t + s . (y x dir) / L */
+  auto addU = [&](PetscInt b, const PetscReal *X, const PetscReal dir[3], PetscReal factor) {
+    const PetscInt q = b >= 0 ? group[b] : -1;
+    if (q < 0) return;
+    const BodyFrame &f    = frame(q);
+    const PetscReal  y[3] = {X[0] - f.c[0], X[1] - f.c[1], X[2] - f.c[2]};
+    for (int k = 0; k < 3; k++) {
+      r[6 * q + k] += factor * dir[k];
+      r[6 * q + 3 + k] += factor * (y[(k + 1) % 3] * dir[(k + 2) % 3] - y[(k + 2) % 3] * dir[(k + 1) % 3]) / f.L;
+    }
+    size += std::fabs(factor) * (1 + Norm3(y) / f.L);
+  };
+  /* the row built, scaled to unit length, into A; a row of roundoff (a node's two sides in one group cancel) is left out */
+  auto addRow = [&](std::vector<PetscScalar> &A) {
+    PetscReal nr = 0;
+    nz.clear();
+    for (PetscInt i = 0; i < n; i++)
+      if (r[i] != 0) {
+        nz.push_back(i);
+        nr += r[i] * r[i];
+      }
+    if (nr > PetscSqr(1e-12 * size))
+      for (PetscInt i : nz)
+        for (PetscInt j : nz) A[i + n * j] += r[i] * r[j] / nr;
+    for (PetscInt i : nz) r[i] = 0;
+    size = 0;
+  };
+  for (PetscInt gd : ck.dirichlet) {
+    const PetscInt b = ck.BodyOfNode(gd / 3);
+    if (b < 0 || group[b] < 0) continue;
+    const PetscReal *X      = &ck.frames[b].X[3 * (gd / 3 - ck.frames[b].offset)];
+    const PetscReal  dir[3] = {gd % 3 == 0 ? 1.0 : 0.0, gd % 3 == 1 ? 1.0 : 0.0, gd % 3 == 2 ? 1.0 : 0.0};
+    supports.emplace_back(b, X);
+    component.push_back((int)(gd % 3));
+    addU(b, X, dir, 1);
+    addRow(Ms);
+  }
+  for (int pass = 1; pass <= kPasses; pass++) {
+    std::vector<std::pair<PetscInt, Motion>> polished = told;
+    std::vector<const Motion *>              of(ck.frames.size(), nullptr);
+    PetscReal                                scale  = 0;
+    PetscInt                                 broken = 0, held = 0, left = 0;
+    for (size_t i = 0; i < told.size(); i++) polished[i].second = MakeMotion(frame(together ? 0 : i), &x[6 * (together ? 0 : i)]);
+    for (const auto &bm : polished) {
+      PetscReal uc[3];
+      of[bm.first] = &bm.second;
+      Displace(bm.second, ck.frames[bm.first].c, uc);
+      scale = PetscMax(scale, Norm3(uc) + (bm.second.turn ? Norm3(bm.second.w) * ck.frames[bm.first].L : 0));
+    }
+    if (!(scale > 0)) break;
+    /* the checks the motion breaks: a support it moves (the first pass only: the projection holds them all), and the
+       contact nodes, each held from the pass that finds it broken on */
+    if (pass == 1)
+      for (size_t i = 0; i < supports.size() && !broken; i++) {
+        PetscReal u[3];
+        Displace(*of[supports[i].first], supports[i].second, u);
+        if (std::fabs(u[component[i]]) > 1e-9 * scale) broken++;
+      }
+    for (size_t i = 0; i < d.nodes.size(); i++) {
+      const ContactNodeInfo &k    = d.nodes[i];
+      PetscReal              j[3] = {0, 0, 0}, u[3];
+      if (of[k.body]) Displace(*of[k.body], &ck.frames[k.body].X[3 * k.node], j);
+      for (PetscInt v = 0; v < k.nmaster; v++)
+        if (k.other_body >= 0 && of[k.other_body]) {
+          Displace(*of[k.other_body], &ck.frames[k.other_body].X[3 * k.master[v]], u);
+          for (int q = 0; q < 3; q++) j[q] -= k.weight[v] * u[q];
+        }
+      const PetscReal vn = j[0] * k.n[0] + j[1] * k.n[1] + j[2] * k.n[2];
+      const PetscReal v1 = j[0] * k.t1[0] + j[1] * k.t1[1] + j[2] * k.t1[2], v2 = j[0] * k.t2[0] + j[1] * k.t2[1] + j[2] * k.t2[2];
+      const PetscBool cone = k.law == CONTACT_COULOMB && k.coef > 0 ? PETSC_TRUE : PETSC_FALSE;
+      if (!active[i] && (vn > 1e-9 * scale || (cone && vn + k.coef * PetscSqrtReal(v1 * v1 + v2 * v2) > 1e-9 * scale))) {
+        active[i] = 1;
+        broken++;
+      }
+      held += active[i];
+    }
+    if (!broken) { /* nothing more to hold at zero: a motion near this one does not prove it either */
+      PetscCall(PetscInfo(cm, "polishing, pass %d: the motion breaks no check it did not break before\n", pass));
+      break;
+    }
+    /* the normal equations of the rows held at zero, and their null space */
+    M = Ms;
+    for (size_t i = 0; i < d.nodes.size(); i++) {
+      const ContactNodeInfo &k = d.nodes[i];
+      if (!active[i]) continue;
+      const PetscBool  cone    = k.law == CONTACT_COULOMB && k.coef > 0 ? PETSC_TRUE : PETSC_FALSE;
+      const PetscReal *dirs[3] = {k.n, k.t1, k.t2};
+      for (int c = 0; c < (cone ? 3 : 1); c++) {
+        addU(k.body, &ck.frames[k.body].X[3 * k.node], dirs[c], 1);
+        for (PetscInt v = 0; v < k.nmaster; v++) addU(k.other_body, &ck.frames[k.other_body].X[3 * k.master[v]], dirs[c], -k.weight[v]);
+        addRow(M);
+      }
+    }
+    {
+      PetscBLASInt             bn, lwork = -1, info;
+      PetscScalar              wq;
+      std::vector<PetscScalar> wk;
+      PetscCall(PetscBLASIntCast(n, &bn));
+      PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "L", &bn, M.data(), &bn, lambda.data(), &wq, &lwork, &info));
+      if (!info) {
+        PetscCall(PetscBLASIntCast((PetscInt)PetscRealPart(wq), &lwork));
+        PetscCallCXX(wk.resize(lwork));
+        PetscCallBLAS("LAPACKsyev", LAPACKsyev_("V", "L", &bn, M.data(), &bn, lambda.data(), wk.data(), &lwork, &info));
+      }
+      if (info) {
+        PetscCall(PetscInfo(cm, "polishing, pass %d: LAPACK syev failed (info %d)\n", pass, (int)info));
+        break;
+      }
+    }
+    /* x: its projection on the eigenvectors of (numerically) zero eigenvalue, ascending */
+    std::vector<PetscReal> y(n, 0.0);
+    const PetscReal        tol = 1e-10 * PetscMax(lambda[n - 1], 1.0);
+    for (PetscInt e = 0; e < n && lambda[e] <= tol; e++, left++) {
+      PetscReal c = 0;
+      for (PetscInt i = 0; i < n; i++) c += PetscRealPart(M[i + n * e]) * x[i];
+      for (PetscInt i = 0; i < n; i++) y[i] += c * PetscRealPart(M[i + n * e]);
+    }
+    /* every group must still move: the phrase names its bodies */
+    PetscReal xmax = 0;
+    for (PetscReal a : x) xmax = PetscMax(xmax, std::fabs(a));
+    PetscBool still = PETSC_TRUE;
+    for (size_t q = 0; q < ng; q++) {
+      PetscReal ymax = 0;
+      for (int k = 0; k < 6; k++) ymax = PetscMax(ymax, std::fabs(y[6 * q + k]));
+      if (!(ymax > 1e-3 * xmax)) still = PETSC_FALSE;
+    }
+    if (!still) {
+      PetscCall(PetscInfo(cm, "polishing, pass %d: %" PetscInt_FMT " contact nodes held still leave %" PetscInt_FMT " of %" PetscInt_FMT " motion coordinates, which stop a body the motion moves\n",
+                          pass, held, left, n));
+      break;
+    }
+    x = y;
+    for (size_t i = 0; i < told.size(); i++) polished[i].second = MakeMotion(frame(together ? 0 : i), &x[6 * (together ? 0 : i)]);
+    PetscReal       pw, pr, pv;
+    const PetscBool proves = ProvesNoEquilibrium(ck, d, polished, g, magnitude, &pw, &pr, &pv);
+    PetscCall(PetscInfo(cm,
+                        "polishing, pass %d: %" PetscInt_FMT " contact nodes held still leave %" PetscInt_FMT " of %" PetscInt_FMT
+                        " motion coordinates; largest violation of a check %g, the load's work %g, the slip bounds' most %g\n",
+                        pass, held, left, n, (double)pv, (double)pw, (double)pr));
+    if (proves) {
+      told       = polished;
+      *passes    = pass;
+      *work      = pw;
+      *resisted  = pr;
+      *violation = pv;
+      break;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 } // namespace
 
 /* Stop with an error naming the body and the motion when a rigid motion of the bodies is resisted by no
@@ -458,10 +649,11 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
    outer iterations, so the motion is rounded: bodies below 1e-2 of the largest motion are dropped, and so are the
    parts of the axis (or of a slide's direction) and the slide along the axis below kNoise; a turn about an axis
    farther than 5 body radii is a slide; points lie on a grid (a power of ten, at least a hundredth of the body's
-   size) and have 3 digits. A phrase longer than maxlen (several bodies that move apart) only names the bodies;
-   -info gives it whole. proof: why the motion told proves that no equilibrium exists (ProvesNoEquilibrium()), or
-   empty. */
-PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, FETI feti, Tao tao, Vec alpha, Vec u, size_t maxlen, std::string &phrase, std::string &proof)
+   size) and have 3 digits. A phrase longer than maxlen (several bodies that move apart) only names the bodies, as
+   brief always does; -info gives it whole. proof: why the motion told proves that no equilibrium exists
+   (ProvesNoEquilibrium(); when the rounded motion does not, the motion polished by PolishProof(), which the phrase
+   then tells), or empty. */
+PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, FETI feti, Tao tao, Vec alpha, Vec u, size_t maxlen, std::string &phrase, std::string &brief, std::string &proof)
 {
   MPI_Comm           comm = PetscObjectComm((PetscObject)cm);
   Vec                w, x, up, ug, X;
@@ -475,6 +667,7 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
 
   PetscFunctionBegin;
   phrase.clear();
+  brief.clear();
   proof.clear();
   PetscCall(TaoGetSolution(tao, &x));
   PetscCall(VecDuplicate(x, &w));
@@ -607,14 +800,40 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
   std::vector<std::pair<PetscInt, Motion>> told;
   PetscReal                                toldwork, bound, violation;
   ck.Phrase(v, who, how, &m, PETSC_TRUE, &told);
-  const PetscReal unit  = m.turn ? Norm3(m.w) : Norm3(m.t);                       /* per unit of the motion: a force along a slide, a moment about a turn's axis */
   const PetscBool apart = how.rfind("move (", 0) == 0 ? PETSC_TRUE : PETSC_FALSE; /* bodies that move apart: no one axis, no one number */
-  const char     *units = m.turn ? "N m" : "N";
-  /* the motion as told, checked against every contact node and support */
+  /* the motion as told, checked against every contact node and support; when that fails, polished */
   PetscCall(GatherDirichletDofs(fem, ck));
-  const PetscBool proves = ProvesNoEquilibrium(ck, *cm->data, told, g, magnitude, &toldwork, &bound, &violation);
+  PetscBool proves = ProvesNoEquilibrium(ck, *cm->data, told, g, magnitude, &toldwork, &bound, &violation);
   PetscCall(PetscInfo(cm, "the motion told %s that no equilibrium exists: its largest violation of a check %g (of its largest displacement), the load's work along it %g, the slip bounds' most %g\n",
-                      proves ? "proves" : "does not prove", (double)violation, (double)(toldwork / unit), (double)(bound / unit)));
+                      proves ? "proves" : "does not prove", (double)violation, (double)(toldwork / (m.turn ? Norm3(m.w) : Norm3(m.t))), (double)(bound / (m.turn ? Norm3(m.w) : Norm3(m.t)))));
+  PetscInt passes = 0;
+  if (!proves) PetscCall(PolishProof(cm, ck, *cm->data, apart ? PETSC_FALSE : PETSC_TRUE, g, magnitude, told, &passes, &toldwork, &bound, &violation));
+  /* one verdict and one motion on every rank, rank 0's: the checks' thresholds are sharp, and LAPACK need not give the
+     same bits on different processors */
+  {
+    PetscReal nums[3] = {toldwork, bound, violation};
+    PetscCallMPI(MPI_Bcast(&proves, 1, MPIU_BOOL, 0, comm));
+    PetscCallMPI(MPI_Bcast(&passes, 1, MPIU_INT, 0, comm));
+    PetscCallMPI(MPI_Bcast(nums, 3, MPIU_REAL, 0, comm));
+    PetscCallMPI(MPI_Bcast(told.data(), (PetscMPIInt)(told.size() * sizeof(told[0])), MPI_BYTE, 0, comm));
+    toldwork  = nums[0];
+    bound     = nums[1];
+    violation = nums[2];
+  }
+  if (passes) {
+    std::vector<PetscInt> bodies;
+    std::vector<Motion>   ms;
+    for (const auto &bm : told) {
+      bodies.push_back(bm.first);
+      ms.push_back(bm.second);
+    }
+    proves = PETSC_TRUE;
+    m      = ms[0];
+    how    = How(bodies, ms, apart ? PETSC_FALSE : PETSC_TRUE, 3);
+    PetscCall(PetscInfo(cm, "the motion polished proves it (in %" PetscInt_FMT " pass%s): %s\n", passes, passes > 1 ? "es" : "", how.c_str()));
+  } else if (!proves) PetscCall(PetscInfo(cm, "the motion polished does not prove it either: the motion told stays\n"));
+  const PetscReal unit  = m.turn ? Norm3(m.w) : Norm3(m.t); /* per unit of the motion: a force along a slide, a moment about a turn's axis */
+  const char     *units = m.turn ? "N m" : "N";
   /* the load's work along the motion told (the one the proof compares), unless rounding made it no work */
   work = (toldwork > 0 ? toldwork : work) / unit;
   if (apart) std::snprintf(amount, sizeof(amount), "the load works along it");
@@ -628,7 +847,8 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
     proof = resist;
   }
   phrase = who + " would " + how + " (" + amount + ")";
+  brief  = who + " would move (the load works along that motion; -info :contact gives each body's)";
   PetscCall(PetscInfo(cm, "the multiplier's growth is a rigid motion: %s\n", phrase.c_str()));
-  if (phrase.size() > maxlen) phrase = who + " would move (the load works along that motion; -info :contact gives each body's)";
+  if (phrase.size() > maxlen) phrase = brief;
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -153,9 +153,9 @@ PETSC_INTERN PetscErrorCode ContactCheckRigidMotions_Private(ContactModel, FEM, 
 /* Where the contact solve stagnated: the rigid motion of the bodies along which the multiplier of G l = e grew, as
    "body 1 would turn about an axis through (3, 0.5, 0) along -x (the load's moment about that axis: 2e+07 N m)", or
    an empty phrase when the growth is no rigid motion the load drives (contactrigidmotions.cxx); alpha and u are
-   templates of FETI's coarse and primal vectors; a phrase longer than the given length only names the bodies. The
-   last argument says why the motion proves that no equilibrium exists ("no admissible contact force resists that
-   motion": no support moves, no contact closes, no Coulomb node slides beyond its cone, and the load outworks what
-   the Tresca bounds can resist), or is empty */
-PETSC_INTERN PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel, FEM, FETI, Tao, Vec, Vec, size_t, std::string &, std::string &);
+   templates of FETI's coarse and primal vectors; a phrase longer than the given length only names the bodies, as
+   the brief phrase (the next argument) always does. The last argument says why the motion proves that no
+   equilibrium exists ("no admissible contact force resists that motion": no support moves, no contact closes, no
+   Coulomb node slides beyond its cone, and the load outworks what the Tresca bounds can resist), or is empty */
+PETSC_INTERN PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel, FEM, FETI, Tao, Vec, Vec, size_t, std::string &, std::string &, std::string &);
 PETSC_INTERN PetscLogEvent  CONTACT_Solve;
