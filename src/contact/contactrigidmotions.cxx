@@ -105,6 +105,9 @@ void Displace(const Motion &m, const PetscReal x[3], PetscReal u[3])
   for (int i = 0; i < 3; i++) u[i] = m.pitch * m.w[i] + m.w[(i + 1) % 3] * y[(i + 2) % 3] - m.w[(i + 2) % 3] * y[(i + 1) % 3];
 }
 
+/* a motion's size per unit: the work along it is a force along a slide, a moment about a turn's axis */
+PetscReal UnitOf(const Motion &m) { return m.turn ? Norm3(m.w) : Norm3(m.t); }
+
 /* "slide along x", "turn about an axis through (0.5, 0.5, 0) along z" (a motion found numerically: 3 digits) */
 std::string Describe(const Motion &m, int digits = 6)
 {
@@ -306,6 +309,39 @@ PetscErrorCode GatherDirichletDofs(FEM fem, Checker &ck)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+/* Which motion each body makes (nullptr: at rest), and the largest displacement of the motions told at their
+   bodies (a turn's |w| L on top of its centroid's) */
+PetscReal MotionsOf(const Checker &ck, const std::vector<std::pair<PetscInt, Motion>> &told, std::vector<const Motion *> &of)
+{
+  PetscReal scale = 0;
+  of.assign(ck.frames.size(), nullptr);
+  for (const auto &bm : told) {
+    const BodyFrame &f = ck.frames[bm.first];
+    PetscReal        uc[3];
+    of[bm.first] = &bm.second;
+    Displace(bm.second, f.c, uc);
+    scale = PetscMax(scale, Norm3(uc) + (bm.second.turn ? Norm3(bm.second.w) * f.L : 0));
+  }
+  return scale;
+}
+
+/* The jump of contact node k's rows under the motions (its side minus the weighted master points; v_n > 0 closes
+   the gap): the normal part and the size of the tangential part. The whole jump, also in components a row leaves
+   out for the node's Dirichlet conditions: a motion that proves anything moves no support, so it vanishes there */
+void NodeJump(const Checker &ck, const std::vector<const Motion *> &of, const ContactNodeInfo &k, PetscReal *vn, PetscReal *vt)
+{
+  PetscReal j[3] = {0, 0, 0}, u[3];
+  if (of[k.body]) Displace(*of[k.body], &ck.frames[k.body].X[3 * k.node], j);
+  for (PetscInt v = 0; v < k.nmaster; v++)
+    if (k.other_body >= 0 && of[k.other_body]) {
+      Displace(*of[k.other_body], &ck.frames[k.other_body].X[3 * k.master[v]], u);
+      for (int q = 0; q < 3; q++) j[q] -= k.weight[v] * u[q];
+    }
+  const PetscReal v1 = j[0] * k.t1[0] + j[1] * k.t1[1] + j[2] * k.t1[2], v2 = j[0] * k.t2[0] + j[1] * k.t2[1] + j[2] * k.t2[2];
+  *vn = j[0] * k.n[0] + j[1] * k.n[1] + j[2] * k.n[2];
+  *vt = PetscSqrtReal(v1 * v1 + v2 * v2);
+}
+
 /* Whether the motion told (each moving body's rigid motion) proves that no equilibrium exists. An equilibrium
    has contact forces l in the admissible set (l_n >= 0; Coulomb: |l_t| <= F l_n; Tresca: |l_t| <= s) with
    G l = e, that is l'B R a = f'R a for every rigid motion R a of the subdomains: the contact forces would do
@@ -322,41 +358,28 @@ PetscErrorCode GatherDirichletDofs(FEM fem, Checker &ck)
 PetscBool ProvesNoEquilibrium(const Checker &ck, const ContactModelData &d, const std::vector<std::pair<PetscInt, Motion>> &told, const std::vector<PetscReal> &g, PetscReal magnitude, PetscReal *work,
                               PetscReal *resisted, PetscReal *violation)
 {
-  std::vector<const Motion *> of(ck.frames.size(), nullptr);
-  PetscReal                   scale = 0, worst = 0; /* worst: the largest violation of a check, in displacement */
+  std::vector<const Motion *> of;
+  const PetscReal             scale = MotionsOf(ck, told, of);
+  PetscReal                   worst = 0; /* the largest violation of a check, in displacement */
   *work = *resisted = 0;
   *violation        = PETSC_MAX_REAL;
   for (const auto &bm : told) {
     const BodyFrame &f = ck.frames[bm.first];
     PetscReal        uc[3];
-    of[bm.first] = &bm.second;
     Displace(bm.second, f.c, uc);
     for (int q = 0; q < 3; q++) *work += g[6 * bm.first + q] * uc[q] + g[6 * bm.first + 3 + q] * f.L * (bm.second.turn ? bm.second.w[q] : 0);
-    scale = PetscMax(scale, Norm3(uc) + (bm.second.turn ? Norm3(bm.second.w) * f.L : 0));
   }
   if (!(scale > 0)) return PETSC_FALSE;
-  auto at = [&](PetscInt b, const PetscReal *x, PetscReal u[3]) {
-    u[0] = u[1] = u[2] = 0;
-    if (b >= 0 && of[b]) Displace(*of[b], x, u);
-  };
   for (PetscInt gd : ck.dirichlet) { /* a support must not move */
     const PetscInt b = ck.BodyOfNode(gd / 3);
     PetscReal      u[3];
     if (b < 0 || !of[b]) continue;
-    at(b, &ck.frames[b].X[3 * (gd / 3 - ck.frames[b].offset)], u);
+    Displace(*of[b], &ck.frames[b].X[3 * (gd / 3 - ck.frames[b].offset)], u);
     worst = PetscMax(worst, std::fabs(u[gd % 3]));
   }
-  /* the whole jump, also in components a row leaves out for the node's Dirichlet conditions: the supports' check
-     above makes the motion vanish there */
   for (const ContactNodeInfo &k : d.nodes) {
-    PetscReal j[3], u[3];
-    at(k.body, &ck.frames[k.body].X[3 * k.node], j);
-    for (PetscInt v = 0; v < k.nmaster; v++) {
-      at(k.other_body, &ck.frames[k.other_body].X[3 * k.master[v]], u);
-      for (int q = 0; q < 3; q++) j[q] -= k.weight[v] * u[q];
-    }
-    const PetscReal vn = j[0] * k.n[0] + j[1] * k.n[1] + j[2] * k.n[2];
-    const PetscReal v1 = j[0] * k.t1[0] + j[1] * k.t1[1] + j[2] * k.t1[2], v2 = j[0] * k.t2[0] + j[1] * k.t2[1] + j[2] * k.t2[2], vt = PetscSqrtReal(v1 * v1 + v2 * v2);
+    PetscReal vn, vt;
+    NodeJump(ck, of, k, &vn, &vt);
     worst = PetscMax(worst, vn);
     if (k.law == CONTACT_FRICTIONLESS || !(k.coef > 0)) continue;
     if (k.law == CONTACT_COULOMB) worst = PetscMax(worst, vn + k.coef * vt);
@@ -374,22 +397,20 @@ PetscBool ProvesNoEquilibrium(const Checker &ck, const ContactModelData &d, cons
    from then on (the normal component; the whole jump at a Coulomb node), the moving bodies' supports stay put, and
    the motion becomes the nearest one that does so (the least change of its coordinates: per group of bodies that
    move as one, the translation at the first body's centroid and the turn times its size; rows scaled to unit
-   length, rows of roundoff left out). A support the rounded motion moves starts the first pass too. Polishing only
+   length, rows of roundoff left out). The first pass projects whatever broke, a support too. Polishing only
    proposes: ProvesNoEquilibrium() decides. On success told holds the polished motions
    (the same bodies, none of them at rest) and *passes the passes taken; on failure told is left as it was. */
 PetscErrorCode PolishProof(ContactModel cm, const Checker &ck, const ContactModelData &d, PetscBool together, const std::vector<PetscReal> &g, PetscReal magnitude,
                            std::vector<std::pair<PetscInt, Motion>> &told, PetscInt *passes, PetscReal *work, PetscReal *resisted, PetscReal *violation)
 {
-  constexpr int                                       kPasses = 5;
-  const size_t                                        ng      = together ? 1 : told.size();
-  const PetscInt                                      n       = 6 * (PetscInt)ng;
-  std::vector<PetscInt>                               group(ck.frames.size(), -1), nz;
-  std::vector<char>                                   active(d.nodes.size(), 0);
-  std::vector<PetscReal>                              x(n), r(n), lambda(n);
-  std::vector<PetscScalar>                            M((size_t)n * n), Ms((size_t)n * n, 0.0); /* Ms: the supports' rows */
-  std::vector<std::pair<PetscInt, const PetscReal *>> supports;                                 /* each support dof of a moving body: the body and the node */
-  std::vector<int>                                    component;
-  PetscReal                                           size = 0; /* the sum of the terms' sizes in the row being built: below 1e-12 of it, a row is roundoff */
+  constexpr int            kPasses = 5;
+  const size_t             ng      = together ? 1 : told.size();
+  const PetscInt           n       = 6 * (PetscInt)ng;
+  std::vector<PetscInt>    group(ck.frames.size(), -1), nz;
+  std::vector<char>        active(d.nodes.size(), 0);
+  std::vector<PetscReal>   x(n), r(n), lambda(n);
+  std::vector<PetscScalar> M((size_t)n * n), Ms((size_t)n * n, 0.0); /* Ms: the supports' rows */
+  PetscReal                size = 0;                                 /* the sum of the terms' sizes in the row being built: below 1e-12 of it, a row is roundoff */
 
   PetscFunctionBegin;
   *passes = 0;
@@ -433,51 +454,28 @@ PetscErrorCode PolishProof(ContactModel cm, const Checker &ck, const ContactMode
     if (b < 0 || group[b] < 0) continue;
     const PetscReal *X      = &ck.frames[b].X[3 * (gd / 3 - ck.frames[b].offset)];
     const PetscReal  dir[3] = {gd % 3 == 0 ? 1.0 : 0.0, gd % 3 == 1 ? 1.0 : 0.0, gd % 3 == 2 ? 1.0 : 0.0};
-    supports.emplace_back(b, X);
-    component.push_back((int)(gd % 3));
     addU(b, X, dir, 1);
     addRow(Ms);
   }
+  std::vector<std::pair<PetscInt, Motion>> polished = told;
+  std::vector<const Motion *>              of;
   for (int pass = 1; pass <= kPasses; pass++) {
-    std::vector<std::pair<PetscInt, Motion>> polished = told;
-    std::vector<const Motion *>              of(ck.frames.size(), nullptr);
-    PetscReal                                scale  = 0;
-    PetscInt                                 broken = 0, held = 0, left = 0;
-    for (size_t i = 0; i < told.size(); i++) polished[i].second = MakeMotion(frame(together ? 0 : i), &x[6 * (together ? 0 : i)]);
-    for (const auto &bm : polished) {
-      PetscReal uc[3];
-      of[bm.first] = &bm.second;
-      Displace(bm.second, ck.frames[bm.first].c, uc);
-      scale = PetscMax(scale, Norm3(uc) + (bm.second.turn ? Norm3(bm.second.w) * ck.frames[bm.first].L : 0));
-    }
+    const PetscReal scale  = MotionsOf(ck, polished, of);
+    PetscInt        broken = 0, held = 0, left = 0;
     if (!(scale > 0)) break;
-    /* the checks the motion breaks: a support it moves (the first pass only: the projection holds them all), and the
-       contact nodes, each held from the pass that finds it broken on */
-    if (pass == 1)
-      for (size_t i = 0; i < supports.size() && !broken; i++) {
-        PetscReal u[3];
-        Displace(*of[supports[i].first], supports[i].second, u);
-        if (std::fabs(u[component[i]]) > 1e-9 * scale) broken++;
-      }
+    /* the contact nodes whose check the motion breaks, each held from the pass that finds it broken on */
     for (size_t i = 0; i < d.nodes.size(); i++) {
-      const ContactNodeInfo &k    = d.nodes[i];
-      PetscReal              j[3] = {0, 0, 0}, u[3];
-      if (of[k.body]) Displace(*of[k.body], &ck.frames[k.body].X[3 * k.node], j);
-      for (PetscInt v = 0; v < k.nmaster; v++)
-        if (k.other_body >= 0 && of[k.other_body]) {
-          Displace(*of[k.other_body], &ck.frames[k.other_body].X[3 * k.master[v]], u);
-          for (int q = 0; q < 3; q++) j[q] -= k.weight[v] * u[q];
-        }
-      const PetscReal vn = j[0] * k.n[0] + j[1] * k.n[1] + j[2] * k.n[2];
-      const PetscReal v1 = j[0] * k.t1[0] + j[1] * k.t1[1] + j[2] * k.t1[2], v2 = j[0] * k.t2[0] + j[1] * k.t2[1] + j[2] * k.t2[2];
-      const PetscBool cone = k.law == CONTACT_COULOMB && k.coef > 0 ? PETSC_TRUE : PETSC_FALSE;
-      if (!active[i] && (vn > 1e-9 * scale || (cone && vn + k.coef * PetscSqrtReal(v1 * v1 + v2 * v2) > 1e-9 * scale))) {
+      const ContactNodeInfo &k = d.nodes[i];
+      PetscReal              vn, vt;
+      NodeJump(ck, of, k, &vn, &vt);
+      if (!active[i] && (vn > 1e-9 * scale || (k.law == CONTACT_COULOMB && k.coef > 0 && vn + k.coef * vt > 1e-9 * scale))) {
         active[i] = 1;
         broken++;
       }
       held += active[i];
     }
-    if (!broken) { /* nothing more to hold at zero: a motion near this one does not prove it either */
+    /* the first pass projects anyway: the motion told may fail by a support it moves, whose rows the projection holds */
+    if (!broken && pass > 1) { /* nothing more to hold at zero: a motion near this one does not prove it either */
       PetscCall(PetscInfo(cm, "polishing, pass %d: the motion breaks no check it did not break before\n", pass));
       break;
     }
@@ -606,7 +604,7 @@ PetscErrorCode ContactCheckRigidMotions_Private(ContactModel cm, FEM fem, const 
     /* per unit of the motion: a force along a slide, a moment about a turn's axis */
     if (worked < 0 && std::fabs(w) > kWorkTol * magnitude * vmax) {
       worked = j;
-      work   = w / (first.turn ? Norm3(first.w) : Norm3(first.t));
+      work   = w / UnitOf(first);
     }
   }
   if (k > 8) list += "; and " + std::to_string(k - 8) + " more";
@@ -805,7 +803,7 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
   PetscCall(GatherDirichletDofs(fem, ck));
   PetscBool proves = ProvesNoEquilibrium(ck, *cm->data, told, g, magnitude, &toldwork, &bound, &violation);
   PetscCall(PetscInfo(cm, "the motion told %s that no equilibrium exists: its largest violation of a check %g (of its largest displacement), the load's work along it %g, the slip bounds' most %g\n",
-                      proves ? "proves" : "does not prove", (double)violation, (double)(toldwork / (m.turn ? Norm3(m.w) : Norm3(m.t))), (double)(bound / (m.turn ? Norm3(m.w) : Norm3(m.t)))));
+                      proves ? "proves" : "does not prove", (double)violation, (double)(toldwork / UnitOf(m)), (double)(bound / UnitOf(m))));
   PetscInt passes = 0;
   if (!proves) PetscCall(PolishProof(cm, ck, *cm->data, apart ? PETSC_FALSE : PETSC_TRUE, g, magnitude, told, &passes, &toldwork, &bound, &violation));
   /* one verdict and one motion on every rank, rank 0's: the checks' thresholds are sharp, and LAPACK need not give the
@@ -832,7 +830,7 @@ PetscErrorCode ContactDescribeStagnatedMotion_Private(ContactModel cm, FEM fem, 
     how    = How(bodies, ms, apart ? PETSC_FALSE : PETSC_TRUE, 3);
     PetscCall(PetscInfo(cm, "the motion polished proves it (in %" PetscInt_FMT " pass%s): %s\n", passes, passes > 1 ? "es" : "", how.c_str()));
   } else if (!proves) PetscCall(PetscInfo(cm, "the motion polished does not prove it either: the motion told stays\n"));
-  const PetscReal unit  = m.turn ? Norm3(m.w) : Norm3(m.t); /* per unit of the motion: a force along a slide, a moment about a turn's axis */
+  const PetscReal unit  = UnitOf(m);
   const char     *units = m.turn ? "N m" : "N";
   /* the load's work along the motion told (the one the proof compares), unless rounding made it no work */
   work = (toldwork > 0 ? toldwork : work) / unit;
